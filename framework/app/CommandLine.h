@@ -1,0 +1,16 @@
+#pragma once
+/// \file CommandLine.h
+/// TCLAP (shipped with MRPT) set up the esif way: usage errors are one line
+/// naming the bad argument, --help prints the full usage and exits 0.
+
+#include <mrpt/3rdparty/tclap/CmdLine.h>
+
+#include <string>
+
+namespace esif::app
+{
+/// Parses argv with `cmd`; returns false when --help was printed (the caller
+/// then returns 0). Throws ConfigError with one line for a bad command line.
+bool parseCommandLine(TCLAP::CmdLine& cmd, int argc, char** argv);
+
+}  // namespace esif::app

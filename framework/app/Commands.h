@@ -1,0 +1,15 @@
+#pragma once
+/// \file Commands.h
+/// The subcommands of the `esif` host. Each takes the arguments after its
+/// name (argv[0] is "esif <command>"), prints its own --help, and returns the
+/// process exit code. Errors are thrown as esif::ConfigError / InputError /
+/// NumericalError and turned into one line on stderr by main().
+
+namespace esif::app
+{
+int runCommand(int argc, char** argv);
+int compareCommand(int argc, char** argv);
+int simulateCommand(int argc, char** argv);
+int pluginsCommand(int argc, char** argv);
+
+}  // namespace esif::app

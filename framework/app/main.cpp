@@ -1,0 +1,93 @@
+/// \file main.cpp
+/// `esif`: replays MRPT rawlogs through SLAM plugins and compares them.
+/// Every error reaches the user as one line on stderr and a non-zero exit.
+
+#include "Commands.h"
+
+#include <esif/core/Errors.h>
+
+#include <cstring>
+#include <iostream>
+#include <string>
+
+namespace
+{
+struct Subcommand
+{
+	const char* name;
+	int (*run)(int, char**);
+	const char* summary;
+};
+
+const Subcommand kSubcommands[] = {
+	{"run", esif::app::runCommand, "replay a rawlog through one plugin and write maps and stats"},
+	{"compare", esif::app::compareCommand, "run several configs on one rawlog and tabulate them"},
+	{"simulate", esif::app::simulateCommand, "generate a rawlog and ground truth from a scenario INI"},
+	{"plugins", esif::app::pluginsCommand, "list the plugins found and their parameters"},
+};
+
+void printUsage(std::ostream& out)
+{
+	out << "usage: esif <command> [options]   (esif <command> --help for details)\n\ncommands:\n";
+	for (const auto& c : kSubcommands) out << "  " << c.name << std::string(10 - std::strlen(c.name), ' ') << c.summary << "\n";
+}
+
+/// Exit codes: 1 bad input, config or command line; 2 no/unknown command;
+/// 3 numerical failure; 4 unexpected internal error.
+int dispatch(int argc, char** argv)
+{
+	if (argc < 2)
+	{
+		printUsage(std::cerr);
+		return 2;
+	}
+	const std::string name = argv[1];
+	if (name == "--help" || name == "-h" || name == "help")
+	{
+		printUsage(std::cout);
+		return 0;
+	}
+	for (const auto& c : kSubcommands)
+		if (name == c.name)
+		{
+			// The subcommand sees "esif <command>" as its program name.
+			std::string prog = std::string("esif ") + c.name;
+			argv[1] = prog.data();
+			return c.run(argc - 1, argv + 1);
+		}
+	std::cerr << "esif: unknown command '" << name << "' (esif --help lists the commands)\n";
+	return 2;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+	try
+	{
+		return dispatch(argc, argv);
+	}
+	catch (const esif::ConfigError& e)
+	{
+		std::cerr << "esif: error: " << e.what() << "\n";
+		return 1;
+	}
+	catch (const esif::InputError& e)
+	{
+		std::cerr << "esif: error: " << e.what() << "\n";
+		return 1;
+	}
+	catch (const esif::NumericalError& e)
+	{
+		std::cerr << "esif: numerical failure: " << e.what() << "\n";
+		return 3;
+	}
+	catch (const std::exception& e)
+	{
+		// MRPT exceptions carry a multi-line stack; keep the first line only.
+		std::string msg = e.what();
+		const auto nl = msg.find('\n');
+		if (nl != std::string::npos) msg.erase(nl);
+		std::cerr << "esif: internal error: " << msg << "\n";
+		return 4;
+	}
+}

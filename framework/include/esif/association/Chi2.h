@@ -1,0 +1,15 @@
+#pragma once
+/// \file Chi2.h
+/// Exact chi-square distribution for integer degrees of freedom. MRPT's
+/// chi2inv() is the Wilson-Hilferty approximation (5.937 instead of 5.991 for
+/// the 95% quantile at 2 dof), too coarse for consistency bounds.
+
+namespace esif
+{
+/// P(X <= x) for X ~ chi-square with `dof` degrees of freedom (dof >= 1).
+double chi2Cdf(double x, int dof);
+
+/// The `p` quantile (0 < p < 1) of the chi-square with `dof` degrees of freedom.
+double chi2Quantile(double p, int dof);
+
+}  // namespace esif

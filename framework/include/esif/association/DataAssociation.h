@@ -1,0 +1,42 @@
+#pragma once
+/// \file DataAssociation.h
+/// Range-bearing data association through MRPT's mrpt::slam
+/// data_association_full_covariance (nearest neighbour or JCBB, Mahalanobis
+/// metric, chi-square gate), with the two things it leaves to the caller:
+/// bearing wrap-around (it subtracts angles plainly) and telling a new
+/// feature from an ambiguous measurement.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace esif
+{
+enum class AssociationMethod
+{
+	NearestNeighbor,
+	Jcbb
+};
+
+struct AssociationInput
+{
+	Eigen::MatrixXd observations;  ///< M x 2: (range [m], bearing [rad])
+	Eigen::MatrixXd predictions;  ///< N x 2: predicted (range, bearing) of candidate landmarks
+	Eigen::MatrixXd covariance;	 ///< 2N x 2N: joint innovation covariance H P H^T + R
+};
+
+struct AssociationResult
+{
+	/// For each observation, the index of its candidate, or -1 when none passed the gate.
+	std::vector<int> candidate_of;
+	/// For each observation, the smallest squared Mahalanobis distance to any
+	/// candidate (infinity when there are none): tells "new" from "ambiguous".
+	std::vector<double> min_distance2;
+	std::size_t jcbb_nodes = 0;
+};
+
+/// Associates observations to candidates; `gate_quantile` in (0, 1) is the
+/// individual-compatibility chi-square confidence (2 dof).
+AssociationResult associate(const AssociationInput& input, AssociationMethod method, double gate_quantile);
+
+}  // namespace esif

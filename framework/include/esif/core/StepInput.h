@@ -1,0 +1,59 @@
+#pragma once
+/// \file StepInput.h
+/// The neutral input a filter plugin receives for one rawlog step. The host
+/// builds it from MRPT rawlog entries; plugins never see rawlog classes, so
+/// they can be driven by hand-made inputs in tests.
+
+#include <mrpt/math/TPose2D.h>
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace esif
+{
+/// Identity of a landmark as carried by the sensor (e.g. a beacon ID) or as
+/// assigned by a filter for a landmark it created itself.
+using LandmarkId = std::int64_t;
+
+/// Odometry increment: pose k in the frame of pose k-1, with its 3x3
+/// covariance over (dx [m], dy [m], dphi [rad]).
+struct OdometryIncrement
+{
+	mrpt::math::TPose2D delta;
+	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+};
+
+/// One range-bearing measurement of a point feature, in the sensor frame.
+struct RangeBearing
+{
+	double range_m = 0;
+	double bearing_rad = 0;	 ///< in (-pi, pi], counter-clockwise from the sensor's x axis
+	/// Covariance of (range [m], bearing [rad]).
+	Eigen::Matrix2d cov = Eigen::Matrix2d::Identity();
+	/// Landmark identity when the sensor provides it (known data association).
+	std::optional<LandmarkId> id;
+};
+
+/// All range-bearing measurements taken at one robot pose.
+struct Scan
+{
+	mrpt::math::TPose2D sensor_on_robot;  ///< sensor pose in the robot frame
+	double max_range_m = 0;	 ///< 0 when unknown/unlimited
+	double fov_rad = 0;	 ///< full field of view; 0 when unknown
+	std::vector<RangeBearing> measurements;
+};
+
+/// One step of a replay: an odometry increment (if any) followed by the
+/// measurements taken at the new pose (if any).
+struct StepInput
+{
+	std::size_t index = 0;	///< 0-based step index in the rawlog
+	double time_s = 0;	///< timestamp [s]; the step index when the log has none
+	std::optional<OdometryIncrement> odometry;
+	std::optional<Scan> scan;
+};
+
+}  // namespace esif

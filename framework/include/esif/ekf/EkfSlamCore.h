@@ -1,0 +1,77 @@
+#pragma once
+/// \file EkfSlamCore.h
+/// Full-covariance EKF SLAM over a robot pose and 2-D point features (book
+/// Sec. 1.2.1, eq. 1.1-1.10). The state is [x, y, phi, x1, y1, x2, y2, ...].
+///
+/// Costs: prediction O(N) (only the robot rows of P change), an update with m
+/// measurements O(m N^2) (the observation Jacobian touches 5 columns per
+/// measurement, so P H^T is formed from those columns only and P is updated
+/// by one symmetric rank-2m product), adding a landmark O(N) amortised.
+/// Used by the EKF plugin, D-SLAM's local localisation and local-map builders.
+
+#include <esif/core/StepInput.h>
+#include <esif/models/RangeBearingModel.h>
+#include <esif/models/Se2.h>
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+namespace esif
+{
+class EkfSlamCore
+{
+   public:
+	/// Robot at the origin with zero covariance: the map frame is the initial
+	/// robot pose (relative SLAM, Sec. 1.3.1).
+	EkfSlamCore();
+
+	/// Prediction step, eq. (1.8): x_r <- x_r (+) u, P_rr <- F P_rr F^T + G Q G^T,
+	/// P_rm <- F P_rm. Features are static (eq. 1.2).
+	void predict(const OdometryIncrement& u);
+
+	/// One range-bearing measurement associated with an existing landmark.
+	struct Match
+	{
+		std::size_t landmark = 0;  ///< landmark index (0-based, order of creation)
+		Eigen::Vector2d z;	///< (range [m], bearing [rad])
+		Eigen::Matrix2d R;	///< its covariance
+	};
+
+	/// Update step, eq. (1.9)-(1.10), with all `matches` at once. Throws
+	/// NumericalError if the innovation covariance is not positive definite.
+	void update(const std::vector<Match>& matches, const Pose2& sensor_on_robot);
+
+	/// Appends a landmark initialised from a measurement at the current pose,
+	/// with its full cross-covariance; returns its index.
+	std::size_t addLandmark(const Eigen::Vector2d& z, const Eigen::Matrix2d& R, const Pose2& sensor_on_robot);
+
+	/// Predicted measurement of landmark `i` from the current robot pose.
+	RangeBearingPrediction predictMeasurement(std::size_t i, const Pose2& sensor_on_robot) const;
+
+	/// Joint covariance H P H^T (2k x 2k) of the predicted measurements of
+	/// `landmarks`, without sensor noise: the data-association input.
+	Eigen::MatrixXd predictionCovariance(
+		const std::vector<std::size_t>& landmarks, const Pose2& sensor_on_robot) const;
+
+	std::size_t landmarkCount() const { return (n_ - 3) / 2; }
+	std::size_t stateDim() const { return n_; }
+	Pose2 robot() const { return x_.head<3>(); }
+	Eigen::Matrix3d robotCov() const { return P_.topLeftCorner<3, 3>(); }
+	Eigen::Vector2d landmark(std::size_t i) const { return x_.segment<2>(3 + 2 * i); }
+	Eigen::Matrix2d landmarkCov(std::size_t i) const { return P_.block<2, 2>(3 + 2 * i, 3 + 2 * i); }
+
+	/// State vector and covariance (the leading stateDim() entries).
+	Eigen::VectorBlock<const Eigen::VectorXd> state() const { return x_.head(n_); }
+	Eigen::Block<const Eigen::MatrixXd> covariance() const { return P_.topLeftCorner(n_, n_); }
+
+   private:
+	void reserve(std::size_t dim);
+	void symmetrise();
+
+	Eigen::VectorXd x_;	 // capacity >= n_
+	Eigen::MatrixXd P_;	 // capacity x capacity, leading n_ x n_ in use
+	std::size_t n_ = 3;
+};
+
+}  // namespace esif

@@ -1,0 +1,21 @@
+#pragma once
+/// \file ComparisonTable.h
+/// Side-by-side tables of several runs' stats: text for the terminal,
+/// comparison.csv (one row per run, the stats.json keys as columns) and
+/// comparison.md.
+
+#include <esif/io/StatsJson.h>
+
+#include <string>
+#include <vector>
+
+namespace esif
+{
+/// The keys shown in the terminal and Markdown tables, in order.
+const std::vector<std::string>& comparisonKeys();
+
+std::string comparisonText(const std::vector<Stats>& runs);
+std::string comparisonMarkdown(const std::vector<Stats>& runs);
+std::string comparisonCsv(const std::vector<Stats>& runs);
+
+}  // namespace esif

@@ -1,0 +1,40 @@
+#pragma once
+/// \file StatsJson.h
+/// The flat key/value record of one run (stats.json): numbers, strings and
+/// nulls in a fixed key order. Flat on purpose: comparison.csv has the same
+/// keys as columns. A hand-written writer/reader is used because none of the
+/// project's dependencies (MRPT 2.5, Eigen, Ceres) offers a JSON API, and the
+/// format needed is a single flat object.
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace esif
+{
+using StatValue = std::variant<std::nullptr_t, double, long long, std::string>;
+
+class Stats
+{
+   public:
+	void set(const std::string& key, StatValue value);
+	void set(const std::string& key, const std::optional<double>& value);
+	std::optional<StatValue> get(const std::string& key) const;
+	/// The value as a number, nullopt for null, strings or missing keys.
+	std::optional<double> number(const std::string& key) const;
+	const std::vector<std::pair<std::string, StatValue>>& items() const { return items_; }
+
+	std::string toJson() const;
+	/// Parses what toJson() writes; throws InputError naming `origin` otherwise.
+	static Stats fromJson(const std::string& text, const std::string& origin);
+
+   private:
+	std::vector<std::pair<std::string, StatValue>> items_;
+};
+
+/// Text of a value for tables and CSV ("null" -> empty for CSV is the caller's choice).
+std::string statText(const StatValue& v);
+
+}  // namespace esif

@@ -1,0 +1,37 @@
+#pragma once
+/// \file Se2.h
+/// Planar rigid-body poses (x, y, phi) as Eigen vectors, with the composition
+/// Jacobians used by every filter (book eq. 1.1, 1.8).
+
+#include <mrpt/math/TPose2D.h>
+
+#include <Eigen/Core>
+
+namespace esif
+{
+using Pose2 = Eigen::Vector3d;	///< (x [m], y [m], phi [rad])
+
+/// Wraps an angle to (-pi, pi].
+double wrapAngle(double a);
+
+Pose2 toPose2(const mrpt::math::TPose2D& p);
+mrpt::math::TPose2D toTPose2D(const Pose2& p);
+
+/// a (+) b: pose b given in the frame of a, expressed in a's parent frame.
+Pose2 compose(const Pose2& a, const Pose2& b);
+
+/// a (-) b... written as inverseCompose(a, b) = b expressed in the frame of a (a^-1 (+) b).
+Pose2 inverseCompose(const Pose2& a, const Pose2& b);
+
+/// Jacobians of compose(a, b) with respect to a and to b.
+struct ComposeJacobians
+{
+	Eigen::Matrix3d d_a;
+	Eigen::Matrix3d d_b;
+};
+ComposeJacobians composeJacobians(const Pose2& a, const Pose2& b);
+
+/// Point p given in the frame of `pose`, expressed in the parent frame.
+Eigen::Vector2d transformPoint(const Pose2& pose, const Eigen::Vector2d& p);
+
+}  // namespace esif

@@ -1,0 +1,60 @@
+#pragma once
+/// \file FilterPlugin.h
+/// The one interface every SLAM back-end implements. A plugin is a concrete
+/// class in its own shared library, registered by name with MRPT's RTTI and
+/// created by the host from the class name given in the INI file.
+///
+/// Notes to implementers:
+/// - Declare the class with DEFINE_MRPT_OBJECT(Name, esif), implement it with
+///   IMPLEMENTS_MRPT_OBJECT(Name, FilterPlugin, esif), and register it in the
+///   library's register.cpp with MRPT_INITIALIZER + mrpt::rtti::registerClass.
+/// - The host calls configure() once, then processStep() for every step in
+///   order, then finish() once. estimate(), robotPose() and costFigures() may
+///   be called at any time after configure().
+/// - Throw ConfigError for bad parameters and NumericalError (naming the
+///   step) for numerical failure; never abort.
+
+#include <esif/config/ConfigSection.h>
+#include <esif/config/ParamBinder.h>
+#include <esif/core/Estimate.h>
+#include <esif/core/StepInput.h>
+
+#include <mrpt/rtti/CObject.h>
+
+#include <vector>
+
+namespace esif
+{
+class FilterPlugin : public mrpt::rtti::CObject
+{
+	DEFINE_VIRTUAL_MRPT_OBJECT(FilterPlugin)
+
+   public:
+	~FilterPlugin() override = default;
+
+	/// Short name of the INI section holding this plugin's parameters (e.g. "ekf").
+	virtual std::string sectionName() const = 0;
+
+	/// Reads and validates the plugin's parameters; throws ConfigError.
+	virtual void configure(const ConfigSection& section) = 0;
+
+	/// The plugin's parameters with their current values (defaults before configure()).
+	virtual std::vector<ParamInfo> parameters() const = 0;
+
+	/// Processes one step; returns what was done with each measurement.
+	virtual StepReport processStep(const StepInput& step) = 0;
+
+	/// Called once after the last step (batch back-ends solve here).
+	virtual void finish() {}
+
+	/// Current robot pose estimate (cheap: called every step by the host).
+	virtual PoseEstimate robotPose() const = 0;
+
+	/// Current full estimate: robot pose and every landmark with its covariance.
+	virtual Estimate estimate() const = 0;
+
+	/// Current cost figures: state dimension, information non-zeros, counters.
+	virtual CostFigures costFigures() const = 0;
+};
+
+}  // namespace esif

@@ -1,0 +1,54 @@
+#include <esif/core/Errors.h>
+#include <esif/eval/AssociationAudit.h>
+
+#include <algorithm>
+#include <string>
+
+namespace esif
+{
+void AssociationAudit::record(const StepReport& report, const std::vector<std::optional<LandmarkId>>& true_ids)
+{
+	for (std::size_t i = 0; i < report.associations.size(); ++i)
+	{
+		const auto& a = report.associations[i];
+		switch (a.kind)
+		{
+			case Association::Kind::New: ++new_; break;
+			case Association::Kind::Matched: ++matched_; break;
+			case Association::Kind::Rejected: ++rejected_; continue;
+		}
+		if (i < true_ids.size() && true_ids[i]) ++votes_[a.id][*true_ids[i]];
+	}
+}
+
+std::map<LandmarkId, LandmarkId> AssociationAudit::filterToTrue() const
+{
+	std::map<LandmarkId, LandmarkId> out;
+	for (const auto& [filter_id, votes] : votes_)
+		out[filter_id] = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
+							 return a.second < b.second;
+						 })->first;
+	return out;
+}
+
+std::size_t AssociationAudit::wrongCount() const
+{
+	std::size_t wrong = 0;
+	std::map<LandmarkId, std::size_t> filter_landmarks_per_true;
+	for (const auto& [filter_id, votes] : votes_)
+	{
+		std::size_t total = 0, best = 0;
+		LandmarkId best_id = 0;
+		for (const auto& [true_id, n] : votes)
+		{
+			total += n;
+			if (n > best) best = n, best_id = true_id;
+		}
+		wrong += total - best;
+		++filter_landmarks_per_true[best_id];
+	}
+	for (const auto& [true_id, n] : filter_landmarks_per_true) wrong += n - 1;
+	return wrong;
+}
+
+}  // namespace esif

@@ -1,0 +1,111 @@
+#include <esif/eval/ComparisonTable.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+namespace esif
+{
+const std::vector<std::string>& comparisonKeys()
+{
+	static const std::vector<std::string> keys = {
+		"plugin", "steps", "landmarks", "state_dim", "info_nnz", "wall_s", "step_us_mean", "step_us_p50",
+		"step_us_p99", "step_us_max", "peak_rss_mb", "da_new", "da_matched", "da_rejected", "da_wrong",
+		"landmark_rmse_m", "ate_rmse_m", "landmark_nees_mean", "pose_nees_mean", "landmark_consistent_fraction",
+		"pose_consistent_fraction"};
+	return keys;
+}
+
+namespace
+{
+/// Numbers with 4 significant digits for tables (the CSV keeps full precision).
+std::string cell(const Stats& s, const std::string& key)
+{
+	const auto v = s.get(key);
+	if (!v || std::holds_alternative<std::nullptr_t>(*v)) return "-";
+	if (const auto* d = std::get_if<double>(&*v))
+	{
+		char buf[32];
+		std::snprintf(buf, sizeof(buf), "%.4g", *d);
+		return buf;
+	}
+	return statText(*v);
+}
+
+std::string label(const Stats& s) { return s.get("label") ? statText(*s.get("label")) : "?"; }
+
+std::string csvEscape(const std::string& t)
+{
+	if (t.find_first_of(",\"\n") == std::string::npos) return t;
+	std::string out = "\"";
+	for (char c : t) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+	return out + "\"";
+}
+}  // namespace
+
+std::string comparisonText(const std::vector<Stats>& runs)
+{
+	std::size_t key_w = 0;
+	for (const auto& k : comparisonKeys()) key_w = std::max(key_w, k.size());
+	std::vector<std::size_t> col_w;
+	for (const auto& r : runs)
+	{
+		std::size_t w = label(r).size();
+		for (const auto& k : comparisonKeys()) w = std::max(w, cell(r, k).size());
+		col_w.push_back(w);
+	}
+	std::ostringstream out;
+	const auto row = [&](const std::string& head, auto value_of) {
+		out << head << std::string(key_w - head.size() + 2, ' ');
+		for (std::size_t i = 0; i < runs.size(); ++i)
+		{
+			const std::string v = value_of(runs[i]);
+			out << std::string(col_w[i] - v.size(), ' ') << v << "  ";
+		}
+		out << "\n";
+	};
+	row("run", [](const Stats& s) { return label(s); });
+	for (const auto& k : comparisonKeys()) row(k, [&](const Stats& s) { return cell(s, k); });
+	return out.str();
+}
+
+std::string comparisonMarkdown(const std::vector<Stats>& runs)
+{
+	std::ostringstream out;
+	out << "| metric |";
+	for (const auto& r : runs) out << " " << label(r) << " |";
+	out << "\n|---|";
+	for (std::size_t i = 0; i < runs.size(); ++i) out << "---:|";
+	out << "\n";
+	for (const auto& k : comparisonKeys())
+	{
+		out << "| " << k << " |";
+		for (const auto& r : runs) out << " " << cell(r, k) << " |";
+		out << "\n";
+	}
+	return out.str();
+}
+
+std::string comparisonCsv(const std::vector<Stats>& runs)
+{
+	std::vector<std::string> keys;
+	for (const auto& r : runs)
+		for (const auto& kv : r.items())
+			if (std::find(keys.begin(), keys.end(), kv.first) == keys.end()) keys.push_back(kv.first);
+	std::ostringstream out;
+	for (std::size_t i = 0; i < keys.size(); ++i) out << (i ? "," : "") << csvEscape(keys[i]);
+	out << "\n";
+	for (const auto& r : runs)
+	{
+		for (std::size_t i = 0; i < keys.size(); ++i)
+		{
+			const auto v = r.get(keys[i]);
+			const bool empty = !v || std::holds_alternative<std::nullptr_t>(*v);
+			out << (i ? "," : "") << (empty ? "" : csvEscape(statText(*v)));
+		}
+		out << "\n";
+	}
+	return out.str();
+}
+
+}  // namespace esif

@@ -1,0 +1,271 @@
+#include <esif/core/Errors.h>
+#include <esif/io/RawlogReader.h>
+#include <esif/models/Se2.h>
+
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CRawlog.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt/poses/CPose3D.h>
+#include <mrpt/serialization/CArchive.h>
+#include <mrpt/system/datetime.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+namespace esif
+{
+namespace
+{
+using mrpt::obs::CObservationBearingRange;
+
+/// Accumulates rawlog entries into steps: odometry opens a step, a scan
+/// closes it (see RawlogReader.h).
+class StepBuilder
+{
+   public:
+	StepBuilder(Rawlog& out, const RawlogReadOptions& options) : out_(out), options_(options) {}
+
+	void onOdometry(const OdometryIncrement& inc, double t)
+	{
+		flushPending();
+		pending_ = StepInput{};
+		pending_->odometry = inc;
+		pending_->time_s = t;
+		out_.has_odometry = true;
+	}
+
+	/// Absolute odometry reading (CObservationOdometry): the increment is the
+	/// difference of consecutive readings; the first reading only anchors.
+	void onAbsoluteOdometry(const mrpt::poses::CPose2D& reading, double t)
+	{
+		const Pose2 now = toPose2(reading.asTPose());
+		out_.has_odometry = true;
+		if (last_reading_)
+		{
+			OdometryIncrement inc;
+			inc.delta = toTPose2D(inverseCompose(*last_reading_, now));
+			inc.cov.diagonal() << std::pow(options_.odometry_obs_std_xy_m, 2),
+				std::pow(options_.odometry_obs_std_xy_m, 2), std::pow(options_.odometry_obs_std_phi_rad, 2);
+			onOdometry(inc, t);
+		}
+		last_reading_ = now;
+	}
+
+	void onScan(const CObservationBearingRange& obs, const mrpt::obs::CSensoryFrame::Ptr& frame, double t,
+				const std::string& where)
+	{
+		StepInput step = pending_ ? *pending_ : StepInput{};
+		pending_.reset();
+		step.time_s = t;
+		Scan scan;
+		scan.sensor_on_robot = mrpt::poses::CPose2D(obs.sensorLocationOnRobot).asTPose();
+		scan.max_range_m = obs.maxSensorDistance;
+		scan.fov_rad = obs.fieldOfView_yaw;
+		std::vector<std::optional<LandmarkId>> ids;
+		for (std::size_t i = 0; i < obs.sensedData.size(); ++i)
+		{
+			const auto& m = obs.sensedData[i];
+			const std::string what = where + ", measurement " + std::to_string(i);
+			if (!std::isfinite(m.range) || m.range < 0)
+				throw InputError(what + ": range = " + std::to_string(m.range) + ": must be finite and >= 0");
+			if (!std::isfinite(m.yaw)) throw InputError(what + ": bearing is not finite");
+			RangeBearing rb;
+			rb.range_m = m.range;
+			rb.bearing_rad = wrapAngle(m.yaw);
+			rb.cov = measurementCovariance(obs, m, what);
+			if (m.landmarkID != mrpt::obs::INVALID_LANDMARK_ID)
+			{
+				ids.emplace_back(m.landmarkID);
+				if (!options_.hide_landmark_ids) rb.id = m.landmarkID;
+			}
+			else
+				ids.emplace_back();
+			scan.measurements.push_back(rb);
+		}
+		out_.measurement_count += scan.measurements.size();
+		step.scan = std::move(scan);
+		push(std::move(step), frame, std::move(ids));
+	}
+
+	void finish() { flushPending(); }
+
+   private:
+	Eigen::Matrix2d measurementCovariance(
+		const CObservationBearingRange& obs, const CObservationBearingRange::TMeasurement& m,
+		const std::string& what) const
+	{
+		Eigen::Matrix2d cov;
+		if (options_.sensor_std_range_m > 0 && options_.sensor_std_bearing_rad > 0)
+			cov = Eigen::Vector2d(std::pow(options_.sensor_std_range_m, 2), std::pow(options_.sensor_std_bearing_rad, 2))
+					  .asDiagonal();
+		else if (obs.validCovariances)
+			cov = m.covariance.asEigen().topLeftCorner<2, 2>();
+		else
+			cov = Eigen::Vector2d(std::pow(obs.sensor_std_range, 2), std::pow(obs.sensor_std_yaw, 2)).asDiagonal();
+		if (!cov.allFinite() || Eigen::LLT<Eigen::Matrix2d>(cov).info() != Eigen::Success || cov(0, 0) <= 0 ||
+			cov(1, 1) <= 0)
+			throw InputError(
+				what + ": sensor noise is zero or invalid (set [esif] sensor_std_range_m and sensor_std_bearing_deg)");
+		return cov;
+	}
+
+	void flushPending()
+	{
+		if (pending_) push(std::move(*pending_), nullptr, {});
+		pending_.reset();
+	}
+
+	void push(StepInput step, const mrpt::obs::CSensoryFrame::Ptr& frame, std::vector<std::optional<LandmarkId>> ids)
+	{
+		step.index = out_.steps.size();
+		out_.steps.push_back(std::move(step));
+		out_.frames.push_back(frame);
+		out_.true_ids.push_back(std::move(ids));
+	}
+
+	Rawlog& out_;
+	const RawlogReadOptions& options_;
+	std::optional<StepInput> pending_;
+	std::optional<Pose2> last_reading_;
+};
+
+double toSeconds(mrpt::Clock::time_point t)
+{
+	return t == INVALID_TIMESTAMP ? std::nan("") : mrpt::Clock::toDouble(t);
+}
+
+OdometryIncrement incrementOf(const mrpt::obs::CActionRobotMovement2D& act, const std::string& where)
+{
+	if (!act.poseChange) throw InputError(where + ": odometry action without pose change");
+	const auto [cov, mean] = act.poseChange->getCovarianceAndMean();
+	OdometryIncrement inc;
+	inc.delta = mean.asTPose();
+	inc.cov = cov.asEigen();
+	if (!std::isfinite(inc.delta.x) || !std::isfinite(inc.delta.y) || !std::isfinite(inc.delta.phi) ||
+		!inc.cov.allFinite())
+		throw InputError(where + ": odometry increment is not finite");
+	return inc;
+}
+
+class EntryVisitor
+{
+   public:
+	EntryVisitor(StepBuilder& builder, std::string path) : builder_(builder), path_(std::move(path)) {}
+
+	void visit(const mrpt::serialization::CSerializable::Ptr& obj, std::size_t entry)
+	{
+		using namespace mrpt::obs;
+		const std::string where = path_ + ": entry " + std::to_string(entry);
+		if (auto acts = std::dynamic_pointer_cast<CActionCollection>(obj))
+		{
+			if (auto mv = acts->getBestMovementEstimation())
+				builder_.onOdometry(incrementOf(*mv, where), toSeconds(mv->timestamp));
+		}
+		else if (auto sf = std::dynamic_pointer_cast<CSensoryFrame>(obj))
+		{
+			for (const auto& o : *sf) visitObservation(o, sf, where);
+		}
+		else if (auto o = std::dynamic_pointer_cast<CObservation>(obj))
+		{
+			auto frame = CSensoryFrame::Create();
+			frame->insert(o);
+			visitObservation(o, frame, where);
+		}
+		else if (auto log = std::dynamic_pointer_cast<CRawlog>(obj))
+		{
+			// Old-style files hold one serialized CRawlog with every entry inside.
+			for (std::size_t i = 0; i < log->size(); ++i) visit(log->getAsGeneric(i), i);
+		}
+	}
+
+   private:
+	void visitObservation(const mrpt::obs::CObservation::Ptr& o, const mrpt::obs::CSensoryFrame::Ptr& frame,
+						  const std::string& where)
+	{
+		using namespace mrpt::obs;
+		if (auto odo = std::dynamic_pointer_cast<CObservationOdometry>(o))
+			builder_.onAbsoluteOdometry(odo->odometry, toSeconds(odo->timestamp));
+		else if (auto rb = std::dynamic_pointer_cast<CObservationBearingRange>(o))
+			builder_.onScan(*rb, frame, toSeconds(rb->timestamp), where);
+	}
+
+	StepBuilder& builder_;
+	std::string path_;
+};
+
+/// Timestamps are used when present and strictly increasing; otherwise (e.g.
+/// simul-landmarks stamps every entry with the generation wall time) the
+/// step index stands in for time.
+void normaliseTimes(std::vector<StepInput>& steps)
+{
+	bool usable = true;
+	for (std::size_t k = 0; k < steps.size() && usable; ++k)
+		usable = std::isfinite(steps[k].time_s) && (k == 0 || steps[k].time_s > steps[k - 1].time_s);
+	if (!usable)
+		for (auto& s : steps) s.time_s = static_cast<double>(s.index);
+}
+}  // namespace
+
+Rawlog readRawlog(const std::string& path, const RawlogReadOptions& options)
+{
+	if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": rawlog file not found");
+	mrpt::io::CFileGZInputStream file;
+	if (!file.open(path)) throw InputError(path + ": cannot open rawlog");
+	auto archive = mrpt::serialization::archiveFrom(file);
+
+	Rawlog out;
+	out.path = path;
+	StepBuilder builder(out, options);
+	EntryVisitor visitor(builder, path);
+	for (std::size_t entry = 0;; ++entry)
+	{
+		const auto before = file.getPosition();
+		mrpt::serialization::CSerializable::Ptr obj;
+		try
+		{
+			obj = archive.ReadObject();
+		}
+		catch (const mrpt::serialization::CExceptionEOF&)
+		{
+			if (file.getPosition() == before) break;  // clean end between entries
+			if (entry == 0) throw InputError(path + ": not an MRPT rawlog (empty or unreadable first entry)");
+			out.truncation_warning = path + ": file ends inside entry " + std::to_string(entry) +
+				"; read up to step " + std::to_string(out.steps.size());
+			break;
+		}
+		catch (const std::exception& e)
+		{
+			if (entry == 0) throw InputError(path + ": not an MRPT rawlog (first entry is not a serialized MRPT object)");
+			out.truncation_warning = path + ": unreadable entry " + std::to_string(entry) +
+				" (truncated or corrupt); read up to step " + std::to_string(out.steps.size());
+			break;
+		}
+		visitor.visit(obj, entry);
+	}
+	builder.finish();
+	// A cut at the very end may leave a final odometry without its scan: keep
+	// it only if the file ended cleanly.
+	if (out.truncation_warning && !out.steps.empty() && !out.steps.back().scan)
+	{
+		out.steps.pop_back();
+		out.frames.pop_back();
+		out.true_ids.pop_back();
+	}
+
+	if (out.steps.empty()) throw InputError(path + ": rawlog holds no odometry and no range-bearing observation");
+	if (!out.has_odometry) throw InputError(path + ": rawlog holds no odometry (CActionRobotMovement2D or CObservationOdometry)");
+	if (out.measurement_count == 0 &&
+		std::none_of(out.steps.begin(), out.steps.end(), [](const StepInput& s) { return s.scan.has_value(); }))
+		throw InputError(path + ": rawlog holds no range-bearing observations (CObservationBearingRange)");
+	normaliseTimes(out.steps);
+	return out;
+}
+
+}  // namespace esif

@@ -1,0 +1,78 @@
+#include <esif/core/Errors.h>
+#include <esif/io/ProgressBar.h>
+#include <esif/run/Replay.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace esif
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double microsecondsSince(Clock::time_point t0)
+{
+	return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+}
+
+void checkReport(const StepReport& report, const StepInput& step, const std::string& plugin)
+{
+	const std::size_t expected = step.scan ? step.scan->measurements.size() : 0;
+	if (report.associations.size() != expected)
+		throw std::logic_error(
+			"plugin " + plugin + " reported " + std::to_string(report.associations.size()) + " associations for " +
+			std::to_string(expected) + " measurements at step " + std::to_string(step.index));
+}
+}  // namespace
+
+ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions& options)
+{
+	ReplayResult out;
+	out.record.plugin = plugin.GetRuntimeClass()->className;
+	out.record.rawlog = log.path;
+	out.step_us.reserve(log.steps.size());
+	out.record.trajectory.reserve(log.steps.size());
+
+	ProgressBar progress(out.record.plugin, options.progress_bar ? log.steps.size() : 0);
+	std::optional<Pose2> last_keyframe;
+	const auto t_start = Clock::now();
+	for (std::size_t k = 0; k < log.steps.size(); ++k)
+	{
+		const StepInput& step = log.steps[k];
+		StepReport report;
+		const auto t0 = Clock::now();
+		try
+		{
+			report = plugin.processStep(step);
+		}
+		catch (const NumericalError& e)
+		{
+			throw NumericalError(log.path + ": step " + std::to_string(k) + ": " + e.what());
+		}
+		out.step_us.push_back(microsecondsSince(t0));
+		checkReport(report, step, out.record.plugin);
+		out.audit.record(report, log.true_ids[k]);
+
+		const PoseEstimate pose = plugin.robotPose();
+		out.record.trajectory.push_back({k, step.time_s, pose});
+		const Pose2 p = toPose2(pose.mean);
+		if (log.frames[k] &&
+			(!last_keyframe || (p.head<2>() - last_keyframe->head<2>()).norm() >= options.keyframe_min_distance_m))
+		{
+			out.record.keyframes.push_back({pose, log.frames[k]});
+			last_keyframe = p;
+		}
+		progress.update(k + 1);
+	}
+	const auto t_finish = Clock::now();
+	plugin.finish();
+	out.finish_us = microsecondsSince(t_finish);
+	out.wall_s = microsecondsSince(t_start) * 1e-6;
+	progress.finish();
+	out.record.final_estimate = plugin.estimate();
+	return out;
+}
+
+}  // namespace esif

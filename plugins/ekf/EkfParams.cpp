@@ -1,0 +1,28 @@
+#include "EkfParams.h"
+
+#include <esif/core/Errors.h>
+
+namespace esif
+{
+void EkfParams::declare(ParamBinder& b)
+{
+	b.enumeration<EkfAssociation>(
+		"association", association,
+		{{"auto", EkfAssociation::Auto},
+		 {"known_ids", EkfAssociation::KnownIds},
+		 {"nn", EkfAssociation::NearestNeighbor},
+		 {"jcbb", EkfAssociation::Jcbb}},
+		"data association: landmark IDs from the rawlog, MRPT nearest neighbour or MRPT JCBB; auto = IDs when "
+		"present, else JCBB");
+	b.real("gate_chi2_quantile", gate_chi2_quantile, "individual-compatibility chi-square gate confidence",
+		   Bounds::openUnit());
+	b.real("new_landmark_chi2_quantile", new_landmark_chi2_quantile,
+		   "confidence beyond which an unmatched measurement is a new landmark, not an ambiguous one",
+		   Bounds::openUnit());
+	b.real("candidate_margin_m", candidate_margin_m, "range margin for association candidates [m]",
+		   Bounds::nonNegative());
+	b.real("candidate_margin_deg", candidate_margin_deg, "bearing margin for association candidates [deg]",
+		   Bounds::closed(0, 180));
+}
+
+}  // namespace esif
