@@ -1,0 +1,77 @@
+#pragma once
+/// \file EsifTestSupport.h
+/// Helpers shared by the test suites: temporary folders, running a plugin
+/// in-process on a rawlog, and running the `esif` binary as a user would.
+
+#include <esif/config/ConfigFile.h>
+#include <esif/io/RawlogReader.h>
+#include <esif/plugin/PluginLoader.h>
+#include <esif/run/Replay.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+
+namespace esif::test
+{
+/// A fresh folder under the system temp dir, removed when the object dies.
+class TempDir
+{
+   public:
+	TempDir()
+	{
+		std::random_device rd;
+		path_ = std::filesystem::temp_directory_path() / ("esif_test_" + std::to_string(rd()) + std::to_string(rd()));
+		std::filesystem::create_directories(path_);
+	}
+	~TempDir()
+	{
+		std::error_code ec;
+		std::filesystem::remove_all(path_, ec);
+	}
+	std::string path() const { return path_.string(); }
+	std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+   private:
+	std::filesystem::path path_;
+};
+
+inline std::string sourcePath(const std::string& relative) { return std::string(ESIF_SOURCE_DIR) + "/" + relative; }
+
+/// Creates plugin `class_name` from the build's plugin folder, configured
+/// from the INI text of its section.
+inline FilterPlugin::Ptr makePlugin(const std::string& class_name, const std::string& section_text)
+{
+	static PluginLoader loader({ESIF_PLUGIN_DIR});
+	loader.loadAll();
+	auto plugin = loader.create(class_name);
+	const auto cfg = ConfigFile::fromText("[" + plugin->sectionName() + "]\n" + section_text, "test.ini");
+	const auto section = cfg.section(plugin->sectionName());
+	plugin->configure(section);
+	section.rejectUnknownKeys();
+	return plugin;
+}
+
+/// Result of running the esif binary.
+struct CommandResult
+{
+	int exit_code = -1;
+	std::string out;  ///< stdout and stderr, merged
+};
+
+/// Runs `esif ARGS` through the shell (ARGS already quoted as needed).
+inline CommandResult runEsif(const std::string& args)
+{
+	CommandResult r;
+	const std::string cmd = std::string(ESIF_BINARY) + " " + args + " 2>&1";
+	FILE* pipe = ::popen(cmd.c_str(), "r");
+	if (!pipe) return r;
+	char buf[4096];
+	while (std::fgets(buf, sizeof(buf), pipe)) r.out += buf;
+	const int status = ::pclose(pipe);
+	r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+	return r;
+}
+
+}  // namespace esif::test
