@@ -1,0 +1,201 @@
+// Reading both MRPT rawlog formats, and every kind of bad rawlog.
+
+#include <EsifTestSupport.h>
+
+#include <esif/core/Errors.h>
+#include <esif/io/RawlogReader.h>
+
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/io/CFileOutputStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <gtest/gtest.h>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace
+{
+using namespace esif;
+using namespace mrpt::obs;
+
+CActionCollection::Ptr odometryAction(double dx, double dphi)
+{
+	CActionRobotMovement2D mv;
+	// With emOdometry MRPT stores only the raw reading and rebuilds the
+	// Gaussian from its own motion model on reading; this keeps ours.
+	mv.estimationMethod = CActionRobotMovement2D::emScan2DMatching;
+	mrpt::math::CMatrixDouble33 cov;
+	cov.setDiagonal(std::vector<double>{1e-4, 1e-4, 1e-5});
+	mv.poseChange = mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(dx, 0, dphi), cov);
+	auto acts = CActionCollection::Create();
+	acts->insert(mv);
+	return acts;
+}
+
+CObservationBearingRange::Ptr scan(std::vector<std::pair<float, int>> range_id)
+{
+	auto obs = CObservationBearingRange::Create();
+	obs->sensor_std_range = 0.1f;
+	obs->sensor_std_yaw = 0.01f;
+	obs->maxSensorDistance = 5;
+	obs->fieldOfView_yaw = M_PI;
+	for (const auto& [r, id] : range_id)
+	{
+		CObservationBearingRange::TMeasurement m;
+		m.range = r;
+		m.yaw = 0.1f;
+		m.pitch = 0;
+		m.landmarkID = id;
+		obs->sensedData.push_back(m);
+	}
+	return obs;
+}
+
+CSensoryFrame::Ptr frameOf(const CObservation::Ptr& o)
+{
+	auto sf = CSensoryFrame::Create();
+	sf->insert(o);
+	return sf;
+}
+
+/// Actions/sensory-frames rawlog with `n` steps, gz-compressed.
+void writeActionsSfLog(const std::string& path, int n, float bad_range = 1.0f)
+{
+	mrpt::io::CFileGZOutputStream f(path);
+	auto ar = mrpt::serialization::archiveFrom(f);
+	for (int k = 0; k < n; ++k)
+		ar << *odometryAction(0.1, 0.01) << *frameOf(scan({{k == n - 1 ? bad_range : 1.0f, 7}, {2.0f, 8}}));
+}
+
+std::string errorOf(const std::string& path)
+{
+	try
+	{
+		readRawlog(path);
+	}
+	catch (const InputError& e)
+	{
+		return e.what();
+	}
+	return "";
+}
+
+TEST(RawlogReader, ActionsAndSensoryFrames)
+{
+	test::TempDir dir;
+	writeActionsSfLog(dir.file("a.rawlog"), 5);
+	const Rawlog log = readRawlog(dir.file("a.rawlog"));
+	ASSERT_EQ(log.steps.size(), 5u);
+	EXPECT_EQ(log.measurement_count, 10u);
+	ASSERT_TRUE(log.steps[0].odometry && log.steps[0].scan);
+	EXPECT_NEAR(log.steps[0].odometry->delta.x, 0.1, 1e-12);
+	EXPECT_NEAR(log.steps[0].odometry->cov(2, 2), 1e-5, 1e-15);
+	EXPECT_EQ(log.steps[0].scan->measurements[0].id, 7);
+	EXPECT_NEAR(log.steps[0].scan->measurements[0].cov(0, 0), 0.01, 1e-8);
+	EXPECT_EQ(log.frames.size(), 5u);
+	EXPECT_FALSE(log.truncation_warning);
+}
+
+TEST(RawlogReader, HiddenIdsAreKeptForScoring)
+{
+	test::TempDir dir;
+	writeActionsSfLog(dir.file("a.rawlog"), 3);
+	RawlogReadOptions opts;
+	opts.hide_landmark_ids = true;
+	const Rawlog log = readRawlog(dir.file("a.rawlog"), opts);
+	EXPECT_FALSE(log.steps[1].scan->measurements[0].id);
+	EXPECT_EQ(log.true_ids[1][0], 7);
+}
+
+TEST(RawlogReader, ObservationsOnlyWithAbsoluteOdometry)
+{
+	test::TempDir dir;
+	const std::string path = dir.file("obs.rawlog");
+	{
+		mrpt::io::CFileOutputStream f(path);  // plain, not gz
+		auto ar = mrpt::serialization::archiveFrom(f);
+		for (int k = 0; k < 4; ++k)
+		{
+			CObservationOdometry odo;
+			odo.odometry = mrpt::poses::CPose2D(0.5 * k, 0, 0.1 * k);
+			ar << odo << *scan({{1.5f, 3}});
+		}
+	}
+	const Rawlog log = readRawlog(path);
+	// First reading only anchors the odometry: step 0 is a scan without odometry.
+	ASSERT_EQ(log.steps.size(), 4u);
+	EXPECT_FALSE(log.steps[0].odometry);
+	ASSERT_TRUE(log.steps[2].odometry);
+	// Increment between readings (0.5, 0, 0.1) and (1.0, 0, 0.2), in the first's frame.
+	EXPECT_NEAR(log.steps[2].odometry->delta.x, 0.5 * std::cos(0.1), 1e-12);
+	EXPECT_NEAR(log.steps[2].odometry->delta.phi, 0.1, 1e-12);
+}
+
+TEST(RawlogReader, TruncatedFileIsReadToItsLastCompleteStep)
+{
+	test::TempDir dir;
+	writeActionsSfLog(dir.file("full.rawlog"), 20);
+	// Decompressed copy cut in the middle of an entry.
+	const Rawlog full = readRawlog(dir.file("full.rawlog"));
+	const std::string plain = dir.file("plain.rawlog");
+	{
+		mrpt::io::CFileOutputStream f(plain);
+		auto ar = mrpt::serialization::archiveFrom(f);
+		for (int k = 0; k < 20; ++k) ar << *odometryAction(0.1, 0.01) << *frameOf(scan({{1.0f, 7}, {2.0f, 8}}));
+	}
+	const auto size = std::filesystem::file_size(plain);
+	std::filesystem::resize_file(plain, size - size / 7);
+	const Rawlog cut = readRawlog(plain);
+	ASSERT_TRUE(cut.truncation_warning);
+	EXPECT_NE(cut.truncation_warning->find("read up to step"), std::string::npos);
+	EXPECT_GT(cut.steps.size(), 10u);
+	EXPECT_LT(cut.steps.size(), full.steps.size());
+	EXPECT_TRUE(cut.steps.back().scan.has_value());
+}
+
+TEST(RawlogReader, MissingNotRawlogAndEmptyFilesAreErrors)
+{
+	test::TempDir dir;
+	EXPECT_NE(errorOf(dir.file("none.rawlog")).find("not found"), std::string::npos);
+	std::ofstream(dir.file("text.rawlog")) << "this is not a rawlog\n";
+	EXPECT_NE(errorOf(dir.file("text.rawlog")).find("not an MRPT rawlog"), std::string::npos);
+	std::ofstream(dir.file("empty.rawlog")).close();
+	EXPECT_FALSE(errorOf(dir.file("empty.rawlog")).empty());
+}
+
+TEST(RawlogReader, NoOdometryOrNoObservationsAreErrors)
+{
+	test::TempDir dir;
+	{
+		mrpt::io::CFileGZOutputStream f(dir.file("noodo.rawlog"));
+		auto ar = mrpt::serialization::archiveFrom(f);
+		ar << *frameOf(scan({{1.0f, 1}}));
+	}
+	EXPECT_NE(errorOf(dir.file("noodo.rawlog")).find("no odometry"), std::string::npos);
+	{
+		mrpt::io::CFileGZOutputStream f(dir.file("noobs.rawlog"));
+		auto ar = mrpt::serialization::archiveFrom(f);
+		ar << *odometryAction(0.1, 0) << *CSensoryFrame::Create();
+	}
+	EXPECT_NE(errorOf(dir.file("noobs.rawlog")).find("no range-bearing"), std::string::npos);
+}
+
+TEST(RawlogReader, BadRangesNameTheEntryAndMeasurement)
+{
+	test::TempDir dir;
+	for (float bad : {std::nanf(""), INFINITY, -1.0f})
+	{
+		writeActionsSfLog(dir.file("bad.rawlog"), 3, bad);
+		const std::string err = errorOf(dir.file("bad.rawlog"));
+		EXPECT_NE(err.find("entry 5, measurement 0: range"), std::string::npos) << err;
+	}
+}
+
+}  // namespace
