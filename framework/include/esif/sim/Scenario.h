@@ -1,0 +1,65 @@
+#pragma once
+/// \file Scenario.h
+/// Parameters of a simulated range-bearing SLAM experiment, read from the INI
+/// section [simulation]. The defaults reproduce the book's noise levels
+/// (Pioneer-like odometry, laser-like sensor: Sec. 1.3.3): range 0.1 m,
+/// bearing 1 deg, speed 0.02 m/s, turn rate 3 deg/s.
+///
+/// World frame: the square [0, world_size_m] x [0, world_size_m], origin at
+/// its bottom-left corner, x to the right, y up.
+
+namespace esif
+{
+class ParamBinder;
+
+struct Scenario
+{
+	// ---- random stream and length
+	int seed = 1;  ///< seed of the simulator's random generators; >= 0
+	int steps = 3000;  ///< number of rawlog steps (scans), including the first one at the start pose; >= 1
+	double dt_s = 0.1;	///< time between two steps [s]; > 0
+
+	// ---- environment
+	double world_size_m = 40.0;	 ///< side of the square world [m]; > 0
+	/// Features form an n x n grid, uniformly spaced rows and columns with a
+	/// half-spacing margin to the square's sides; >= 1
+	int features_per_side = 14;
+
+	// ---- robot motion (the true controls)
+	double speed_mps = 1.0;	 ///< constant true forward speed [m/s]; > 0
+	double max_turn_rate_deg_s = 30.0;	///< bound on the true turn rate [deg/s]; > 0
+	/// Waypoints are drawn uniformly inside the square shrunk by this margin
+	/// [m]; >= 0. The robot may overshoot that area by up to a turning radius
+	/// (speed_mps / max turn rate) while turning towards the next waypoint.
+	double waypoint_margin_m = 5.0;
+	double start_x_m = 1.0;	 ///< start position, from the bottom-left corner [m]
+	double start_y_m = 1.0;	 ///< start position, from the bottom-left corner [m]
+	double start_yaw_deg = 45.0;  ///< start heading [deg] (45 = towards the square's centre)
+
+	// ---- odometry noise (1 sigma, added to the speed and turn-rate readings)
+	double std_speed_mps = 0.02;  ///< [m/s]; >= 0
+	double std_turn_rate_deg_s = 3.0;  ///< [deg/s]; >= 0
+
+	// ---- range-bearing sensor
+	double sensor_max_range_m = 5.0;  ///< features farther than this are not seen [m]; > 0
+	double sensor_fov_deg = 180.0;	///< full field of view, centred on the sensor's x axis [deg]; in (0, 360]
+	double std_range_m = 0.1;  ///< range noise, 1 sigma [m]; >= 0
+	double std_bearing_deg = 1.0;  ///< bearing noise, 1 sigma [deg]; >= 0
+	double sensor_x_m = 0.0;  ///< sensor pose on the robot [m]
+	double sensor_y_m = 0.0;  ///< sensor pose on the robot [m]
+	double sensor_yaw_deg = 0.0;  ///< sensor pose on the robot [deg]
+
+	/// Declares every field once, for loading (`loadParams(scenario,
+	/// section)`), validation of each value and listings.
+	void declare(ParamBinder& b);
+
+	/// Checks the rules that involve several fields (the start inside the
+	/// square, a non-empty waypoint area); throws ConfigError naming the
+	/// [simulation] key at fault. Per-field rules are checked by declare().
+	void validate() const;
+
+	/// Spacing between two neighbouring features [m].
+	double featureSpacing() const { return world_size_m / features_per_side; }
+};
+
+}  // namespace esif

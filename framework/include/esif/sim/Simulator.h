@@ -1,0 +1,86 @@
+#pragma once
+/// \file Simulator.h
+/// The book's simulated experiments (Sec. 3.5, 4.6.1, 4.6.2): a unicycle robot
+/// with odometry and a range-bearing sensor drives a random waypoint tour in a
+/// square world of point features on a grid, and the run is written as a
+/// standard MRPT rawlog plus MRPT-style ground-truth files.
+///
+/// Conventions of the output:
+/// - landmark ID = 0-based feature index, row-major from the bottom-left
+///   feature (ID = row * features_per_side + column); the ground-truth file
+///   uses the same IDs;
+/// - step k holds the odometry increment from pose k-1 to pose k (step 0: a
+///   zero increment) and the scan taken at pose k; ground-truth path row k is
+///   pose k;
+/// - a noisy range below zero is clamped to 0 (it only happens for a feature
+///   within a few sigma of the sensor);
+/// - a noisy range may exceed sensor_max_range_m: visibility is decided on the
+///   true range, as a real sensor detects on the true geometry.
+
+#include <esif/core/StepInput.h>
+#include <esif/models/Se2.h>
+#include <esif/sim/Scenario.h>
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace esif
+{
+/// One simulated step: what the sensors report, and where the robot truly was.
+struct SimulatedStep
+{
+	/// Odometry (always set; zero increment at step 0) and scan (always set,
+	/// possibly without measurements), exactly as written to the rawlog.
+	StepInput input;
+	Pose2 true_pose;  ///< true robot pose when the scan was taken
+};
+
+/// Counts of a finished simulation.
+struct SimulationSummary
+{
+	std::size_t steps = 0;	///< rawlog steps (= scans = ground-truth path rows)
+	std::size_t measurements = 0;  ///< range-bearing measurements over all scans
+	std::size_t features = 0;  ///< features in the world
+	std::size_t features_seen = 0;	///< features measured at least once
+	double path_length_m = 0;  ///< length of the true path [m]
+
+	/// Mean number of measurements per scan.
+	double meanMeasurementsPerScan() const { return steps ? double(measurements) / steps : 0.0; }
+};
+
+class Simulator
+{
+   public:
+	/// Validates the scenario (throws ConfigError) and lays out the features.
+	explicit Simulator(const Scenario& scenario);
+
+	const Scenario& scenario() const { return scenario_; }
+
+	/// True feature positions in the world frame; index = landmark ID.
+	const std::vector<Eigen::Vector2d>& features() const { return features_; }
+
+	/// Runs the whole scenario, handing each step to `sink` in order. The
+	/// random generators are re-seeded on every call, so two calls produce
+	/// identical steps.
+	SimulationSummary simulate(const std::function<void(const SimulatedStep&)>& sink) const;
+
+	/// Runs the scenario and writes `rawlog_path` (gz-compressed rawlog in
+	/// actions/sensory-frames format) and its ground truth
+	/// (groundTruthPrefixFor(rawlog_path) + "_ground_truth.txt" and
+	/// "_ground_truth_robot_path.txt"), each atomically. Creates the folder.
+	SimulationSummary writeRawlog(const std::string& rawlog_path) const;
+
+	/// Odometry increment of the mid-point unicycle model: driving `distance_m`
+	/// while turning by `angle_rad` moves the robot by
+	/// (d cos(a/2), d sin(a/2), a) in its own frame.
+	static Pose2 midpointIncrement(double distance_m, double angle_rad);
+
+   private:
+	Scenario scenario_;
+	std::vector<Eigen::Vector2d> features_;
+};
+
+}  // namespace esif
