@@ -215,7 +215,8 @@ void normaliseTimes(std::vector<StepInput>& steps)
 
 Rawlog readRawlog(const std::string& path, const RawlogReadOptions& options)
 {
-	if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": rawlog file not found");
+	if (!std::filesystem::exists(path)) throw InputError(path + ": rawlog file not found");
+	if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": not a regular file");
 	mrpt::io::CFileGZInputStream file;
 	if (!file.open(path)) throw InputError(path + ": cannot open rawlog");
 	auto archive = mrpt::serialization::archiveFrom(file);

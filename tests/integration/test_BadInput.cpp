@@ -1,0 +1,156 @@
+// Every kind of bad input reaches the user as one clear line naming the
+// file, key or step, with a non-zero exit, and leaves no half-written output.
+
+#include <EsifTestSupport.h>
+
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileOutputStream.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <gtest/gtest.h>
+#include <filesystem>
+#include <fstream>
+
+namespace
+{
+using esif::test::runEsif;
+using esif::test::sourcePath;
+using esif::test::TempDir;
+
+const std::string kRawlog = sourcePath("rawlogs/grid196.rawlog");
+const std::string kConfig = sourcePath("configs/ekf.ini");
+
+/// Output lines that are not progress or warnings.
+std::size_t lineCount(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
+
+void expectOneErrorLine(const esif::test::CommandResult& r, const std::string& must_contain)
+{
+	EXPECT_NE(r.exit_code, 0) << r.out;
+	EXPECT_EQ(lineCount(r.out), 1u) << r.out;
+	EXPECT_NE(r.out.find("esif: error: "), std::string::npos) << r.out;
+	EXPECT_NE(r.out.find(must_contain), std::string::npos) << "expected '" << must_contain << "' in: " << r.out;
+}
+
+std::string writeConfig(const TempDir& dir, const std::string& text)
+{
+	const auto path = dir.file("c.ini");
+	std::ofstream(path) << text;
+	return path;
+}
+
+std::string runArgs(const std::string& config, const std::string& rawlog, const std::string& out)
+{
+	return "run -q --config '" + config + "' --rawlog '" + rawlog + "' --out '" + out + "'";
+}
+
+TEST(BadInput, MissingRawlog)
+{
+	TempDir dir;
+	expectOneErrorLine(runEsif(runArgs(kConfig, dir.file("nope.rawlog"), dir.file("out"))), "nope.rawlog: rawlog file not found");
+	EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}
+
+TEST(BadInput, UnreadableRawlog)
+{
+	TempDir dir;
+	expectOneErrorLine(runEsif(runArgs(kConfig, dir.path(), dir.file("out"))), "not a regular file");
+	if (::geteuid() == 0) GTEST_SKIP() << "root reads files whatever their mode";
+	std::filesystem::copy_file(kRawlog, dir.file("locked.rawlog"));
+	std::filesystem::permissions(dir.file("locked.rawlog"), std::filesystem::perms::none);
+	expectOneErrorLine(runEsif(runArgs(kConfig, dir.file("locked.rawlog"), dir.file("out"))), "locked.rawlog");
+}
+
+TEST(BadInput, NotARawlog)
+{
+	TempDir dir;
+	std::ofstream(dir.file("text.rawlog")) << "hello\n";
+	expectOneErrorLine(runEsif(runArgs(kConfig, dir.file("text.rawlog"), dir.file("out"))), "not an MRPT rawlog");
+}
+
+TEST(BadInput, TruncatedRawlogIsProcessedWithAWarning)
+{
+	TempDir dir;
+	// Decompress the demo, cut it inside an entry about two thirds in.
+	const auto plain = dir.file("cut.rawlog");
+	{
+		mrpt::io::CFileGZInputStream in(kRawlog);
+		mrpt::io::CFileOutputStream out(plain);
+		char buf[65536];
+		for (std::size_t n; (n = in.Read(buf, sizeof(buf))) > 0;) out.Write(buf, n);
+	}
+	std::filesystem::resize_file(plain, std::filesystem::file_size(plain) * 2 / 3 + 13);
+	const auto r = runEsif(runArgs(kConfig, plain, dir.file("out")));
+	EXPECT_EQ(r.exit_code, 0) << r.out;
+	EXPECT_NE(r.out.find("esif: warning: "), std::string::npos) << r.out;
+	EXPECT_NE(r.out.find("read up to step"), std::string::npos) << r.out;
+	for (const char* f : {"map.simplemap", "landmarks.gz", "landmarks.txt", "trajectory.tum", "scene.3Dscene",
+						  "map.png", "stats.json"})
+		EXPECT_TRUE(std::filesystem::exists(dir.file(std::string("out/") + f))) << f;
+}
+
+TEST(BadInput, UnknownPlugin)
+{
+	TempDir dir;
+	const auto cfg = writeConfig(dir, "[esif]\nplugin = NoSuchFilter\n");
+	expectOneErrorLine(runEsif(runArgs(cfg, kRawlog, dir.file("out"))), "unknown plugin 'NoSuchFilter' (available: EkfSlam");
+}
+
+TEST(BadInput, MissingRequiredKey)
+{
+	TempDir dir;
+	const auto cfg = writeConfig(dir, "[esif]\nlabel = x\n");
+	expectOneErrorLine(runEsif(runArgs(cfg, kRawlog, dir.file("out"))), "[esif] plugin: missing");
+}
+
+TEST(BadInput, OutOfRangeParameter)
+{
+	TempDir dir;
+	const auto cfg = writeConfig(dir, "[esif]\nplugin = EkfSlam\n[ekf]\ngate_chi2_quantile = 1.5\n");
+	expectOneErrorLine(runEsif(runArgs(cfg, kRawlog, dir.file("out"))), "[ekf] gate_chi2_quantile = 1.5: must be in (0, 1)");
+}
+
+TEST(BadInput, MisspeltKeyAndUnknownSection)
+{
+	TempDir dir;
+	auto cfg = writeConfig(dir, "[esif]\nplugin = EkfSlam\n[ekf]\ngate_chi2_quantil = 0.9\n");
+	expectOneErrorLine(runEsif(runArgs(cfg, kRawlog, dir.file("out"))), "[ekf] gate_chi2_quantil: unknown key");
+	cfg = writeConfig(dir, "[esif]\nplugin = EkfSlam\n[ekff]\n");
+	expectOneErrorLine(runEsif(runArgs(cfg, kRawlog, dir.file("out"))), "[ekff]: unknown section");
+}
+
+TEST(BadInput, MissingConfigAndBadCommandLine)
+{
+	TempDir dir;
+	expectOneErrorLine(runEsif(runArgs(dir.file("none.ini"), kRawlog, dir.file("out"))), "none.ini: config file not found");
+	expectOneErrorLine(runEsif("run --rawlog x"), "esif run: ");
+	const auto r = runEsif("frobnicate");
+	EXPECT_EQ(r.exit_code, 2);
+	EXPECT_EQ(lineCount(r.out), 1u);
+}
+
+TEST(BadInput, KnownIdsWithoutIdsNamesTheStep)
+{
+	TempDir dir;
+	const auto cfg = writeConfig(dir, "[esif]\nplugin = EkfSlam\nhide_landmark_ids = true\n[ekf]\nassociation = known_ids\n");
+	expectOneErrorLine(runEsif(runArgs(cfg, kRawlog, dir.file("out"))), "step 0, measurement 0: no landmark ID");
+}
+
+TEST(Cli, EverySubcommandHasHelp)
+{
+	for (const char* c : {"run", "compare", "simulate", "plugins"})
+	{
+		const auto r = runEsif(std::string(c) + " --help");
+		EXPECT_EQ(r.exit_code, 0) << c;
+		EXPECT_NE(r.out.find("USAGE"), std::string::npos) << c;
+	}
+}
+
+TEST(Cli, PluginsListsEkfWithDefaults)
+{
+	const auto r = runEsif("plugins");
+	EXPECT_EQ(r.exit_code, 0);
+	EXPECT_NE(r.out.find("EkfSlam"), std::string::npos);
+	EXPECT_NE(r.out.find("gate_chi2_quantile = 0.99"), std::string::npos);
+}
+
+}  // namespace
