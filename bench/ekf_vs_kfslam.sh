@@ -31,3 +31,16 @@ printf 'rawlog: %s, %d runs each (medians, whole process)\n' "$rawlog" "$runs"
 printf 'esif run (EkfSlam):        %.3f s\n' "$(median <"$work/esif.t")"
 printf 'kf-slam (CRangeBearingKFSLAM2D): %.3f s\n' "$(median <"$work/kf.t")"
 printf 'ratio esif / kf-slam:      %.3f\n' "$(median <"$work/ratio.t")"
+
+# Filter only: esif's replay time (stats.json wall_s) against the bare MRPT
+# filter without the app's logging (bench/mrpt_kf_replay.cpp).
+: >"$work/ef.t"; : >"$work/mf.t"
+replay=$(realpath build/bin/mrpt_kf_replay)
+for i in $(seq 1 "$runs"); do
+  "$esif" run -q --config configs/ekf.ini --rawlog "$rawlog" --out "$work/esif" >/dev/null
+  awk -F'[:,]' '/"wall_s"/ {print $2}' "$work/esif/stats.json" >>"$work/ef.t"
+  "$replay" "$rawlog" 0.1 | awk '{print $6}' >>"$work/mf.t"
+done
+ef=$(median <"$work/ef.t"); mf=$(median <"$work/mf.t")
+printf 'filter only: esif EkfSlam %.3f s, MRPT CRangeBearingKFSLAM2D %.3f s, ratio %.3f\n' "$ef" "$mf" \
+  "$(awk -v a="$ef" -v b="$mf" 'BEGIN {print a / b}')"
