@@ -5,11 +5,7 @@
 
 #include <esif/io/GroundTruth.h>
 
-#include <mrpt/io/CFileGZInputStream.h>
-#include <mrpt/obs/CActionCollection.h>
-#include <mrpt/obs/CRawlog.h>
-#include <mrpt/serialization/CArchive.h>
-#include <mrpt/slam/CRangeBearingKFSLAM2D.h>
+#include <MrptKfSlamReplay.h>
 
 #include <gtest/gtest.h>
 #include <cstdio>
@@ -27,52 +23,12 @@ const std::string kDemo = std::string(ESIF_MRPT_DATASETS) + "/kf-slam_demo.rawlo
 const double kStdRange = static_cast<double>(0.03f);
 const double kStdYawDeg = 0.5;
 
-/// Final landmark means of MRPT's CRangeBearingKFSLAM2D, by landmark ID. The
-/// first sensory frame of the file (before any action) is fed with an empty
-/// action, as esif does, so both filters see exactly the same data.
-std::map<LandmarkId, Eigen::Vector2d> runMrptKfSlam(const std::string& path)
-{
-	mrpt::slam::CRangeBearingKFSLAM2D kf;
-	kf.options.std_sensor_range = static_cast<float>(kStdRange);
-	kf.options.std_sensor_yaw = static_cast<float>(mrpt::DEG2RAD(kStdYawDeg));
-	kf.KF_options.method = mrpt::bayes::kfEKFNaive;
-
-	mrpt::io::CFileGZInputStream f(path);
-	auto ar = mrpt::serialization::archiveFrom(f);
-	mrpt::obs::CActionCollection::Ptr acts = mrpt::obs::CActionCollection::Create();
-	for (;;)
-	{
-		mrpt::serialization::CSerializable::Ptr obj;
-		try
-		{
-			obj = ar.ReadObject();
-		}
-		catch (const mrpt::serialization::CExceptionEOF&)
-		{
-			break;
-		}
-		if (auto a = std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj)) acts = a;
-		if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj))
-		{
-			kf.processActionObservation(acts, sf);
-			acts = mrpt::obs::CActionCollection::Create();
-		}
-	}
-	mrpt::poses::CPosePDFGaussian pose;
-	std::vector<mrpt::math::TPoint2D> lms;
-	std::map<unsigned int, mrpt::maps::CLandmark::TLandmarkID> ids;
-	mrpt::math::CVectorDouble x;
-	mrpt::math::CMatrixDouble P;
-	kf.getCurrentState(pose, lms, ids, x, P);
-	std::map<LandmarkId, Eigen::Vector2d> out;
-	for (std::size_t i = 0; i < lms.size(); ++i) out[ids.at(i)] = {lms[i].x, lms[i].y};
-	return out;
-}
-
 TEST(EkfVsMrpt, FinalLandmarksAgreeWithCRangeBearingKFSLAM2D)
 {
 	ASSERT_TRUE(std::filesystem::exists(kDemo)) << kDemo << " (package mrpt-common / mrpt-apps data)";
-	const auto mrpt_map = runMrptKfSlam(kDemo);
+	const auto mrpt_map =
+		bench::replayMrptKfSlam(kDemo, static_cast<float>(kStdRange), static_cast<float>(mrpt::DEG2RAD(kStdYawDeg)))
+			.landmarks;
 
 	RawlogReadOptions opts;
 	opts.sensor_std_range_m = kStdRange;

@@ -17,6 +17,14 @@ struct MapWriterOptions
 };
 
 /// Writes all map outputs for `run` into `dir` (which must exist).
+/// Throws ConfigError for invalid options (image_size_px outside [200,
+/// 16384], ellipse_sigmas not finite and > 0) before writing anything, and
+/// InputError naming the file when one cannot be written. landmarks.gz is
+/// written last: MRPT's CLandmarksMap keeps a 0.2 m grid over the whole map,
+/// so a map wider than about 630 m (e.g. a diverged landmark) is refused
+/// there with an InputError after the other files are in place. Non-finite
+/// landmarks are left out of landmarks.gz, the scene and the image, and
+/// written as `nan` in landmarks.txt.
 void writeMapOutputs(const RunRecord& run, const std::string& dir, const MapWriterOptions& options = {});
 
 /// The individual writers, usable on their own.
