@@ -11,5 +11,6 @@ int runCommand(int argc, char** argv);
 int compareCommand(int argc, char** argv);
 int simulateCommand(int argc, char** argv);
 int pluginsCommand(int argc, char** argv);
+int importCommand(int argc, char** argv);
 
 }  // namespace esif::app

@@ -23,6 +23,7 @@ const Subcommand kSubcommands[] = {
 	{"run", esif::app::runCommand, "replay a rawlog through one plugin and write maps and stats"},
 	{"compare", esif::app::compareCommand, "run several configs on one rawlog and tabulate them"},
 	{"simulate", esif::app::simulateCommand, "generate a rawlog and ground truth from a scenario INI"},
+	{"import", esif::app::importCommand, "convert a dataset (victoria-park) into an MRPT rawlog"},
 	{"plugins", esif::app::pluginsCommand, "list the plugins found and their parameters"},
 };
 

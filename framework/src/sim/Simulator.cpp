@@ -1,18 +1,13 @@
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
 #include <esif/io/GroundTruth.h>
+#include <esif/io/RawlogWriter.h>
 #include <esif/sim/Simulator.h>
 
 #include <mrpt/core/Clock.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/math/CMatrixFixed.h>
-#include <mrpt/obs/CActionCollection.h>
-#include <mrpt/obs/CActionRobotMovement2D.h>
-#include <mrpt/obs/CObservationBearingRange.h>
-#include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose2D.h>
-#include <mrpt/poses/CPose3D.h>
-#include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -134,56 +129,6 @@ Eigen::Matrix3d odometryCovariance(double d, double a, double var_d, double var_
 	return (cov + cov.transpose()) / 2;
 }
 
-/// MRPT objects of one step: the odometry action, then the scan.
-void writeStep(mrpt::serialization::CArchive& ar, const SimulatedStep& step, const Scenario& s)
-{
-	using namespace mrpt::obs;
-	const auto stamp = mrpt::Clock::fromDouble(step.input.time_s);
-	const OdometryIncrement& odo = *step.input.odometry;
-	const Scan& scan = *step.input.scan;
-
-	CActionRobotMovement2D move;
-	const mrpt::poses::CPose2D mean(odo.delta);
-	move.poseChange = mrpt::poses::CPosePDFGaussian::Create(mean, mrpt::math::CMatrixDouble33(odo.cov));
-	move.rawOdometryIncrementReading = mean;
-	// Not emOdometry: for that method MRPT serializes only the raw increment
-	// and its own motion-model settings, and rebuilds poseChange from them
-	// when reading (CActionRobotMovement2D::serializeFrom), so our covariance
-	// would be replaced by MRPT's default model. Any other method stores the
-	// PDF itself; readers take poseChange (getBestMovementEstimation()).
-	move.estimationMethod = CActionRobotMovement2D::emScan2DMatching;
-	move.timestamp = stamp;
-	CActionCollection acts;
-	acts.insert(move);
-
-	auto obs = CObservationBearingRange::Create();
-	obs->timestamp = stamp;
-	obs->sensorLabel = "RANGE_BEARING";
-	obs->setSensorPose(mrpt::poses::CPose3D(mrpt::poses::CPose2D(scan.sensor_on_robot)));
-	obs->minSensorDistance = 0;
-	obs->maxSensorDistance = static_cast<float>(scan.max_range_m);
-	obs->fieldOfView_yaw = static_cast<float>(scan.fov_rad);
-	obs->fieldOfView_pitch = 0;
-	obs->validCovariances = false;
-	obs->sensor_std_range = static_cast<float>(s.std_range_m);
-	obs->sensor_std_yaw = static_cast<float>(s.std_bearing_deg * kDegToRad);
-	obs->sensor_std_pitch = 0;
-	obs->sensedData.reserve(scan.measurements.size());
-	for (const RangeBearing& m : scan.measurements)
-	{
-		CObservationBearingRange::TMeasurement t;
-		t.range = static_cast<float>(m.range_m);
-		t.yaw = static_cast<float>(m.bearing_rad);
-		t.pitch = 0;
-		t.landmarkID = static_cast<int32_t>(*m.id);
-		t.covariance.setZero();
-		obs->sensedData.push_back(t);
-	}
-	CSensoryFrame sf;
-	sf.insert(obs);
-
-	ar << acts << sf;
-}
 }  // namespace
 
 Simulator::Simulator(const Scenario& scenario) : scenario_(scenario)
@@ -301,7 +246,7 @@ SimulationSummary Simulator::writeRawlog(const std::string& rawlog_path) const
 		mrpt::io::CFileGZOutputStream out(tmp, mrpt::io::OpenMode::TRUNCATE, 9);
 		auto ar = mrpt::serialization::archiveFrom(out);
 		summary = simulate([&](const SimulatedStep& step) {
-			writeStep(ar, step, scenario_);
+			appendStep(ar, step.input, {scenario_.std_range_m, scenario_.std_bearing_deg * kDegToRad});
 			truth.path.push_back(step.true_pose);
 		});
 		out.close();
