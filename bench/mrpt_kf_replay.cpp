@@ -24,6 +24,7 @@ int main(int argc, char** argv)
 	if (argc > 3)
 	{
 		std::ofstream out(argv[3]);
+		out.precision(17);
 		for (const auto& [id, p] : r.landmarks) out << id << " " << p.x() << " " << p.y() << "\n";
 	}
 	return 0;
