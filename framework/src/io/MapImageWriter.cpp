@@ -9,6 +9,7 @@
 #include <esif/io/MapWriter.h>
 
 #include "MapGeometry.h"
+#include "MapPalette.h"
 
 #include <mrpt/img/CImage.h>
 #include <mrpt/img/TColor.h>
@@ -28,6 +29,7 @@ namespace esif
 namespace
 {
 using mrpt::img::TColor;
+using namespace esif::map_palette;
 namespace mg = map_geometry;
 
 const TColor kBackground(255, 255, 255);
@@ -35,10 +37,6 @@ const TColor kGridColor(232, 232, 232);
 const TColor kGridLabelColor(150, 150, 150);
 const TColor kFrameColor(170, 170, 170);
 const TColor kTextColor(40, 40, 40);
-const TColor kTruthPathColor(150, 215, 150);
-const TColor kTruthLandmarkColor(0, 150, 0);
-const TColor kPathColor(30, 80, 220);
-const TColor kLandmarkColor(210, 20, 20);
 const TColor kLandmarkIdColor(150, 60, 60);
 const TColor kEllipseColor(235, 130, 130);
 const TColor kRobotColor(10, 30, 120);

@@ -9,6 +9,7 @@
 #include <esif/io/MapWriter.h>
 
 #include "MapGeometry.h"
+#include "MapPalette.h"
 
 #include <mrpt/img/TColor.h>
 #include <mrpt/math/CMatrixFixed.h>
@@ -30,6 +31,7 @@ namespace esif
 namespace
 {
 using mrpt::img::TColor;
+using namespace esif::map_palette;
 namespace mg = map_geometry;
 
 // Layer heights: each layer slightly above the one below so that coincident
@@ -39,10 +41,6 @@ constexpr double kZEstimate = 0.02;
 constexpr double kZRobot = 0.03;
 
 const TColor kGridColor(200, 200, 200);
-const TColor kTruthPathColor(120, 200, 120);
-const TColor kTruthLandmarkColor(0, 150, 0);
-const TColor kPathColor(30, 80, 220);
-const TColor kLandmarkColor(220, 30, 30);
 const TColor kRobotEllipseColor(30, 80, 220);
 
 /// ID labels for up to this many landmarks: beyond that they clutter the view
