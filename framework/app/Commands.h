@@ -12,5 +12,6 @@ int compareCommand(int argc, char** argv);
 int simulateCommand(int argc, char** argv);
 int pluginsCommand(int argc, char** argv);
 int importCommand(int argc, char** argv);
+int benchCommand(int argc, char** argv);
 
 }  // namespace esif::app

@@ -1,0 +1,20 @@
+# FindCHOLMOD: SuiteSparse's CHOLMOD (5.x ships no CMake config).
+# Defines CHOLMOD::CHOLMOD (header cholmod.h, libcholmod and
+# libsuitesparseconfig; the shared libcholmod brings AMD, CAMD, COLAMD,
+# CCOLAMD, BLAS and LAPACK itself) and CHOLMOD_FOUND.
+find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse)
+find_library(CHOLMOD_LIBRARY cholmod)
+find_library(CHOLMOD_SUITESPARSECONFIG_LIBRARY suitesparseconfig)
+
+include(FindPackageHandleStandardArgs)
+find_package_handle_standard_args(CHOLMOD
+  REQUIRED_VARS CHOLMOD_LIBRARY CHOLMOD_SUITESPARSECONFIG_LIBRARY CHOLMOD_INCLUDE_DIR)
+
+if(CHOLMOD_FOUND AND NOT TARGET CHOLMOD::CHOLMOD)
+  add_library(CHOLMOD::CHOLMOD UNKNOWN IMPORTED)
+  set_target_properties(CHOLMOD::CHOLMOD PROPERTIES
+    IMPORTED_LOCATION "${CHOLMOD_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}"
+    INTERFACE_LINK_LIBRARIES "${CHOLMOD_SUITESPARSECONFIG_LIBRARY}")
+endif()
+mark_as_advanced(CHOLMOD_INCLUDE_DIR CHOLMOD_LIBRARY CHOLMOD_SUITESPARSECONFIG_LIBRARY)

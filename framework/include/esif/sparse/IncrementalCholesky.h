@@ -1,0 +1,75 @@
+#pragma once
+/// \file IncrementalCholesky.h
+/// Recovery by a complete Cholesky factor kept current across updates
+/// (book Sec. 3.3.2, eq. 3.32-3.37, App. B.1), with SuiteSparse CHOLMOD.
+///
+/// The factor is a simplicial LDL^T of P A P^T, where A is I bordered by
+/// identity "padding" rows/columns for variables still to come and P
+/// puts the padding rows last. Between two reorderings:
+///  - An update I += C C^T touching only positions >= p leaves L11 and L21
+///    (columns < p) unchanged; the trailing block becomes the factor of
+///    H_R + L22 D22 L22^T, eq. (3.35)/(B.6). cholmod_updown computes exactly
+///    that, as a rank-k modification of the trailing columns (only those on
+///    the elimination-tree paths of C's rows), so the leading factor is kept
+///    by construction and the trailing refactorisation costs O(k x fill of
+///    the touched path), not a factorisation of the whole trailing block.
+///  - A new variable takes the next padding positions (still trailing):
+///    cholmod_rowadd replaces a padding row/column by the variable's
+///    row/column of I.
+///  - The forward solution y = L^-1 P i is carried along by the _solve
+///    variants of both calls (only its modified trailing entries change), so
+///    the state costs one backward substitution, eq. (3.37).
+/// When the touched trailing part reaches n0 scalars or the padding rows run
+/// out, the variables are reordered (distance or CAMD) and factored afresh
+/// (Case ii).
+
+#include <esif/sparse/Cholmod.h>
+#include <esif/sparse/RecoverySolver.h>
+#include <esif/sparse/SparseCounters.h>
+#include <esif/sparse/SparseRecoveryParams.h>
+#include <esif/sparse/TrailingUpdates.h>
+#include <esif/sparse/VariableOrdering.h>
+
+namespace esif
+{
+class IncrementalCholesky : public RecoverySolver
+{
+   public:
+	/// `common` (one per core) and `counters` must outlive this object.
+	IncrementalCholesky(const SparseRecoveryParams& params, SparseCounters& counters, CholmodCommon& common);
+
+	void noteUpdate(const InformationForm& info, const UpdateTerm& term) override;
+	void refresh(const InformationForm& info, const Eigen::Vector2d& reference) override;
+	void solveState(const InformationForm& info, Eigen::VectorXd& x) override;
+	Eigen::MatrixXd solveColumns(const InformationForm& info, const std::vector<int>& scalars) override;
+	cholmod_factor* choleskyFactor() override { return L_.get(); }
+	std::size_t factorNonZeros() const override;
+
+	/// Dimension of the factor including padding rows.
+	int capacity() const { return capacity_; }
+	/// Position of scalar g in the current ordering.
+	int position(int g) const { return ordering_.position[g]; }
+
+   private:
+	void factorAfresh(const InformationForm& info, const Eigen::Vector2d& reference);
+	void refactorTrailingPart(const InformationForm& info);
+	void applyPendingUpdates();
+	void addNewVariables(const InformationForm& info);
+	void forwardSolve(const InformationForm& info);
+	void checkFactor(const InformationForm& info, int first_position, const std::string& what);
+
+	const SparseRecoveryParams& params_;
+	SparseCounters& counters_;
+	CholmodCommon& common_;
+	CholmodFactorPtr L_;
+	CholmodDensePtr y_;        ///< L^-1 P [i; 0], positions
+	CholmodDensePtr delta_b_;  ///< zero between calls (updown/rowadd_solve workspace)
+	CholmodDensePtr z_, x_;    ///< backward-solve results
+	CholmodSolveWorkspace ws_;
+	ScalarOrdering ordering_;
+	int capacity_ = 0;
+	int factored_dim_ = 0;     ///< scalars of I included in the factor
+	TrailingUpdates updates_;  ///< since the last refresh
+};
+
+}  // namespace esif

@@ -1,0 +1,31 @@
+#pragma once
+/// \file SparseCounters.h
+/// Cost counters of the sparse information core, for a plugin to copy into
+/// esif::CostFigures::counters.
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace esif
+{
+struct SparseCounters
+{
+	std::size_t information_nnz = 0;  ///< structural non-zeros of I (both triangles)
+	std::size_t factor_nnz = 0;       ///< non-zeros of the Cholesky factor or IC preconditioner (lower triangle)
+	std::size_t full_reorders = 0;    ///< reorderings with a factorisation from scratch (Case ii)
+	std::size_t partial_refactorisations = 0;  ///< trailing-part refactorisations (Case i)
+	std::size_t pcg_solves = 0;                ///< PCG solves (state and covariance columns)
+	std::size_t pcg_iterations_total = 0;      ///< PCG iterations over all solves
+	std::size_t pcg_iterations_max = 0;        ///< most PCG iterations of one solve
+	double update_time_s = 0;                  ///< adding variables and measurements [s]
+	double factor_time_s = 0;                  ///< reordering and (re)factorising [s]
+	double recovery_time_s = 0;                ///< solving for the state, covariances and marginals [s]
+
+	/// Every counter as (name, value), in the order above, prefixed with
+	/// `prefix` (e.g. "sparse_"): ready for CostFigures::counters.
+	std::vector<std::pair<std::string, double>> list(const std::string& prefix = "sparse_") const;
+};
+
+}  // namespace esif

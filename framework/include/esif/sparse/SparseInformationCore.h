@@ -1,0 +1,90 @@
+#pragma once
+/// \file SparseInformationCore.h
+/// The sparse information-form core shared by the D-SLAM, D-SLAM local map
+/// joining and SLSJF plugins (book Ch. 3-5): variables (points, poses),
+/// additive EIF updates, eq. (3.15)/(5.6)/(5.9), and recovery of the state
+/// (3.24), of chosen covariance blocks (3.25) and of every variable's
+/// marginal covariance (sparse inverse), by the method chosen in
+/// SparseRecoveryParams. Owns the one cholmod_common of its factors.
+///
+/// Typical step: add the new variables (with initial estimates), add the
+/// step's measurements, setReferencePoint(robot position), recoverState(),
+/// then covariance({...}) for the variables near the robot.
+
+#include <esif/sparse/Cholmod.h>
+#include <esif/sparse/InformationForm.h>
+#include <esif/sparse/RecoverySolver.h>
+#include <esif/sparse/SparseCounters.h>
+#include <esif/sparse/SparseRecoveryParams.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+namespace esif
+{
+class SparseInformationCore
+{
+   public:
+	explicit SparseInformationCore(const SparseRecoveryParams& params = {});
+	~SparseInformationCore();
+	SparseInformationCore(const SparseInformationCore&) = delete;
+	SparseInformationCore& operator=(const SparseInformationCore&) = delete;
+
+	/// New point variable with zero information, initial estimate `initial`.
+	VarId addPoint(const Eigen::Vector2d& initial);
+	/// New pose variable (x, y, theta) with zero information.
+	VarId addPose(const Eigen::Vector3d& initial);
+
+	/// EIF update, eq. (3.15): Jacobian J over `vars` (columns stacked in
+	/// that order), measurement covariance R, innovation z - h(x^) at the
+	/// current estimate (angles wrapped by the caller).
+	void addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R,
+						const Eigen::VectorXd& innovation);
+	/// Prior N(mean, information^-1) on one variable (e.g. the map anchor).
+	void addPrior(VarId v, const Eigen::VectorXd& mean, const Eigen::MatrixXd& information);
+
+	/// Where the robot (or the reference feature) is: reorderings put the
+	/// variables nearest to it last.
+	void setReferencePoint(const Eigen::Vector2d& p) { reference_ = p; }
+
+	/// x = I^-1 i, eq. (3.24); becomes the new linearisation point. Throws
+	/// NumericalError (never returns NaN) if I is not numerically positive
+	/// definite, naming the variable where it failed.
+	const Eigen::VectorXd& recoverState();
+	/// Current estimate of all variables (last recovery; initial values for
+	/// variables added since).
+	const Eigen::VectorXd& state() const { return info_.estimate(); }
+	/// Current estimate of one variable.
+	Eigen::VectorXd estimate(VarId v) const;
+
+	/// Joint covariance of `vars` (rows/columns stacked in that order), from
+	/// covariance columns, eq. (3.25).
+	Eigen::MatrixXd covariance(const std::vector<VarId>& vars);
+	/// Marginal covariance of every variable (2x2 points, 3x3 poses), in
+	/// order of creation, from the sparse inverse on the Cholesky factor's
+	/// pattern (SparseInverse.h). Methods without a complete factor (PCG)
+	/// make one fresh factorisation for it.
+	std::vector<Eigen::MatrixXd> marginalCovariances();
+
+	/// Counters with the current non-zeros of I and of the factor.
+	SparseCounters counters() const;
+
+	const InformationForm& information() const { return info_; }
+	const SparseRecoveryParams& params() const { return params_; }
+	int variableCount() const { return info_.variableCount(); }
+	int stateDim() const { return info_.scalarDim(); }
+
+   private:
+	void noteUpdate(const UpdateTerm& term);
+	void refresh();
+
+	SparseRecoveryParams params_;
+	SparseCounters counters_;
+	CholmodCommon cholmod_;  // before every CHOLMOD object: destroyed last
+	InformationForm info_;
+	std::unique_ptr<RecoverySolver> solver_;
+	Eigen::Vector2d reference_ = Eigen::Vector2d::Zero();
+};
+
+}  // namespace esif

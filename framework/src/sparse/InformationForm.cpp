@@ -1,0 +1,120 @@
+#include <esif/core/Errors.h>
+#include <esif/sparse/InformationForm.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <stdexcept>
+
+namespace esif
+{
+VarId InformationForm::addVariable(VarKind kind, const Eigen::VectorXd& initial)
+{
+	const int d = varDim(kind);
+	if (initial.size() != d)
+		throw std::invalid_argument("InformationForm::addVariable: initial estimate has the wrong size");
+	if (!initial.allFinite()) throw NumericalError("adding a variable: non-finite initial estimate");
+	const VarId v{I_.addBlockVariable(d)};
+	kind_.push_back(kind);
+	i_.conservativeResize(I_.scalarDim());
+	i_.tail(d).setZero();
+	x_.conservativeResize(I_.scalarDim());
+	x_.tail(d) = initial;
+	return v;
+}
+
+void InformationForm::checkVars(const std::vector<VarId>& vars, int columns) const
+{
+	int total = 0;
+	for (std::size_t a = 0; a < vars.size(); ++a)
+	{
+		if (vars[a].value < 0 || vars[a].value >= variableCount())
+			throw std::invalid_argument("InformationForm: unknown variable " + std::to_string(vars[a].value));
+		for (std::size_t b = 0; b < a; ++b)
+			if (vars[a] == vars[b])
+				throw std::invalid_argument("InformationForm: variable " + std::to_string(vars[a].value) +
+											" listed twice");
+		total += dim(vars[a]);
+	}
+	if (total != columns)
+		throw std::invalid_argument("InformationForm: Jacobian columns do not match the variables' dimensions");
+}
+
+UpdateTerm InformationForm::addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+										   const Eigen::MatrixXd& R, const Eigen::VectorXd& innovation)
+{
+	checkVars(vars, static_cast<int>(J.cols()));
+	if (R.rows() != J.rows() || R.cols() != J.rows() || innovation.size() != J.rows())
+		throw std::invalid_argument("InformationForm::addMeasurement: J, R and innovation sizes differ");
+	if (!J.allFinite() || !R.allFinite() || !innovation.allFinite())
+		throw NumericalError("measurement update: non-finite Jacobian, covariance or innovation");
+	const Eigen::LLT<Eigen::MatrixXd> llt(R);
+	if (llt.info() != Eigen::Success) throw NumericalError("measurement update: covariance R is not positive definite");
+
+	// With R = L L^T: J^T R^-1 J = C C^T for C = (L^-1 J)^T, and
+	// J^T R^-1 (z - h + J x^) = C L^-1 (z - h + J x^)   (eq. 3.15).
+	Eigen::VectorXd x_lin(J.cols());
+	int k = 0;
+	for (VarId v : vars)
+	{
+		x_lin.segment(k, dim(v)) = x_.segment(offset(v), dim(v));
+		k += dim(v);
+	}
+	const Eigen::MatrixXd W = llt.matrixL().solve(J);
+	const Eigen::VectorXd w = llt.matrixL().solve(innovation + J * x_lin);
+	return applyWhitened(vars, W.transpose(), w);
+}
+
+UpdateTerm InformationForm::addPrior(VarId v, const Eigen::VectorXd& mean, const Eigen::MatrixXd& information)
+{
+	checkVars({v}, static_cast<int>(mean.size()));
+	if (information.rows() != mean.size() || information.cols() != mean.size())
+		throw std::invalid_argument("InformationForm::addPrior: information matrix has the wrong size");
+	if (!mean.allFinite() || !information.allFinite()) throw NumericalError("prior: non-finite mean or information");
+	const Eigen::LLT<Eigen::MatrixXd> llt(information);
+	if (llt.info() != Eigen::Success) throw NumericalError("prior: information matrix is not positive definite");
+	// information = L L^T, so C = L and i += L (L^T mean).
+	const Eigen::MatrixXd L = llt.matrixL();
+	return applyWhitened({v}, L, L.transpose() * mean);
+}
+
+UpdateTerm InformationForm::applyWhitened(const std::vector<VarId>& vars, Eigen::MatrixXd C, const Eigen::VectorXd& w)
+{
+	std::vector<int> start(vars.size());
+	for (std::size_t a = 0, k = 0; a < vars.size(); k += dim(vars[a]), ++a) start[a] = static_cast<int>(k);
+	// Only the blocks of the touched variables change: C_a C_b^T for each pair.
+	for (std::size_t b = 0; b < vars.size(); ++b)
+	{
+		const auto Cb = C.middleRows(start[b], dim(vars[b]));
+		I_.addBlock(vars[b].value, vars[b].value, Cb * Cb.transpose());
+		for (std::size_t a = b + 1; a < vars.size(); ++a)
+			I_.addBlock(vars[a].value, vars[b].value, C.middleRows(start[a], dim(vars[a])) * Cb.transpose());
+	}
+	UpdateTerm term{vars, std::move(C), Eigen::VectorXd()};
+	term.delta_i = term.C * w;
+	for (std::size_t a = 0; a < vars.size(); ++a)
+		i_.segment(offset(vars[a]), dim(vars[a])) += term.delta_i.segment(start[a], dim(vars[a]));
+	return term;
+}
+
+void InformationForm::setEstimate(const Eigen::VectorXd& x)
+{
+	if (x.size() != scalarDim()) throw std::invalid_argument("InformationForm::setEstimate: wrong size");
+	x_ = x;
+}
+
+std::vector<int> InformationForm::scalarIndices(const std::vector<VarId>& vars) const
+{
+	std::vector<int> out;
+	for (VarId v : vars)
+		for (int a = 0; a < dim(v); ++a) out.push_back(offset(v) + a);
+	return out;
+}
+
+std::string InformationForm::describeScalar(int g) const
+{
+	const int b = I_.blockOfScalar(g);
+	return "variable " + std::to_string(b) + " (" + varKindName(kind_[b]) + ", component " +
+		std::to_string(g - I_.blockOffset(b)) + ")";
+}
+
+}  // namespace esif

@@ -1,0 +1,53 @@
+#include <esif/sparse/SparseRecoveryParams.h>
+
+namespace esif
+{
+namespace
+{
+const std::vector<std::pair<std::string, RecoveryMethod>> kRecoveryNames = {
+	{"incremental_cholesky", RecoveryMethod::IncrementalCholesky},
+	{"pcg", RecoveryMethod::Pcg},
+	{"fresh_cholesky", RecoveryMethod::FreshCholesky}};
+
+const std::vector<std::pair<std::string, Reordering>> kReorderingNames = {{"distance", Reordering::Distance},
+																		  {"camd", Reordering::Camd}};
+}  // namespace
+
+void SparseRecoveryParams::declare(ParamBinder& b)
+{
+	b.enumeration<RecoveryMethod>(
+		"recovery", recovery, kRecoveryNames,
+		"state/covariance recovery: incremental complete Cholesky (CHOLMOD), PCG with an incremental "
+		"incomplete-Cholesky preconditioner, or a fresh AMD factorisation at every change");
+	b.enumeration<Reordering>(
+		"reordering", reordering, kReorderingNames,
+		"reordering when the factor is rebuilt: by distance from the reference point (book), or CAMD with "
+		"the nearest variables constrained last");
+	b.integer("n0", n0, "trailing dimension of an update at which the state is reordered and factored afresh",
+			  Bounds::atLeast(1));
+	b.integer("camd_near_sets", camd_near_sets, "CAMD constraint sets of about n0/2 scalars for the nearest variables",
+			  Bounds::atLeast(1));
+	b.real("pcg_relative_tolerance", pcg_relative_tolerance, "PCG stops at |I x - b| <= this * |b|",
+		   Bounds::openUnit());
+	b.integer("pcg_max_iterations", pcg_max_iterations, "PCG iterations before giving up", Bounds::atLeast(1));
+	b.real("ic_drop_tolerance", ic_drop_tolerance, "incomplete-Cholesky drop tolerance, relative to the column",
+		   Bounds::closed(0, 1));
+	b.real("min_pivot_ratio", min_pivot_ratio, "smallest accepted pivot / diagonal ratio before declaring I singular",
+		   Bounds::openUnit());
+}
+
+const char* recoveryMethodName(RecoveryMethod m)
+{
+	for (const auto& [name, value] : kRecoveryNames)
+		if (value == m) return name.c_str();
+	return "?";
+}
+
+const char* reorderingName(Reordering r)
+{
+	for (const auto& [name, value] : kReorderingNames)
+		if (value == r) return name.c_str();
+	return "?";
+}
+
+}  // namespace esif

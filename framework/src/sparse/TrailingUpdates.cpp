@@ -1,0 +1,41 @@
+#include <esif/sparse/TrailingUpdates.h>
+
+#include <algorithm>
+
+namespace esif
+{
+void TrailingUpdates::restart(int factored_dim)
+{
+	terms_.clear();
+	rank_ = 0;
+	factored_dim_ = factored_dim;
+	start_ = factored_dim;
+	overflowed_ = false;
+}
+
+void TrailingUpdates::overflow()
+{
+	terms_.clear();
+	rank_ = 0;
+	overflowed_ = true;
+}
+
+void TrailingUpdates::record(const InformationForm& info, const UpdateTerm& term, const std::vector<int>& position,
+							 int n0)
+{
+	if (overflowed_) return;
+	Term t{info.scalarIndices(term.vars), term.C, term.delta_i};
+	for (int g : t.scalars) start_ = std::min(start_, g < factored_dim_ ? position[g] : factored_dim_);
+	rank_ += static_cast<int>(t.C.cols());
+	// Dimension of H_R: from the first touched position to the end. Also
+	// give up when the logged rank exceeds 2 n0: a rank-k modification of
+	// the trailing part then costs more than factoring it afresh.
+	if (info.scalarDim() - start_ >= n0 || rank_ > 2 * n0)
+	{
+		overflow();
+		return;
+	}
+	terms_.push_back(std::move(t));
+}
+
+}  // namespace esif
