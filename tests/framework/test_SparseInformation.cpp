@@ -1,0 +1,196 @@
+// Storage and updates of the information form (book eq. 3.15) against
+// dense arithmetic: block-sparse storage, compressed orderings, the EIF
+// update with its linearisation point, priors, input errors.
+
+#include <esif/core/Errors.h>
+#include <esif/sparse/BlockSparseMatrix.h>
+#include <esif/sparse/InformationForm.h>
+#include <esif/sparse/LowerCsc.h>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+#include <numeric>
+#include <random>
+
+namespace
+{
+using namespace esif;
+
+/// Dense lower triangle of a LowerCsc.
+Eigen::MatrixXd denseLower(const LowerCsc& A)
+{
+	Eigen::MatrixXd M = Eigen::MatrixXd::Zero(A.n, A.n);
+	for (int j = 0; j < A.n; ++j)
+		for (int t = A.col_ptr[j]; t < A.col_ptr[j + 1]; ++t) M(A.row_idx[t], j) = A.values[t];
+	return M;
+}
+
+TEST(BlockSparseMatrix, StoresSymmetricBlocksAndCountsNonZeros)
+{
+	BlockSparseMatrix M;
+	const int a = M.addBlockVariable(2), b = M.addBlockVariable(3), c = M.addBlockVariable(2);
+	EXPECT_EQ(M.scalarDim(), 7);
+	EXPECT_EQ(M.nonZeros(), 4u + 9u + 4u);  // the zero diagonal blocks exist from the start
+	Eigen::MatrixXd ab(3, 2);
+	ab << 1, 2, 3, 4, 5, 6;
+	M.addBlock(b, a, ab);
+	M.addBlock(b, a, ab);  // accumulates into the same block
+	EXPECT_EQ(M.nonZeros(), 17u + 2 * 6u);
+	const Eigen::MatrixXd D = M.toDense();
+	EXPECT_TRUE(D.block(2, 0, 3, 2).isApprox(2 * ab));
+	EXPECT_TRUE(D.block(0, 2, 2, 3).isApprox(2 * ab.transpose()));
+	EXPECT_TRUE(D.block(5, 0, 2, 5).isZero());
+	EXPECT_EQ(M.column(a).size(), 2u);
+	EXPECT_EQ(M.column(c).size(), 1u);
+	EXPECT_THROW(M.addBlock(a, b, ab), std::invalid_argument);  // 3x2 is not a (2, 3) block
+}
+
+TEST(BlockSparseMatrix, MultiplyAndPermutedLowerMatchDense)
+{
+	std::mt19937 rng(3);
+	std::normal_distribution<double> n(0, 1);
+	BlockSparseMatrix M;
+	for (int k = 0; k < 6; ++k) M.addBlockVariable(k % 2 ? 3 : 2);
+	for (int k = 0; k < 12; ++k)
+	{
+		const int i = static_cast<int>(rng() % 6), j = static_cast<int>(rng() % 6);
+		Eigen::MatrixXd B(M.blockDim(i), M.blockDim(j));
+		for (int r = 0; r < B.rows(); ++r)
+			for (int c = 0; c < B.cols(); ++c) B(r, c) = n(rng);
+		if (i == j) B = (B + B.transpose()).eval();
+		M.addBlock(i, j, B);
+	}
+	const Eigen::MatrixXd D = M.toDense();
+	const int N = M.scalarDim();
+	Eigen::VectorXd x(N), y;
+	for (int k = 0; k < N; ++k) x[k] = n(rng);
+	M.multiply(x, y);
+	EXPECT_LT((y - D * x).norm(), 1e-12 * D.norm() * x.norm());
+	EXPECT_TRUE(M.diagonal().isApprox(D.diagonal()));
+
+	// A random permutation plus 3 padding rows: P [D 0; 0 I] P^T, lower part.
+	std::vector<int> position(N + 3);
+	std::iota(position.begin(), position.end(), 0);
+	std::shuffle(position.begin(), position.end(), rng);
+	Eigen::MatrixXd bordered = Eigen::MatrixXd::Identity(N + 3, N + 3);
+	bordered.topLeftCorner(N, N) = D;
+	Eigen::MatrixXd expected(N + 3, N + 3);
+	for (int g = 0; g < N + 3; ++g)
+		for (int h = 0; h < N + 3; ++h) expected(position[g], position[h]) = bordered(g, h);
+	const LowerCsc L = M.permutedLower(position, N + 3);
+	EXPECT_TRUE(denseLower(L).isApprox(Eigen::MatrixXd(expected.triangularView<Eigen::Lower>())));
+	for (int j = 0; j < L.n; ++j)
+	{
+		ASSERT_EQ(L.row_idx[L.col_ptr[j]], j) << "diagonal first";
+		for (int t = L.col_ptr[j] + 1; t < L.col_ptr[j + 1]; ++t) ASSERT_LT(L.row_idx[t - 1], L.row_idx[t]);
+	}
+}
+
+TEST(LowerCsc, SolvesAndSplicesTrailingColumns)
+{
+	LowerCsc L;
+	L.n = 3;
+	L.col_ptr = {0, 3, 5, 6};
+	L.row_idx = {0, 1, 2, 1, 2, 2};
+	L.values = {2, 1, -1, 3, 0.5, 4};
+	const Eigen::MatrixXd D = denseLower(L);
+	Eigen::VectorXd b(3), y;
+	b << 1, 2, 3;
+	y = b;
+	L.solveLower(y);
+	EXPECT_TRUE((D * y).isApprox(b));
+	y = b;
+	L.solveLowerTransposed(y);
+	EXPECT_TRUE((D.transpose() * y).isApprox(b));
+
+	// Replace the trailing 2x2 block, keep column 0.
+	LowerCsc tail;
+	tail.n = 2;
+	tail.col_ptr = {0, 2, 3};
+	tail.row_idx = {0, 1, 1};
+	tail.values = {5, 6, 7};
+	L.truncateColumns(1, 1);
+	L.appendColumns(tail, 1);
+	Eigen::MatrixXd expected = D;
+	expected.bottomRightCorner(2, 2) << 5, 0, 6, 7;
+	EXPECT_TRUE(denseLower(L).isApprox(expected));
+}
+
+/// A 2-point, 1-pose information form with estimates set.
+struct Small
+{
+	InformationForm info;
+	VarId p1, pose, p2;
+	Small()
+	{
+		p1 = info.addVariable(VarKind::Point2, Eigen::Vector2d(1.0, 2.0));
+		pose = info.addVariable(VarKind::Pose2, Eigen::Vector3d(0.5, -0.5, 0.3));
+		p2 = info.addVariable(VarKind::Point2, Eigen::Vector2d(-1.0, 0.0));
+	}
+};
+
+TEST(InformationForm, NewVariablesHaveZeroInformation)
+{
+	Small s;
+	EXPECT_EQ(s.info.scalarDim(), 7);
+	EXPECT_TRUE(s.info.matrix().toDense().isZero());
+	EXPECT_TRUE(s.info.vector().isZero());
+	EXPECT_TRUE(s.info.position(s.pose).isApprox(Eigen::Vector2d(0.5, -0.5)));
+	EXPECT_EQ(s.info.describeScalar(3), "variable 1 (pose, component 1)");
+}
+
+TEST(InformationForm, MeasurementUpdateIsEquation315)
+{
+	Small s;
+	// A 3-row measurement of (p2, pose): columns stacked in that order.
+	Eigen::MatrixXd J(3, 5);
+	J << 1, 0, -1, 0, 0.2, 0, 1, 0, -1, 0.1, 0.5, 0.5, 0, 0, 1;
+	Eigen::Matrix3d R;
+	R << 0.04, 0.01, 0, 0.01, 0.05, 0.002, 0, 0.002, 0.01;
+	const Eigen::Vector3d innovation(0.1, -0.2, 0.05);
+	const UpdateTerm term = s.info.addMeasurement({s.p2, s.pose}, J, R, innovation);
+
+	// Dense eq. (3.15) with the full Jacobian over all 7 scalars.
+	Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, 7);
+	H.middleCols(5, 2) = J.leftCols(2);
+	H.middleCols(2, 3) = J.rightCols(3);
+	const Eigen::MatrixXd Rinv = R.inverse();
+	const Eigen::MatrixXd I = H.transpose() * Rinv * H;
+	const Eigen::VectorXd i = H.transpose() * Rinv * (innovation + H * s.info.estimate());
+	EXPECT_LT((s.info.matrix().toDense() - I).norm(), 1e-12 * I.norm());
+	EXPECT_LT((s.info.vector() - i).norm(), 1e-12 * i.norm());
+	// The factored form handed to the recovery: C C^T and delta_i.
+	EXPECT_LT((term.C * term.C.transpose() - J.transpose() * Rinv * J).norm(), 1e-12 * I.norm());
+	EXPECT_EQ(term.vars.size(), 2u);
+	EXPECT_EQ(s.info.matrix().nonZeros(), 4u + 9u + 4u + 2 * 6u);
+}
+
+TEST(InformationForm, PriorAddsInformationAndMean)
+{
+	Small s;
+	const Eigen::Matrix2d Lambda = Eigen::Vector2d(100, 400).asDiagonal();
+	s.info.addPrior(s.p1, Eigen::Vector2d(3, 4), Lambda);
+	EXPECT_TRUE(s.info.matrix().toDense().topLeftCorner(2, 2).isApprox(Eigen::MatrixXd(Lambda)));
+	EXPECT_TRUE(s.info.vector().head(2).isApprox(Eigen::Vector2d(300, 1600)));
+}
+
+TEST(InformationForm, RejectsBadInput)
+{
+	Small s;
+	const Eigen::MatrixXd J = Eigen::MatrixXd::Identity(2, 2);
+	EXPECT_THROW(s.info.addMeasurement({s.p1}, J, -Eigen::Matrix2d::Identity(), Eigen::Vector2d::Zero()),
+				 NumericalError);
+	EXPECT_THROW(s.info.addMeasurement({s.p1}, J, Eigen::Matrix2d::Identity(), Eigen::Vector2d(NAN, 0)),
+				 NumericalError);
+	EXPECT_THROW(s.info.addMeasurement({s.pose}, J, Eigen::Matrix2d::Identity(), Eigen::Vector2d::Zero()),
+				 std::invalid_argument);
+	EXPECT_THROW(s.info.addMeasurement({s.p1, s.p1}, Eigen::MatrixXd::Identity(2, 4), Eigen::Matrix2d::Identity(),
+									   Eigen::Vector2d::Zero()),
+				 std::invalid_argument);
+	EXPECT_THROW(s.info.addMeasurement({VarId{9}}, J, Eigen::Matrix2d::Identity(), Eigen::Vector2d::Zero()),
+				 std::invalid_argument);
+	// Nothing was applied by the failed calls.
+	EXPECT_TRUE(s.info.matrix().toDense().isZero());
+}
+
+}  // namespace

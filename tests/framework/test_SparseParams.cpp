@@ -1,0 +1,90 @@
+// Parameters and counters of the sparse core: INI names, validation
+// messages, the (name, value) list for CostFigures.
+
+#include <esif/config/ConfigFile.h>
+#include <esif/config/ParamBinder.h>
+#include <esif/core/Errors.h>
+#include <esif/sparse/SparseCounters.h>
+#include <esif/sparse/SparseRecoveryParams.h>
+
+#include <gtest/gtest.h>
+
+namespace
+{
+using namespace esif;
+
+SparseRecoveryParams load(const std::string& text)
+{
+	SparseRecoveryParams p;
+	const auto section = ConfigFile::fromText("[dslam]\n" + text, "dslam.ini").section("dslam");
+	loadParams(p, section);
+	section.rejectUnknownKeys();
+	return p;
+}
+
+std::string errorOf(const std::string& text)
+{
+	try
+	{
+		load(text);
+	}
+	catch (const ConfigError& e)
+	{
+		return e.what();
+	}
+	return "";
+}
+
+TEST(SparseRecoveryParams, DefaultsAreValidAndDescribed)
+{
+	const auto p = load("");
+	EXPECT_EQ(p.recovery, RecoveryMethod::IncrementalCholesky);
+	EXPECT_EQ(p.reordering, Reordering::Distance);
+	const auto infos = describeParams(SparseRecoveryParams{});
+	ASSERT_EQ(infos.size(), 8u);
+	EXPECT_EQ(infos[0].key, "recovery");
+	EXPECT_EQ(infos[0].value, "incremental_cholesky");
+	EXPECT_EQ(infos[1].value, "distance");
+}
+
+TEST(SparseRecoveryParams, MethodsAreSetByName)
+{
+	EXPECT_EQ(load("recovery = pcg").recovery, RecoveryMethod::Pcg);
+	EXPECT_EQ(load("recovery = fresh_cholesky").recovery, RecoveryMethod::FreshCholesky);
+	EXPECT_EQ(load("reordering = camd").reordering, Reordering::Camd);
+	const auto p = load("n0 = 100\npcg_relative_tolerance = 1e-12\nic_drop_tolerance = 0");
+	EXPECT_EQ(p.n0, 100);
+	EXPECT_EQ(p.pcg_relative_tolerance, 1e-12);
+	EXPECT_EQ(p.ic_drop_tolerance, 0.0);
+	EXPECT_STREQ(recoveryMethodName(RecoveryMethod::Pcg), "pcg");
+	EXPECT_STREQ(reorderingName(Reordering::Camd), "camd");
+}
+
+TEST(SparseRecoveryParams, InvalidValuesAreNamed)
+{
+	EXPECT_NE(errorOf("recovery = cholesky").find("recovery"), std::string::npos);
+	EXPECT_NE(errorOf("reordering = amd").find("reordering"), std::string::npos);
+	EXPECT_NE(errorOf("n0 = 0").find("n0"), std::string::npos);
+	EXPECT_NE(errorOf("pcg_relative_tolerance = 1").find("pcg_relative_tolerance"), std::string::npos);
+	EXPECT_NE(errorOf("min_pivot_ratio = 0").find("min_pivot_ratio"), std::string::npos);
+	EXPECT_NE(errorOf("pcg_max_iterations = abc").find("pcg_max_iterations"), std::string::npos);
+	EXPECT_NE(errorOf("no_such_key = 1").find("no_such_key"), std::string::npos);
+}
+
+TEST(SparseCounters, ListsEveryCounterByName)
+{
+	SparseCounters c;
+	c.factor_nnz = 42;
+	c.pcg_iterations_max = 2;
+	c.recovery_time_s = 0.5;
+	const auto list = c.list();
+	ASSERT_EQ(list.size(), 10u);
+	EXPECT_EQ(list[1].first, "sparse_factor_nnz");
+	EXPECT_EQ(list[1].second, 42.0);
+	EXPECT_EQ(list[6].first, "sparse_pcg_iterations_max");
+	EXPECT_EQ(list[6].second, 2.0);
+	EXPECT_EQ(list[9].first, "sparse_recovery_time_s");
+	EXPECT_EQ(c.list("dslam_")[0].first, "dslam_information_nnz");
+}
+
+}  // namespace
