@@ -26,16 +26,6 @@ namespace
 /// stays under about three minutes on two cores.
 constexpr int kDefaultSteps = 400;
 
-std::vector<std::string> splitCommas(const std::string& text)
-{
-	std::vector<std::string> out;
-	std::stringstream ss(text);
-	std::string item;
-	while (std::getline(ss, item, ','))
-		if (!item.empty()) out.push_back(item);
-	return out;
-}
-
 std::vector<int> parseSizes(const std::string& text)
 {
 	std::vector<int> sizes;

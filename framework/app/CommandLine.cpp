@@ -4,6 +4,8 @@
 
 #include <mrpt/3rdparty/tclap/StdOutput.h>
 
+#include <sstream>
+
 namespace esif::app
 {
 namespace
@@ -29,6 +31,16 @@ bool parseCommandLine(TCLAP::CmdLine& cmd, int argc, char** argv)
 	const bool go_on = cmd.parse(argc, argv);
 	cmd.setOutput(nullptr);
 	return go_on;
+}
+
+std::vector<std::string> splitCommas(const std::string& text)
+{
+	std::vector<std::string> out;
+	std::stringstream ss(text);
+	std::string item;
+	while (std::getline(ss, item, ','))
+		if (!item.empty()) out.push_back(item);
+	return out;
 }
 
 }  // namespace esif::app

@@ -6,11 +6,15 @@
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
 #include <string>
+#include <vector>
 
 namespace esif::app
 {
 /// Parses argv with `cmd`; returns false when --help was printed (the caller
 /// then returns 0). Throws ConfigError with one line for a bad command line.
 bool parseCommandLine(TCLAP::CmdLine& cmd, int argc, char** argv);
+
+/// Splits a comma-separated option value ("a,b,,c" -> a, b, c; empty items dropped).
+std::vector<std::string> splitCommas(const std::string& text);
 
 }  // namespace esif::app

@@ -20,16 +20,6 @@ namespace esif::app
 {
 namespace
 {
-std::vector<std::string> splitCommas(const std::string& text)
-{
-	std::vector<std::string> out;
-	std::stringstream ss(text);
-	std::string item;
-	while (std::getline(ss, item, ','))
-		if (!item.empty()) out.push_back(item);
-	return out;
-}
-
 /// Each config runs as its own `esif run` process: its wall time and peak
 /// memory are then its own, and one plugin cannot disturb the next.
 int runChild(const std::vector<std::string>& args)

@@ -2,6 +2,8 @@
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 
+#include <ParamsTestSupport.h>
+
 #include <gtest/gtest.h>
 
 namespace
@@ -30,27 +32,9 @@ struct ExampleParams
 	}
 };
 
-ExampleParams load(const std::string& text)
-{
-	ExampleParams p;
-	const auto section = ConfigFile::fromText("[ex]\n" + text, "ex.ini").section("ex");
-	loadParams(p, section);
-	section.rejectUnknownKeys();
-	return p;
-}
+ExampleParams load(const std::string& text) { return test::loadParamsText<ExampleParams>("ex", text); }
 
-std::string errorOf(const std::string& text)
-{
-	try
-	{
-		load(text);
-	}
-	catch (const ConfigError& e)
-	{
-		return e.what();
-	}
-	return "";
-}
+std::string errorOf(const std::string& text) { return test::paramsErrorOf<ExampleParams>("ex", text); }
 
 TEST(ParamBinder, DefaultsAreValidAndDescribed)
 {

@@ -7,33 +7,17 @@
 #include <esif/sparse/SparseCounters.h>
 #include <esif/sparse/SparseRecoveryParams.h>
 
+#include <ParamsTestSupport.h>
+
 #include <gtest/gtest.h>
 
 namespace
 {
 using namespace esif;
 
-SparseRecoveryParams load(const std::string& text)
-{
-	SparseRecoveryParams p;
-	const auto section = ConfigFile::fromText("[dslam]\n" + text, "dslam.ini").section("dslam");
-	loadParams(p, section);
-	section.rejectUnknownKeys();
-	return p;
-}
+SparseRecoveryParams load(const std::string& text) { return test::loadParamsText<SparseRecoveryParams>("dslam", text); }
 
-std::string errorOf(const std::string& text)
-{
-	try
-	{
-		load(text);
-	}
-	catch (const ConfigError& e)
-	{
-		return e.what();
-	}
-	return "";
-}
+std::string errorOf(const std::string& text) { return test::paramsErrorOf<SparseRecoveryParams>("dslam", text); }
 
 TEST(SparseRecoveryParams, DefaultsAreValidAndDescribed)
 {
