@@ -33,6 +33,8 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 	out.record.plugin = plugin.GetRuntimeClass()->className;
 	out.record.rawlog = log.path;
 	out.step_us.reserve(log.steps.size());
+	out.landmark_counts.reserve(log.steps.size());
+	std::size_t landmarks = 0;
 	out.record.trajectory.reserve(log.steps.size());
 
 	ProgressBar progress(out.record.plugin, options.progress_bar ? log.steps.size() : 0);
@@ -53,6 +55,8 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 		}
 		out.step_us.push_back(microsecondsSince(t0));
 		checkReport(report, step, out.record.plugin);
+		for (const auto& a : report.associations) landmarks += a.kind == Association::Kind::New;
+		out.landmark_counts.push_back(landmarks);
 		out.audit.record(report, log.true_ids[k]);
 
 		const PoseEstimate pose = plugin.robotPose();

@@ -17,10 +17,12 @@
 #include <esif/config/ConfigSection.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Estimate.h>
+#include <esif/core/InformationPattern.h>
 #include <esif/core/StepInput.h>
 
 #include <mrpt/rtti/CObject.h>
 
+#include <optional>
 #include <vector>
 
 namespace esif
@@ -55,6 +57,11 @@ class FilterPlugin : public mrpt::rtti::CObject
 
 	/// Current cost figures: state dimension, information non-zeros, counters.
 	virtual CostFigures costFigures() const = 0;
+
+	/// Sparsity of the information matrix and its factor, for information-form
+	/// back-ends; the host draws it as info_matrix.png. Called once, after
+	/// finish(). Covariance-form back-ends keep the default (none).
+	virtual std::optional<InformationPattern> informationPattern() const { return std::nullopt; }
 };
 
 }  // namespace esif

@@ -22,6 +22,9 @@ struct ReplayResult
 {
 	RunRecord record;
 	std::vector<double> step_us;  ///< processStep() time of each step [us]
+	/// Landmarks mapped after each step: the running count of the plugin's
+	/// "new landmark" decisions (the x axis of the book's Fig. 3.20).
+	std::vector<std::size_t> landmark_counts;
 	double finish_us = 0;  ///< time of finish() [us]
 	double wall_s = 0;	///< whole replay, steps and finish() [s]
 	AssociationAudit audit;
