@@ -3,6 +3,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
+#include <stdexcept>
 #include <string>
 
 namespace esif
@@ -145,6 +146,32 @@ std::size_t EkfSlamCore::addLandmark(const Eigen::Vector2d& z, const Eigen::Matr
 		init.d_measurement * R * init.d_measurement.transpose();
 	n_ += 2;
 	return landmarkCount() - 1;
+}
+
+void EkfSlamCore::retainLandmarks(const std::vector<std::size_t>& keep)
+{
+	std::vector<Eigen::Index> rows = {0, 1, 2};
+	for (std::size_t i : keep)
+	{
+		if (i >= landmarkCount()) throw std::invalid_argument("EkfSlamCore::retainLandmarks: no such landmark");
+		rows.push_back(static_cast<Eigen::Index>(3 + 2 * i));
+		rows.push_back(static_cast<Eigen::Index>(4 + 2 * i));
+	}
+	const Eigen::VectorXd x = x_(rows);
+	const Eigen::MatrixXd P = P_(rows, rows);
+	setState(x, P);
+}
+
+void EkfSlamCore::setState(const Eigen::VectorXd& x, const Eigen::MatrixXd& P)
+{
+	const auto n = static_cast<std::size_t>(x.size());
+	if (n < 3 || (n - 3) % 2 != 0 || P.rows() != x.size() || P.cols() != x.size())
+		throw std::invalid_argument("EkfSlamCore::setState: expected [robot(3); landmarks(2 each)] and a matching P");
+	reserve(n);
+	n_ = n;
+	x_.head(n) = x;
+	x_(2) = wrapAngle(x_(2));
+	P_.topLeftCorner(n, n) = 0.5 * (P + P.transpose());
 }
 
 void EkfSlamCore::symmetrise()

@@ -96,6 +96,23 @@ UpdateTerm InformationForm::applyWhitened(const std::vector<VarId>& vars, Eigen:
 	return term;
 }
 
+void InformationForm::subtract(const UpdateTerm& term)
+{
+	checkVars(term.vars, static_cast<int>(term.C.rows()));
+	std::vector<int> start(term.vars.size());
+	for (std::size_t a = 0, k = 0; a < term.vars.size(); k += dim(term.vars[a]), ++a) start[a] = static_cast<int>(k);
+	for (std::size_t b = 0; b < term.vars.size(); ++b)
+	{
+		const auto Cb = term.C.middleRows(start[b], dim(term.vars[b]));
+		I_.addBlock(term.vars[b].value, term.vars[b].value, -Cb * Cb.transpose());
+		for (std::size_t a = b + 1; a < term.vars.size(); ++a)
+			I_.addBlock(term.vars[a].value, term.vars[b].value,
+						-term.C.middleRows(start[a], dim(term.vars[a])) * Cb.transpose());
+	}
+	for (std::size_t a = 0; a < term.vars.size(); ++a)
+		i_.segment(offset(term.vars[a]), dim(term.vars[a])) -= term.delta_i.segment(start[a], dim(term.vars[a]));
+}
+
 void InformationForm::setEstimate(const Eigen::VectorXd& x)
 {
 	if (x.size() != scalarDim()) throw std::invalid_argument("InformationForm::setEstimate: wrong size");

@@ -1,6 +1,7 @@
 #include <esif/core/Errors.h>
 #include <esif/sparse/FreshCholesky.h>
 #include <esif/sparse/IncrementalCholesky.h>
+#include <esif/sparse/PatternExport.h>
 #include <esif/sparse/PcgSolver.h>
 #include <esif/sparse/SparseInformationCore.h>
 #include <esif/sparse/SparseInverse.h>
@@ -58,11 +59,20 @@ VarId SparseInformationCore::addPose(const Eigen::Vector3d& initial)
 	return info_.addVariable(VarKind::Pose2, initial);
 }
 
-void SparseInformationCore::addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
-										   const Eigen::MatrixXd& R, const Eigen::VectorXd& innovation)
+UpdateTerm SparseInformationCore::addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+												 const Eigen::MatrixXd& R, const Eigen::VectorXd& innovation)
 {
 	ScopedTimer t(counters_.update_time_s);
-	noteUpdate(info_.addMeasurement(vars, J, R, innovation));
+	UpdateTerm term = info_.addMeasurement(vars, J, R, innovation);
+	noteUpdate(term);
+	return term;
+}
+
+void SparseInformationCore::withdraw(const UpdateTerm& term)
+{
+	ScopedTimer t(counters_.update_time_s);
+	info_.subtract(term);
+	solver_->noteWithdrawal();
 }
 
 void SparseInformationCore::addPrior(VarId v, const Eigen::VectorXd& mean, const Eigen::MatrixXd& information)
@@ -127,6 +137,29 @@ std::vector<Eigen::MatrixXd> SparseInformationCore::marginalCovariances()
 	std::vector<Eigen::MatrixXd> out;
 	out.reserve(info_.variableCount());
 	for (int v = 0; v < info_.variableCount(); ++v) out.push_back(Z.block(info_.scalarIndices({VarId{v}})));
+	return out;
+}
+
+InformationPattern SparseInformationCore::pattern()
+{
+	InformationPattern out;
+	out.information = toEigenSparse(info_.matrix());
+	if (info_.scalarDim() == 0) return out;
+	refresh();
+	const int n = info_.scalarDim();
+	const char* order = params_.recovery == RecoveryMethod::FreshCholesky ? "AMD ordering"
+		: params_.reordering == Reordering::Camd								? "CAMD reordering"
+																				: "distance reordering";
+	if (cholmod_factor* L = solver_->choleskyFactor())
+	{
+		out.factor = toEigenSparse(*L, n, cholmod_);
+		out.factor_order = std::string("Cholesky factor, ") + order;
+	}
+	else if (const LowerCsc* Lic = solver_->incompleteFactor())
+	{
+		out.factor = toEigenSparse(*Lic, n);
+		out.factor_order = std::string("incomplete Cholesky preconditioner, ") + order;
+	}
 	return out;
 }
 

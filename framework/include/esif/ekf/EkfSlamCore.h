@@ -46,6 +46,17 @@ class EkfSlamCore
 	/// with its full cross-covariance; returns its index.
 	std::size_t addLandmark(const Eigen::Vector2d& z, const Eigen::Matrix2d& R, const Pose2& sensor_on_robot);
 
+	/// Keeps the robot and the landmarks `keep` (indices, in the order given,
+	/// which becomes their new order 0, 1, ...) and drops every other
+	/// landmark: marginalisation, which in covariance form is deleting rows
+	/// and columns. O(k^2) for k kept landmarks.
+	void retainLandmarks(const std::vector<std::size_t>& keep);
+
+	/// Replaces the whole state: x = [robot; landmarks], P its covariance
+	/// (e.g. a fused estimate). Throws std::invalid_argument on a size
+	/// mismatch or an odd landmark part.
+	void setState(const Eigen::VectorXd& x, const Eigen::MatrixXd& P);
+
 	/// Predicted measurement of landmark `i` from the current robot pose.
 	RangeBearingPrediction predictMeasurement(std::size_t i, const Pose2& sensor_on_robot) const;
 

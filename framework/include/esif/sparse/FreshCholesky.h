@@ -21,6 +21,7 @@ class FreshCholesky : public RecoverySolver
 	FreshCholesky(const SparseRecoveryParams& params, SparseCounters& counters, CholmodCommon& common);
 
 	void noteUpdate(const InformationForm& info, const UpdateTerm& term) override { changed_ = true; }
+	void noteWithdrawal() override { changed_ = true; }
 	/// Factors afresh if anything changed; `reference` is not used.
 	void refresh(const InformationForm& info, const Eigen::Vector2d& reference) override;
 	void solveState(const InformationForm& info, Eigen::VectorXd& x) override;

@@ -39,6 +39,7 @@ class IncrementalCholesky : public RecoverySolver
 	IncrementalCholesky(const SparseRecoveryParams& params, SparseCounters& counters, CholmodCommon& common);
 
 	void noteUpdate(const InformationForm& info, const UpdateTerm& term) override;
+	void noteWithdrawal() override { updates_.overflow(); }
 	void refresh(const InformationForm& info, const Eigen::Vector2d& reference) override;
 	void solveState(const InformationForm& info, Eigen::VectorXd& x) override;
 	Eigen::MatrixXd solveColumns(const InformationForm& info, const std::vector<int>& scalars) override;

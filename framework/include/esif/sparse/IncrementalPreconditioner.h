@@ -34,6 +34,8 @@ class IncrementalPreconditioner
 
 	/// Logs an update already applied to `info`.
 	void noteUpdate(const InformationForm& info, const UpdateTerm& term);
+	/// An earlier update was subtracted: the next refresh factors afresh.
+	void noteWithdrawal() { updates_.overflow(); }
 
 	/// Case (i) or (ii) as described above. Throws NumericalError when a
 	/// pivot breaks down (I not numerically positive definite).

@@ -45,6 +45,12 @@ class InformationForm
 	/// (J = identity, R^-1 = information in eq. 3.15), e.g. the map anchor.
 	UpdateTerm addPrior(VarId v, const Eigen::VectorXd& mean, const Eigen::MatrixXd& information);
 
+	/// Undoes an update this form applied earlier (I -= C C^T, i -= delta_i),
+	/// e.g. D-SLAM withdrawing a map update when the next scan is not
+	/// admissible (book Sec. 3.4.1). Block non-zeros it created stay
+	/// structurally present.
+	void subtract(const UpdateTerm& term);
+
 	const BlockSparseMatrix& matrix() const { return I_; }
 	const Eigen::VectorXd& vector() const { return i_; }
 

@@ -17,10 +17,12 @@ class PcgSolver : public RecoverySolver
 	PcgSolver(const SparseRecoveryParams& params, SparseCounters& counters, CholmodCommon& common);
 
 	void noteUpdate(const InformationForm& info, const UpdateTerm& term) override;
+	void noteWithdrawal() override { preconditioner_.noteWithdrawal(); }
 	void refresh(const InformationForm& info, const Eigen::Vector2d& reference) override;
 	void solveState(const InformationForm& info, Eigen::VectorXd& x) override;
 	Eigen::MatrixXd solveColumns(const InformationForm& info, const std::vector<int>& scalars) override;
 	std::size_t factorNonZeros() const override { return preconditioner_.nonZeros(); }
+	const LowerCsc* incompleteFactor() const override { return &preconditioner_.factor(); }
 
 	/// Iterations of the last solve.
 	int lastIterations() const { return last_iterations_; }

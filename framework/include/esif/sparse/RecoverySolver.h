@@ -7,6 +7,7 @@
 
 #include <esif/sparse/Cholmod.h>
 #include <esif/sparse/InformationForm.h>
+#include <esif/sparse/LowerCsc.h>
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -23,6 +24,11 @@ class RecoverySolver
 	/// solver records what its next refresh needs (e.g. which trailing part
 	/// of its ordering was touched).
 	virtual void noteUpdate(const InformationForm& info, const UpdateTerm& term) = 0;
+
+	/// `info` has just subtracted an earlier update (I -= C C^T). Factors
+	/// follow additive changes only, so the next refresh factors afresh
+	/// (Case ii).
+	virtual void noteWithdrawal() = 0;
 
 	/// Brings the factor or preconditioner up to date with `info`: partially
 	/// when the changes since the last refresh lie in a short trailing part of
@@ -41,6 +47,10 @@ class RecoverySolver
 	/// The current complete factor (simplicial or supernodal CHOLMOD), or
 	/// null for methods without one.
 	virtual cholmod_factor* choleskyFactor() { return nullptr; }
+
+	/// The incomplete factor (positions order) of methods that keep one
+	/// instead of a complete factor, else null.
+	virtual const LowerCsc* incompleteFactor() const { return nullptr; }
 
 	/// Non-zeros of the factor or preconditioner over the real variables.
 	virtual std::size_t factorNonZeros() const = 0;

@@ -11,6 +11,7 @@
 /// step's measurements, setReferencePoint(robot position), recoverState(),
 /// then covariance({...}) for the variables near the robot.
 
+#include <esif/core/InformationPattern.h>
 #include <esif/sparse/Cholmod.h>
 #include <esif/sparse/InformationForm.h>
 #include <esif/sparse/RecoverySolver.h>
@@ -39,8 +40,13 @@ class SparseInformationCore
 	/// EIF update, eq. (3.15): Jacobian J over `vars` (columns stacked in
 	/// that order), measurement covariance R, innovation z - h(x^) at the
 	/// current estimate (angles wrapped by the caller).
-	void addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R,
-						const Eigen::VectorXd& innovation);
+	/// Returns the update as applied, for a later withdraw().
+	UpdateTerm addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R,
+							  const Eigen::VectorXd& innovation);
+	/// Takes back an update returned by addMeasurement() (book Sec. 3.4.1:
+	/// D-SLAM withdraws the last map update when the next scan is not
+	/// admissible). The next recovery factors afresh.
+	void withdraw(const UpdateTerm& term);
 	/// Prior N(mean, information^-1) on one variable (e.g. the map anchor).
 	void addPrior(VarId v, const Eigen::VectorXd& mean, const Eigen::MatrixXd& information);
 
@@ -66,6 +72,10 @@ class SparseInformationCore
 	/// pattern (SparseInverse.h). Methods without a complete factor (PCG)
 	/// make one fresh factorisation for it.
 	std::vector<Eigen::MatrixXd> marginalCovariances();
+
+	/// Sparsity of I (natural order) and of the method's current factor (its
+	/// own order), brought up to date first; for pictures and pattern tests.
+	InformationPattern pattern();
 
 	/// Counters with the current non-zeros of I and of the factor.
 	SparseCounters counters() const;
