@@ -88,7 +88,10 @@ std::vector<std::size_t> EkfSlam::candidatesFor(const Scan& scan) const
 	for (std::size_t i = 0; i < core_.landmarkCount(); ++i)
 	{
 		const auto h = core_.predictMeasurement(i, sensor);
-		if (h.z(0) <= max_range && std::abs(h.z(1)) <= half_fov) out.push_back(i);
+		// Within the range margin of the sensor the bearing says little (the
+		// robot may drive over a feature): such landmarks are always candidates.
+		const bool near = h.z(0) <= params_.candidate_margin_m;
+		if (near || (h.z(0) <= max_range && std::abs(h.z(1)) <= half_fov)) out.push_back(i);
 	}
 	return out;
 }
