@@ -1,0 +1,281 @@
+#include "Dslam.h"
+
+#include "CovarianceIntersection.h"
+#include "KidnappedRobot.h"
+
+#include <esif/core/Errors.h>
+
+#include <algorithm>
+
+IMPLEMENTS_MRPT_OBJECT(Dslam, FilterPlugin, esif)
+
+namespace esif
+{
+using namespace dslam;
+
+void Dslam::configure(const ConfigSection& section)
+{
+	loadParams(params_, section);
+	map_ = std::make_unique<DslamMap>(params_.recovery);
+	association_ = std::make_unique<RelativeAssociation>(params_);
+}
+
+StepReport Dslam::processStep(const StepInput& step)
+{
+	if (!map_) throw std::logic_error("Dslam: processStep() before configure()");
+	if (step.odometry)
+	{
+		local_.predict(*step.odometry);	 // Fig. 3.4, A -> B
+		chain_.predict(*step.odometry);
+	}
+	if (!step.scan || step.scan->measurements.empty()) return {};
+
+	const Pose2 sensor = toPose2(step.scan->sensor_on_robot);
+	StepReport report = associateScan(step);
+	if (params_.admissible == AdmissiblePolicy::Skip && !chain_.rootIsMapFrame() && !observed(*step.scan, report).pair)
+	{
+		// Skip policy: an inadmissible scan starts no feature; its matches still localise.
+		for (auto& a : report.associations)
+			if (a.kind == Association::Kind::New) a = {};
+	}
+	nameNewFeatures(report);
+	const Observed obs = observed(*step.scan, report);
+	if (obs.all.empty()) return report;
+
+	localize(obs, sensor);
+	updateMap(obs, sensor);
+	map_->recover(local_.robot().head<2>());
+	return report;
+}
+
+StepReport Dslam::associateScan(const StepInput& step)
+{
+	const auto& ms = step.scan->measurements;
+	const bool all_have_ids = std::all_of(ms.begin(), ms.end(), [](const RangeBearing& m) { return m.id.has_value(); });
+	if (params_.association == dslam::AssociationMode::KnownIds ||
+		(params_.association == dslam::AssociationMode::Auto && all_have_ids))
+		return associateByIds(step);
+	return association_->associate(*step.scan, local_.robot(), local_.robotCov(), *map_);
+}
+
+StepReport Dslam::associateByIds(const StepInput& step) const
+{
+	StepReport report;
+	std::unordered_set<LandmarkId> seen;
+	const auto& ms = step.scan->measurements;
+	for (std::size_t i = 0; i < ms.size(); ++i)
+	{
+		if (!ms[i].id)
+			throw InputError("step " + std::to_string(step.index) + ", measurement " + std::to_string(i) +
+							 ": no landmark ID but [dslam] association = known_ids");
+		const LandmarkId id = *ms[i].id;
+		// A second measurement of one feature in one scan is not independent: use the first.
+		if (!seen.insert(id).second)
+			report.associations.push_back({Association::Kind::Rejected, id});
+		else
+			report.associations.push_back({map_->contains(id) ? Association::Kind::Matched : Association::Kind::New, id});
+	}
+	return report;
+}
+
+void Dslam::nameNewFeatures(StepReport& report)
+{
+	for (auto& a : report.associations)
+	{
+		if (a.kind != Association::Kind::New) continue;
+		if (a.id < 0)
+		{
+			while (started_.count(next_own_id_)) ++next_own_id_;
+			a.id = next_own_id_++;
+		}
+		started_.insert(a.id);
+	}
+}
+
+Dslam::Observed Dslam::observed(const Scan& scan, const StepReport& report) const
+{
+	Observed obs;
+	Eigen::VectorXd z(2 * scan.measurements.size());
+	Eigen::MatrixXd R = Eigen::MatrixXd::Zero(z.size(), z.size());
+	int n = 0;
+	for (std::size_t i = 0; i < report.associations.size(); ++i)
+	{
+		const auto& a = report.associations[i];
+		if (a.kind == Association::Kind::Rejected) continue;
+		const auto& m = scan.measurements[i];
+		if (a.kind == Association::Kind::Matched) obs.mapped.push_back(n);
+		obs.all.push_back({a.id, Eigen::Vector2d(m.range_m, m.bearing_rad), m.cov});
+		z.segment<2>(2 * n) = obs.all.back().z;
+		R.block<2, 2>(2 * n, 2 * n) = m.cov;
+		++n;
+	}
+	obs.points = pointsInRobotFrame(z.head(2 * n), R.topLeftCorner(2 * n, 2 * n), toPose2(scan.sensor_on_robot));
+
+	std::vector<ReferenceCandidate> candidates;
+	for (int i : obs.mapped) candidates.push_back({obs.points.point(i), map_->mappedOrder(obs.all[i].id)});
+	const bool anchoring = chain_.rootIsMapFrame() && chain_.scans() < params_.anchor_scans;
+	if (anchoring) return obs;	// no pair: combined into the anchor
+	if (const auto p = chooseReferencePair(candidates, params_.referenceRules()))
+		obs.pair = std::make_pair(obs.mapped[p->first], obs.mapped[p->second]);
+	return obs;
+}
+
+void Dslam::localize(const Observed& obs, const Pose2& sensor)
+{
+	// B -> C: features of Map(k) in view, and any the local SLAM holds.
+	std::vector<IdentifiedMeasurement> known, fresh;
+	for (std::size_t i = 0; i < obs.all.size(); ++i)
+		(map_->contains(obs.all[i].id) || local_.holds(obs.all[i].id) ? known : fresh).push_back(obs.all[i]);
+	local_.observe(known, sensor);
+	if (obs.pair) fuseWithKidnappedRobot(obs, sensor);	// F -> G, then C, G -> D
+	local_.addFeatures(fresh, sensor);					// D -> E
+}
+
+void Dslam::fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor)
+{
+	// Both states list the robot, then f1, f2 and the other mapped features in view.
+	const std::vector<int> order = [&] {
+		std::vector<int> o = {obs.pair->first, obs.pair->second};
+		for (int i : obs.mapped)
+			if (i != obs.pair->first && i != obs.pair->second) o.push_back(i);
+		return o;
+	}();
+	KidnappedInput in;
+	std::vector<LandmarkId> ids;
+	for (int i : order)
+	{
+		ids.push_back(obs.all[i].id);
+		in.z_loc.push_back(obs.all[i]);
+	}
+	in.features.resize(2 * ids.size());
+	for (std::size_t k = 0; k < ids.size(); ++k) in.features.segment<2>(2 * k) = map_->position(ids[k]);
+	in.features_cov = map_->covariance(ids);
+	in.sensor_on_robot = sensor;
+	const Eigen::Vector3d z_rob = robotRelativeToPair(obs.points.point(order[0]), obs.points.point(order[1]));
+	in.initial_robot = robotFromPair(in.features.segment<2>(0), in.features.segment<2>(2), z_rob);
+
+	local_.arrange(ids);
+	try
+	{
+		const GaussianState from_map = solveKidnappedRobot(in);
+		const GaussianState local{local_.state(), local_.covariance()};
+		CiResult ci;
+		if (params_.fusion == FusionScope::Robot)
+		{
+			// CI of the robot marginals; the local features follow through
+			// their conditional on the robot (see DslamParams::fusion).
+			ci = covarianceIntersection(robotMarginal(local), robotMarginal(from_map));
+			ci.fused = withRobotMarginal(local, ci.fused);
+		}
+		else
+			ci = covarianceIntersection(local, from_map);  // eq. (3.20)-(3.21) over [X_r, X_1..X_m1]
+		local_.setState(ci.fused.mean, ci.fused.cov);
+		++tally_.ci_fusions;
+		tally_.omega_sum += ci.omega;
+	}
+	catch (const NumericalError&)
+	{
+		++tally_.ci_failures;  // degenerate geometry: keep the local SLAM estimate (step D = C)
+	}
+}
+
+MapUpdate Dslam::updateFromPair(const std::vector<LandmarkId>& ids, const PointSet& points, std::pair<int, int> pair)
+{
+	const auto order = pairFirst(static_cast<int>(ids.size()), pair.first, pair.second);
+	std::vector<LandmarkId> ordered_ids;
+	for (int i : order) ordered_ids.push_back(ids[i]);
+	return map_->updateRelative(ordered_ids, selectPoints(points, order));
+}
+
+void Dslam::updateMap(const Observed& obs, const Pose2& sensor)
+{
+	if (obs.pair)
+	{
+		// Admissible: z_map of this scan, eq. (3.12)-(3.15); a new chain starts here.
+		std::vector<LandmarkId> ids;
+		for (const auto& m : obs.all) ids.push_back(m.id);
+		pending_ = updateFromPair(ids, obs.points, *obs.pair);
+		chain_.restart(obs.all, sensor);
+		++tally_.admissible;
+		return;
+	}
+	++tally_.inadmissible;
+	chain_.absorb(obs.all, sensor);
+	if (pending_)
+	{
+		map_->withdraw(*pending_);
+		++tally_.withdrawals;
+	}
+	if (chain_.rootIsMapFrame())
+	{
+		pending_ = map_->updateAnchor(chain_.ids(), chain_.features());
+		++tally_.anchor_updates;
+	}
+	else
+		applyVirtualObservation(sensor);
+}
+
+void Dslam::applyVirtualObservation(const Pose2& sensor)
+{
+	// Sec. 3.4.1: the chain's estimate as ranges and bearings from here.
+	const VirtualObservation v = chain_.virtualObservation(sensor);
+	const PointSet points = pointsInRobotFrame(v.range_bearing, v.cov, sensor);
+	std::vector<ReferenceCandidate> candidates;
+	std::vector<int> index;
+	for (std::size_t i = 0; i < v.ids.size(); ++i)
+		if (map_->supported(v.ids[i]))
+		{
+			candidates.push_back({points.point(static_cast<int>(i)), map_->mappedOrder(v.ids[i])});
+			index.push_back(static_cast<int>(i));
+		}
+	ReferenceRules rules = params_.referenceRules();
+	auto pair = chooseReferencePair(candidates, rules);
+	if (!pair) pair = chooseReferencePair(candidates, {rules.policy, 0.0, 0.0});
+	if (!pair)
+		throw NumericalError("D-SLAM: the virtual observation holds fewer than two distinct mapped features");
+	pending_ = updateFromPair(v.ids, points, {index[pair->first], index[pair->second]});
+	++tally_.virtual_updates;
+}
+
+PoseEstimate Dslam::robotPose() const { return {toTPose2D(local_.robot()), local_.robotCov()}; }
+
+Estimate Dslam::estimate() const
+{
+	Estimate e;
+	e.robot = robotPose();
+	if (map_) e.landmarks = map_->landmarks();
+	return e;
+}
+
+CostFigures Dslam::costFigures() const
+{
+	CostFigures c;
+	if (!map_) return c;
+	const SparseCounters sc = map_->core().counters();
+	c.state_dim = static_cast<std::size_t>(map_->core().stateDim());
+	c.info_nnz = sc.information_nnz;
+	c.counters = sc.list();
+	const auto add = [&](const char* name, double v) { c.counters.emplace_back(name, v); };
+	add("admissible_scans", static_cast<double>(tally_.admissible));
+	add("inadmissible_scans", static_cast<double>(tally_.inadmissible));
+	add("map_withdrawals", static_cast<double>(tally_.withdrawals));
+	add("virtual_updates", static_cast<double>(tally_.virtual_updates));
+	add("anchor_updates", static_cast<double>(tally_.anchor_updates));
+	add("ci_fusions", static_cast<double>(tally_.ci_fusions));
+	add("ci_failures", static_cast<double>(tally_.ci_failures));
+	add("ci_omega_mean", tally_.ci_fusions ? tally_.omega_sum / static_cast<double>(tally_.ci_fusions) : 0.0);
+	if (association_)
+	{
+		add("jcbb_nodes", static_cast<double>(association_->jcbbNodes()));
+		add("relative_test_drops", static_cast<double>(association_->droppedByRelativeTest()));
+	}
+	return c;
+}
+
+std::optional<InformationPattern> Dslam::informationPattern() const
+{
+	if (!map_ || map_->featureCount() == 0) return std::nullopt;
+	return map_->core().pattern();
+}
+
+}  // namespace esif

@@ -1,0 +1,84 @@
+#pragma once
+/// \file Dslam.h
+/// D-SLAM (book Ch. 3): decoupled localisation and mapping. Each scan is
+/// recast into z_map (distances and angles among features) and z_rob
+/// (Sec. 3.1.1). Mapping is a static EIF over feature positions only, with
+/// an exactly sparse information matrix (Sec. 3.1.3, 3.2). Localisation
+/// (Sec. 3.1.4, Fig. 3.4) fuses, by covariance intersection, a local EKF
+/// SLAM over the features in view with the "kidnapped robot" pose from the
+/// map. Scans seeing fewer than two mapped features are combined into
+/// admissible virtual observations (Sec. 3.4.1); without landmark IDs,
+/// associations are verified on relative distances and angles (Sec. 3.4.2).
+///
+/// One step, in the order of Fig. 3.4: predict (A-B); associate; local
+/// SLAM observe (B-C); kidnapped robot from Map(k) (F-G); CI (C, G -> D);
+/// new features into the local SLAM (E); map update to Map(k+1); recovery.
+
+#include "AdmissibleChain.h"
+#include "DslamMap.h"
+#include "DslamParams.h"
+#include "LocalSlam.h"
+#include "RelativeAssociation.h"
+
+#include <esif/plugin/FilterPlugin.h>
+
+#include <memory>
+#include <optional>
+#include <unordered_set>
+
+namespace esif
+{
+class Dslam : public FilterPlugin
+{
+	DEFINE_MRPT_OBJECT(Dslam, esif)
+
+   public:
+	std::string sectionName() const override { return "dslam"; }
+	void configure(const ConfigSection& section) override;
+	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
+	StepReport processStep(const StepInput& step) override;
+	PoseEstimate robotPose() const override;
+	Estimate estimate() const override;
+	CostFigures costFigures() const override;
+	std::optional<InformationPattern> informationPattern() const override;
+
+   private:
+	/// A scan's associated measurements and what they say about admissibility.
+	struct Observed
+	{
+		std::vector<dslam::IdentifiedMeasurement> all;	 ///< matched and new, scan order
+		dslam::PointSet points;							 ///< `all` in the robot frame (T1)
+		std::vector<int> mapped;						 ///< indices into `all` of features in Map(k)
+		std::optional<std::pair<int, int>> pair;		 ///< reference pair (indices into `all`)
+	};
+
+	StepReport associateScan(const StepInput& step);
+	StepReport associateByIds(const StepInput& step) const;
+	void nameNewFeatures(StepReport& report);
+	Observed observed(const Scan& scan, const StepReport& report) const;
+	void localize(const Observed& obs, const Pose2& sensor);
+	void fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor);
+	void updateMap(const Observed& obs, const Pose2& sensor);
+	void applyVirtualObservation(const Pose2& sensor);
+	dslam::MapUpdate updateFromPair(const std::vector<LandmarkId>& ids, const dslam::PointSet& points,
+									std::pair<int, int> pair);
+
+	dslam::DslamParams params_;
+	std::unique_ptr<dslam::DslamMap> map_;	// mutable state behind a const
+											// estimate(): recovery caches
+	std::unique_ptr<dslam::RelativeAssociation> association_;
+	dslam::LocalSlam local_;
+	dslam::AdmissibleChain chain_;
+	std::optional<dslam::MapUpdate> pending_;  ///< last map update, withdrawn if the next scan is inadmissible
+	std::unordered_set<LandmarkId> started_;   ///< features reported New so far
+	LandmarkId next_own_id_ = 0;
+
+	struct Tally
+	{
+		std::size_t admissible = 0, inadmissible = 0, skipped = 0, withdrawals = 0, virtual_updates = 0,
+					anchor_updates = 0, ci_fusions = 0, ci_failures = 0;
+		double omega_sum = 0;
+	} tally_;
+};
+
+}  // namespace esif

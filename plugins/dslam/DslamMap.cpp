@@ -1,0 +1,103 @@
+#include "DslamMap.h"
+
+#include <stdexcept>
+
+namespace esif::dslam
+{
+DslamMap::DslamMap(const SparseRecoveryParams& params) : core_(params) {}
+
+Eigen::Vector2d DslamMap::position(LandmarkId id) const { return core_.estimate(var_of_.at(id)); }
+
+VarId DslamMap::createFeature(LandmarkId id, const Eigen::Vector2d& position)
+{
+	const VarId v = core_.addPoint(position);
+	var_of_.emplace(id, v);
+	ids_.push_back(id);
+	return v;
+}
+
+std::vector<VarId> DslamMap::variables(const std::vector<LandmarkId>& ids) const
+{
+	std::vector<VarId> vars;
+	vars.reserve(ids.size());
+	for (LandmarkId id : ids) vars.push_back(var_of_.at(id));
+	return vars;
+}
+
+Eigen::VectorXd DslamMap::stackedPositions(const std::vector<LandmarkId>& ids) const
+{
+	Eigen::VectorXd xy(2 * ids.size());
+	for (std::size_t i = 0; i < ids.size(); ++i) xy.segment<2>(2 * i) = position(ids[i]);
+	return xy;
+}
+
+void DslamMap::markSupported(const std::vector<LandmarkId>& ids)
+{
+	for (LandmarkId id : ids) unsupported_.erase(id);
+}
+
+MapUpdate DslamMap::updateRelative(const std::vector<LandmarkId>& ids, const PointSet& points)
+{
+	if (ids.size() < 2 || !supported(ids[0]) || !supported(ids[1]))
+		throw std::logic_error("D-SLAM map update: the reference pair must be mapped features");
+	const ValueJacobian z = relativeGeometry(points.xy);  // z_map, eq. (3.8); dT2
+	MapUpdate update;
+	const Eigen::Vector2d f1 = position(ids[0]), f2 = position(ids[1]);
+	for (std::size_t i = 2; i < ids.size(); ++i)
+		if (!contains(ids[i]))
+		{
+			const int row = static_cast<int>(2 * i - 3);
+			createFeature(ids[i], featureFromPair(f1, f2, z.value(row + 1), z.value(row)));	// eq. (3.14)
+			update.new_features.push_back(ids[i]);
+		}
+	// Eq. (3.9): R_map = dT2 (dT1 R_old dT1^T) dT2^T; points.cov holds the bracket.
+	const Eigen::MatrixXd R_map = z.jacobian * points.cov * z.jacobian.transpose();
+	// Eq. (3.13): H_map and its Jacobian at the current estimate.
+	const ValueJacobian h = relativeGeometry(stackedPositions(ids));
+	update.term = core_.addMeasurement(variables(ids), h.jacobian, 0.5 * (R_map + R_map.transpose()),
+									   relativeDifference(z.value, h.value));	// eq. (3.15)
+	markSupported(ids);
+	return update;
+}
+
+MapUpdate DslamMap::updateAnchor(const std::vector<LandmarkId>& ids, const PointSet& points)
+{
+	MapUpdate update;
+	for (std::size_t i = 0; i < ids.size(); ++i)
+		if (!contains(ids[i]))
+		{
+			createFeature(ids[i], points.point(static_cast<int>(i)));
+			update.new_features.push_back(ids[i]);
+		}
+	const auto n = static_cast<Eigen::Index>(points.xy.size());
+	update.term = core_.addMeasurement(variables(ids), Eigen::MatrixXd::Identity(n, n), points.cov,
+									   points.xy - stackedPositions(ids));
+	markSupported(ids);
+	return update;
+}
+
+void DslamMap::withdraw(const MapUpdate& update)
+{
+	core_.withdraw(update.term);
+	for (LandmarkId id : update.new_features) unsupported_.insert(id);
+}
+
+void DslamMap::recover(const Eigen::Vector2d& robot_xy)
+{
+	core_.setReferencePoint(robot_xy);
+	core_.recoverState();
+}
+
+Eigen::MatrixXd DslamMap::covariance(const std::vector<LandmarkId>& ids) { return core_.covariance(variables(ids)); }
+
+std::vector<LandmarkEstimate> DslamMap::landmarks()
+{
+	std::vector<LandmarkEstimate> out;
+	if (ids_.empty()) return out;
+	const auto marginals = core_.marginalCovariances();
+	out.reserve(ids_.size());
+	for (std::size_t i = 0; i < ids_.size(); ++i) out.push_back({ids_[i], position(ids_[i]), marginals[i]});
+	return out;
+}
+
+}  // namespace esif::dslam

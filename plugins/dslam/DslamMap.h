@@ -1,0 +1,81 @@
+#pragma once
+/// \file DslamMap.h
+/// D-SLAM mapping (book Sec. 3.1.3): the state is the feature positions only
+/// (eq. 3.10), estimated by an EIF on the sparse information core with no
+/// prediction step. Two kinds of update:
+/// - relative: z_map of a scan (or of a virtual observation), eq. (3.12)
+///   and (3.15); new features are first placed by eq. (3.14);
+/// - anchor: while no scan has yet been admissible, the features seen from
+///   the initial pose (the map frame, known exactly) get a joint prior.
+/// The last update can be withdrawn (Sec. 3.4.1).
+
+#include "RelativeGeometry.h"
+
+#include <esif/core/Estimate.h>
+#include <esif/sparse/SparseInformationCore.h>
+
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+namespace esif::dslam
+{
+/// An applied map update, kept so it can be withdrawn.
+struct MapUpdate
+{
+	UpdateTerm term;
+	std::vector<LandmarkId> new_features;  ///< features this update created
+};
+
+class DslamMap
+{
+   public:
+	explicit DslamMap(const SparseRecoveryParams& params);
+
+	bool contains(LandmarkId id) const { return var_of_.count(id) > 0; }
+	/// Mapped and informed by an update still in force (not only by a
+	/// withdrawn one): usable as a reference feature.
+	bool supported(LandmarkId id) const { return contains(id) && !unsupported_.count(id); }
+	/// Order in which `id` was mapped (0, 1, ...).
+	long mappedOrder(LandmarkId id) const { return var_of_.at(id).value; }
+	Eigen::Vector2d position(LandmarkId id) const;
+	std::size_t featureCount() const { return ids_.size(); }
+	const std::vector<LandmarkId>& ids() const { return ids_; }
+
+	/// Eq. (3.12)-(3.15): `ids` name the points of `points` (robot or any
+	/// local frame; ordered [f1, f2, others...], f1 and f2 supported); ids
+	/// not yet mapped are created first, by eq. (3.14).
+	MapUpdate updateRelative(const std::vector<LandmarkId>& ids, const PointSet& points);
+
+	/// Joint prior N(points, points.cov) on features given in the map frame;
+	/// unmapped ids are created at their given position.
+	MapUpdate updateAnchor(const std::vector<LandmarkId>& ids, const PointSet& points);
+
+	/// Takes back `update`; the features it created stay mapped but become
+	/// unsupported until an update informs them again.
+	void withdraw(const MapUpdate& update);
+
+	/// x = I^-1 i (eq. 3.24), reordering about `robot_xy` when needed.
+	void recover(const Eigen::Vector2d& robot_xy);
+	/// Joint covariance of the features `ids` (eq. 3.25).
+	Eigen::MatrixXd covariance(const std::vector<LandmarkId>& ids);
+
+	/// Every feature with its marginal covariance.
+	std::vector<LandmarkEstimate> landmarks();
+
+	SparseInformationCore& core() { return core_; }
+	const SparseInformationCore& core() const { return core_; }
+
+   private:
+	VarId createFeature(LandmarkId id, const Eigen::Vector2d& position);
+	std::vector<VarId> variables(const std::vector<LandmarkId>& ids) const;
+	Eigen::VectorXd stackedPositions(const std::vector<LandmarkId>& ids) const;
+	void markSupported(const std::vector<LandmarkId>& ids);
+
+	SparseInformationCore core_;
+	std::unordered_map<LandmarkId, VarId> var_of_;
+	std::vector<LandmarkId> ids_;  ///< in order of creation (= variable order)
+	std::unordered_set<LandmarkId> unsupported_;
+};
+
+}  // namespace esif::dslam

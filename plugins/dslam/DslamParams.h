@@ -1,0 +1,73 @@
+#pragma once
+/// \file DslamParams.h
+/// Parameters of the D-SLAM plugin, INI section [dslam].
+
+#include "ReferencePair.h"
+
+#include <esif/config/ParamBinder.h>
+#include <esif/sparse/SparseRecoveryParams.h>
+
+namespace esif::dslam
+{
+enum class AssociationMode
+{
+	Auto,			  ///< known_ids when every measurement carries an ID, else jcbb
+	KnownIds,		  ///< the rawlog's landmark IDs
+	NearestNeighbor,  ///< MRPT nearest neighbour hypotheses, verified by eq. (3.45)
+	Jcbb			  ///< MRPT JCBB hypotheses, verified by eq. (3.45)
+};
+
+enum class AdmissiblePolicy
+{
+	Combine,  ///< Sec. 3.4.1: virtual observations through a small EKF
+	Skip	  ///< inadmissible scans do not update the map (loses their information)
+};
+
+/// What covariance intersection fuses (Sec. 3.1.4.4).
+enum class FusionScope
+{
+	/// CI of the robot-pose marginals of the two estimates; the local SLAM's
+	/// features then follow their conditional on the robot. Default: on
+	/// grid196 the joint version below let a disagreement of the two
+	/// estimates' relative feature geometry (each confident to millimetres
+	/// in some direction) drag the fused pose 1.7 m away from both.
+	Robot,
+	/// CI of the whole aligned states [X_r, X_1, ..., X_m1], as in the book.
+	Joint
+};
+
+struct DslamParams
+{
+	AssociationMode association = AssociationMode::Auto;  ///< auto | known_ids | nn | jcbb
+	/// Individual-compatibility gate of the hypotheses, from the pose
+	/// estimate with robot-map correlations taken as zero (Sec. 3.4.2).
+	double gate_chi2_quantile = 0.99;
+	/// Confidence alpha of the joint test on relative distances and angles,
+	/// eq. (3.45).
+	double relative_gate_chi2_quantile = 0.99;
+	/// An unmatched measurement starts a new feature only beyond this
+	/// chi-square quantile from every candidate; otherwise it is rejected.
+	double new_landmark_chi2_quantile = 0.9999;
+	double candidate_margin_m = 2.0;	 ///< candidates: predicted range <= max range + this [m]
+	double candidate_margin_deg = 10.0;	 ///< ... and bearing within half the field of view + this [deg]
+
+	ReferencePolicy reference_pair = ReferencePolicy::Widest;	///< widest | first_mapped
+	double reference_min_separation_m = 0.5;  ///< reference features at least this far apart [m]
+	double reference_min_angle_deg = 5.0;	  ///< angle f1-robot-f2 within [this, 180 - this] [deg]
+
+	AdmissiblePolicy admissible = AdmissiblePolicy::Combine;  ///< combine | skip
+	/// The first this many scans are combined, as in Sec. 3.4.1, into one
+	/// observation from the initial pose, which defines the map frame. 1 =
+	/// the first scan alone, as the book: the frame is then known only to
+	/// about sigma_range / baseline of that scan's features (0.7 deg, 0.34 m
+	/// rigid error on grid196); 20 scans bring it to the EKF's level.
+	int anchor_scans = 20;
+	FusionScope fusion = FusionScope::Robot;  ///< robot | joint
+
+	SparseRecoveryParams recovery;	///< recovery, reordering, n0, ... (Sec. 3.3)
+
+	void declare(ParamBinder& b);
+	ReferenceRules referenceRules() const;
+};
+
+}  // namespace esif::dslam

@@ -1,0 +1,52 @@
+#include "LocalSlam.h"
+
+#include <unordered_set>
+
+namespace esif::dslam
+{
+void LocalSlam::observe(const std::vector<IdentifiedMeasurement>& seen, const Pose2& sensor_on_robot)
+{
+	std::unordered_set<LandmarkId> seen_ids;
+	for (const auto& m : seen) seen_ids.insert(m.id);
+	std::vector<LandmarkId> in_view;
+	for (LandmarkId id : ids_)
+		if (seen_ids.count(id)) in_view.push_back(id);
+	arrange(in_view);  // marginalise what is out of view: delete rows and columns
+
+	std::vector<EkfSlamCore::Match> matches;
+	for (const auto& m : seen)
+		if (holds(m.id)) matches.push_back({index_of_.at(m.id), m.z, m.R});
+	ekf_.update(matches, sensor_on_robot);
+	std::vector<IdentifiedMeasurement> returning;
+	for (const auto& m : seen)
+		if (!holds(m.id)) returning.push_back(m);
+	addFeatures(returning, sensor_on_robot);
+}
+
+void LocalSlam::arrange(const std::vector<LandmarkId>& order)
+{
+	std::vector<std::size_t> keep;
+	keep.reserve(order.size());
+	for (LandmarkId id : order) keep.push_back(index_of_.at(id));
+	ekf_.retainLandmarks(keep);
+	ids_ = order;
+	reindex();
+}
+
+void LocalSlam::addFeatures(const std::vector<IdentifiedMeasurement>& fresh, const Pose2& sensor_on_robot)
+{
+	for (const auto& m : fresh)
+	{
+		ekf_.addLandmark(m.z, m.R, sensor_on_robot);
+		ids_.push_back(m.id);
+	}
+	reindex();
+}
+
+void LocalSlam::reindex()
+{
+	index_of_.clear();
+	for (std::size_t i = 0; i < ids_.size(); ++i) index_of_[ids_[i]] = i;
+}
+
+}  // namespace esif::dslam

@@ -1,0 +1,64 @@
+#pragma once
+/// \file LocalSlam.h
+/// D-SLAM's first localisation process (book Sec. 3.1.4.3, Fig. 3.4 steps
+/// A-B-C and D-E): EKF SLAM over the robot and only the features in view.
+/// Features that leave the view are dropped (marginalised); one that comes
+/// back is initialised again from its measurement, never from the map, so
+/// this estimate stays independent of the map's information.
+
+#include <esif/core/StepInput.h>
+#include <esif/ekf/EkfSlamCore.h>
+
+#include <unordered_map>
+#include <vector>
+
+namespace esif::dslam
+{
+/// A measurement with the feature it was associated with.
+struct IdentifiedMeasurement
+{
+	LandmarkId id = 0;
+	Eigen::Vector2d z;  ///< (range, bearing)
+	Eigen::Matrix2d R;
+};
+
+class LocalSlam
+{
+   public:
+	/// Step A -> B, eq. (3.19).
+	void predict(const OdometryIncrement& u) { ekf_.predict(u); }
+
+	/// Step B -> C: drops the features not in `seen`, updates with the
+	/// measurements of the features it kept, and initialises the other
+	/// features of `seen` from their measurements (re-observed features come
+	/// back this way, never from the map).
+	void observe(const std::vector<IdentifiedMeasurement>& seen, const Pose2& sensor_on_robot);
+
+	/// Keeps only the features `order` (all held), in that order: the layout
+	/// of the kidnapped-robot state for the fusion (step C).
+	void arrange(const std::vector<LandmarkId>& order);
+
+	/// Step E: adds features seen for the first time.
+	void addFeatures(const std::vector<IdentifiedMeasurement>& fresh, const Pose2& sensor_on_robot);
+
+	bool holds(LandmarkId id) const { return index_of_.count(id) > 0; }
+
+	/// State [robot; features in order()] and its covariance (step C).
+	Eigen::VectorXd state() const { return ekf_.state(); }
+	Eigen::MatrixXd covariance() const { return ekf_.covariance(); }
+	/// Step D: the fused estimate replaces the state (same layout).
+	void setState(const Eigen::VectorXd& x, const Eigen::MatrixXd& P) { ekf_.setState(x, P); }
+
+	Pose2 robot() const { return ekf_.robot(); }
+	Eigen::Matrix3d robotCov() const { return ekf_.robotCov(); }
+	const std::vector<LandmarkId>& order() const { return ids_; }
+
+   private:
+	void reindex();
+
+	EkfSlamCore ekf_;
+	std::vector<LandmarkId> ids_;  ///< landmark index -> feature
+	std::unordered_map<LandmarkId, std::size_t> index_of_;
+};
+
+}  // namespace esif::dslam

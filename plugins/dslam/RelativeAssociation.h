@@ -1,0 +1,57 @@
+#pragma once
+/// \file RelativeAssociation.h
+/// D-SLAM data association without landmark IDs (book Sec. 3.4.2):
+/// 1. hypotheses by maximum likelihood (MRPT nearest neighbour or JCBB)
+///    from the current pose estimate, with the correlations between the
+///    robot pose and the map taken as zero (the map is not correlated with
+///    the pose in D-SLAM);
+/// 2. verification of the matched set by the chi-square test on relative
+///    distances and angles among the features, eq. (3.40)-(3.45), which a
+///    pose error cannot pass or fail. When the test fails, the match whose
+///    removal best restores consistency is dropped, and the test repeated.
+/// Only the candidate features' covariance blocks are recovered from the map.
+
+#include "DslamMap.h"
+#include "DslamParams.h"
+
+#include <esif/core/Estimate.h>
+#include <esif/core/StepInput.h>
+
+#include <cstddef>
+
+namespace esif::dslam
+{
+class RelativeAssociation
+{
+   public:
+	explicit RelativeAssociation(const DslamParams& params);
+
+	/// One decision per measurement of `scan`: Matched (with the map ID),
+	/// New (id -1: the caller names it) or Rejected.
+	StepReport associate(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov, DslamMap& map);
+
+	std::size_t jcbbNodes() const { return jcbb_nodes_; }
+	/// Matches dropped because the relative test, eq. (3.45), failed.
+	std::size_t droppedByRelativeTest() const { return dropped_; }
+
+   private:
+	struct Match
+	{
+		int measurement = 0;
+		int candidate = 0;
+	};
+	std::vector<LandmarkId> candidatesFor(const Scan& scan, const Pose2& robot, const DslamMap& map) const;
+	/// Eq. (3.45) statistic D^2 / chi2(d, alpha) of a matched set (< 1 passes).
+	double relativeTest(const std::vector<Match>& matches, const Scan& scan, const Eigen::MatrixXd& candidate_cov,
+						const std::vector<LandmarkId>& candidates, const DslamMap& map) const;
+	/// Drops matches until the relative test passes.
+	void verify(std::vector<Match>& matches, const Scan& scan, const Eigen::MatrixXd& candidate_cov,
+				const std::vector<LandmarkId>& candidates, const DslamMap& map);
+
+	DslamParams params_;
+	double new_gate_ = 0;
+	std::size_t jcbb_nodes_ = 0;
+	std::size_t dropped_ = 0;
+};
+
+}  // namespace esif::dslam
