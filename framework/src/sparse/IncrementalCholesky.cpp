@@ -208,6 +208,40 @@ Eigen::MatrixXd IncrementalCholesky::solveColumns(const InformationForm& info, c
 	return all.topRows(info.scalarDim());
 }
 
+Eigen::MatrixXd IncrementalCholesky::solveCovarianceBlock(const InformationForm& info, const std::vector<int>& scalars)
+{
+	if (L_->is_super || L_->is_ll) return RecoverySolver::solveCovarianceBlock(info, scalars);
+	// P A P^T = L D L^T, so A^-1 = P^T L^-T D^-1 L^-1 P and the entry for
+	// positions a, b is sum_k y_a(k) y_b(k) / d_k with y_a = L^-1 e_a, whose
+	// non-zeros lie at positions >= a: a forward solve on the trailing part.
+	const int k = static_cast<int>(scalars.size());
+	const int n = static_cast<int>(L_->n);
+	std::vector<int> pos(k);
+	for (int a = 0; a < k; ++a) pos[a] = ordering_.position[scalars[a]];
+	const int first = *std::min_element(pos.begin(), pos.end());
+	const auto* p = static_cast<const int*>(L_->p);
+	const auto* nz = static_cast<const int*>(L_->nz);
+	const auto* li = static_cast<const int*>(L_->i);
+	const auto* lx = static_cast<const double*>(L_->x);
+
+	Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(n - first, k);  // rows: positions first..n-1
+	for (int a = 0; a < k; ++a)
+	{
+		auto y = Y.col(a);
+		y(pos[a] - first) = 1.0;
+		for (int j = pos[a]; j < n; ++j)
+		{
+			const double yj = y(j - first);
+			if (yj == 0.0) continue;
+			for (int t = p[j] + 1; t < p[j] + nz[j]; ++t) y(li[t] - first) -= lx[t] * yj;	// t = p[j] is d_j
+		}
+	}
+	Eigen::VectorXd d_inv(n - first);
+	for (int j = first; j < n; ++j) d_inv(j - first) = 1.0 / lx[p[j]];
+	Eigen::MatrixXd P = Y.transpose() * d_inv.asDiagonal() * Y;
+	return 0.5 * (P + P.transpose());
+}
+
 std::size_t IncrementalCholesky::factorNonZeros() const
 {
 	return L_ ? countFactorNonZeros(*L_, factored_dim_) : 0;

@@ -112,10 +112,7 @@ Eigen::MatrixXd SparseInformationCore::covariance(const std::vector<VarId>& vars
 {
 	refresh();
 	ScopedTimer t(counters_.recovery_time_s);
-	const std::vector<int> scalars = info_.scalarIndices(vars);
-	const Eigen::MatrixXd columns = solver_->solveColumns(info_, scalars);
-	Eigen::MatrixXd P(scalars.size(), scalars.size());
-	for (std::size_t a = 0; a < scalars.size(); ++a) P.row(a) = columns.row(scalars[a]);
+	const Eigen::MatrixXd P = solver_->solveCovarianceBlock(info_, info_.scalarIndices(vars));
 	if (!P.allFinite()) throw NumericalError("sparse recovery: a recovered covariance is not finite");
 	return 0.5 * (P + P.transpose());
 }

@@ -40,6 +40,10 @@ class IncrementalCholesky : public RecoverySolver
 
 	void noteUpdate(const InformationForm& info, const UpdateTerm& term) override;
 	void noteWithdrawal() override { updates_.overflow(); }
+	/// Only the trailing part of the factor from the first requested position
+	/// on: with the nearest variables ordered last (Case ii), the block of
+	/// the features in view costs O(nnz of that part), not O(nnz(L)).
+	Eigen::MatrixXd solveCovarianceBlock(const InformationForm& info, const std::vector<int>& scalars) override;
 	void refresh(const InformationForm& info, const Eigen::Vector2d& reference) override;
 	void solveState(const InformationForm& info, Eigen::VectorXd& x) override;
 	Eigen::MatrixXd solveColumns(const InformationForm& info, const std::vector<int>& scalars) override;

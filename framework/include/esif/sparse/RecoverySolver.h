@@ -44,6 +44,17 @@ class RecoverySolver
 	/// Columns `scalars` of I^-1, eq. (3.25): scalarDim() x scalars.size().
 	virtual Eigen::MatrixXd solveColumns(const InformationForm& info, const std::vector<int>& scalars) = 0;
 
+	/// The joint covariance block of `scalars` (I^-1 restricted to them).
+	/// Default: from full covariance columns; methods with a complete factor
+	/// may do less work.
+	virtual Eigen::MatrixXd solveCovarianceBlock(const InformationForm& info, const std::vector<int>& scalars)
+	{
+		const Eigen::MatrixXd columns = solveColumns(info, scalars);
+		Eigen::MatrixXd P(scalars.size(), scalars.size());
+		for (std::size_t a = 0; a < scalars.size(); ++a) P.row(a) = columns.row(scalars[a]);
+		return P;
+	}
+
 	/// The current complete factor (simplicial or supernodal CHOLMOD), or
 	/// null for methods without one.
 	virtual cholmod_factor* choleskyFactor() { return nullptr; }
