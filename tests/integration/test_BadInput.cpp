@@ -92,7 +92,7 @@ TEST(BadInput, UnknownPlugin)
 {
 	TempDir dir;
 	const auto cfg = writeConfig(dir, "[esif]\nplugin = NoSuchFilter\n");
-	expectOneErrorLine(runEsif(runArgs(cfg, kRawlog, dir.file("out"))), "unknown plugin 'NoSuchFilter' (available: EkfSlam");
+	expectOneErrorLine(runEsif(runArgs(cfg, kRawlog, dir.file("out"))), "unknown plugin 'NoSuchFilter' (available: Dslam, EkfSlam");
 }
 
 TEST(BadInput, MissingRequiredKey)

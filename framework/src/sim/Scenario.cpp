@@ -1,7 +1,11 @@
+#include <esif/config/ConfigSection.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 #include <esif/sim/Scenario.h>
 
+#include <cmath>
+#include <optional>
+#include <sstream>
 #include <string>
 
 namespace esif
@@ -16,12 +20,23 @@ void Scenario::declare(ParamBinder& b)
 	b.integer(
 		"features_per_side", features_per_side,
 		"features form an n x n grid with a half-spacing margin to the sides", Bounds::atLeast(1));
+	b.real(
+		"featureless_x_min_m", featureless_x_min_m,
+		"grid features with featureless_x_min_m <= x <= featureless_x_max_m are removed; off when both are "
+		"equal [m]",
+		Bounds::any());
+	b.real(
+		"featureless_x_max_m", featureless_x_max_m,
+		"upper end of the featureless band; must be >= featureless_x_min_m [m]", Bounds::any());
 
 	b.real("speed_mps", speed_mps, "constant true forward speed [m/s]", Bounds::positive());
 	b.real("max_turn_rate_deg_s", max_turn_rate_deg_s, "bound on the true turn rate [deg/s]", Bounds::positive());
 	b.real(
 		"waypoint_margin_m", waypoint_margin_m,
 		"waypoints are drawn uniformly inside the square shrunk by this margin [m]", Bounds::nonNegative());
+	b.text(
+		"waypoints", waypoints,
+		"scripted tour \"x1 y1; x2 y2; ...\" [m], visited in order and repeated; empty: random waypoints");
 	b.real("start_x_m", start_x_m, "start position from the bottom-left corner [m]", Bounds::any());
 	b.real("start_y_m", start_y_m, "start position from the bottom-left corner [m]", Bounds::any());
 	b.real("start_yaw_deg", start_yaw_deg, "start heading [deg]", Bounds::any());
@@ -50,11 +65,86 @@ void Scenario::validate() const
 	const std::string square = "must be inside the square [0, world_size_m = " + formatNumber(world_size_m) + "]";
 	if (start_x_m < 0 || start_x_m > world_size_m) fail("start_x_m", start_x_m, square);
 	if (start_y_m < 0 || start_y_m > world_size_m) fail("start_y_m", start_y_m, square);
-	// Waypoints need an area to be drawn from.
-	if (2 * waypoint_margin_m >= world_size_m)
+	if (featureless_x_min_m > featureless_x_max_m)
 		fail(
-			"waypoint_margin_m", waypoint_margin_m,
-			"must be less than world_size_m / 2 = " + formatNumber(world_size_m / 2));
+			"featureless_x_min_m", featureless_x_min_m,
+			"must be <= featureless_x_max_m = " + formatNumber(featureless_x_max_m) +
+				" (equal values: no featureless band)");
+
+	const std::vector<Eigen::Vector2d> script = scriptedWaypoints();
+	if (script.empty())
+	{
+		// Random waypoints need an area to be drawn from.
+		if (2 * waypoint_margin_m >= world_size_m)
+			fail(
+				"waypoint_margin_m", waypoint_margin_m,
+				"must be less than world_size_m / 2 = " + formatNumber(world_size_m / 2));
+		return;
+	}
+	const auto failWaypoints = [&](const std::string& rule) {
+		throw ConfigError("[simulation] waypoints = " + waypoints + ": " + rule);
+	};
+	const auto point = [](const Eigen::Vector2d& p) {
+		return "(" + formatNumber(p.x()) + ", " + formatNumber(p.y()) + ")";
+	};
+	if (script.size() < 2) failWaypoints("needs at least two waypoints (\"x1 y1; x2 y2; ...\")");
+	const double spacing = minWaypointSpacing();
+	const Eigen::Vector2d start(start_x_m, start_y_m);
+	for (std::size_t i = 0; i < script.size(); ++i)
+	{
+		const Eigen::Vector2d& p = script[i];
+		const std::string name = "waypoint " + std::to_string(i + 1) + " " + point(p);
+		if (p.x() < 0 || p.x() > world_size_m || p.y() < 0 || p.y() > world_size_m)
+			failWaypoints(name + " " + square);
+		// The leg into waypoint i starts at the previous waypoint (the last
+		// one for the first, when the tour repeats) and, the first time, at
+		// the start.
+		const Eigen::Vector2d& previous = script[i == 0 ? script.size() - 1 : i - 1];
+		const std::string rule = ": must be at least " + formatNumber(spacing) +
+			" m (2 speed_mps / max_turn_rate_deg_s in rad/s, plus 2 m) so the robot can reach it";
+		if ((p - previous).norm() < spacing)
+			failWaypoints(
+				name + " is " + formatNumber((p - previous).norm()) + " m from the waypoint before it " +
+				point(previous) + rule);
+		if (i == 0 && (p - start).norm() < spacing)
+			failWaypoints(name + " is " + formatNumber((p - start).norm()) + " m from the start" + rule);
+	}
+}
+
+std::vector<Eigen::Vector2d> Scenario::scriptedWaypoints() const
+{
+	std::vector<Eigen::Vector2d> out;
+	const auto blank = [](const std::string& t) { return t.find_first_not_of(" \t\r\n") == std::string::npos; };
+	if (blank(waypoints)) return out;
+	std::size_t begin = 0;
+	for (int index = 1;; ++index)
+	{
+		const std::size_t end = waypoints.find(';', begin);
+		const std::string item = waypoints.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+		std::istringstream in(item);
+		std::vector<std::string> words;
+		for (std::string w; in >> w;) words.push_back(w);
+		std::optional<double> x, y;
+		if (words.size() == 2) x = parseDouble(words[0]), y = parseDouble(words[1]);
+		if (!x || !y)
+		{
+			std::string joined;
+			for (const auto& w : words) joined += (joined.empty() ? "" : " ") + w;
+			throw ConfigError(
+				"[simulation] waypoints = " + waypoints + ": waypoint " + std::to_string(index) + " '" + joined +
+				"' must be two numbers 'x y' [m]; waypoints are separated by ';'");
+		}
+		out.emplace_back(*x, *y);
+		if (end == std::string::npos) break;
+		begin = end + 1;
+	}
+	return out;
+}
+
+double Scenario::minWaypointSpacing() const
+{
+	const double turning_radius_m = speed_mps / (max_turn_rate_deg_s * M_PI / 180.0);
+	return 2 * turning_radius_m + 2 * kWaypointReach_m;
 }
 
 }  // namespace esif

@@ -29,7 +29,7 @@ constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kCovarianceFloor = 1e-10;
 
 /// The robot switches to a new waypoint once this close to the current one [m].
-constexpr double kWaypointReach_m = 1.0;
+constexpr double kWaypointReach_m = Scenario::kWaypointReach_m;
 
 /// Time constant of the heading controller [s]: the commanded turn rate is
 /// heading error / tau, saturated at the maximum turn rate.
@@ -42,12 +42,13 @@ constexpr int kWaypointDraws = 100;
 /// change of noise levels keeps the same true trajectory for a given seed.
 constexpr std::uint32_t kNoiseSeedOffset = 0x9E3779B9u;
 
-/// Random waypoint tour: uniform waypoints inside the square minus a margin,
-/// steered to with a saturated proportional heading controller.
+/// Waypoint tour steered with a saturated proportional heading controller:
+/// the scripted waypoints in order (repeated), or, without a script, uniform
+/// random waypoints inside the square minus a margin.
 class WaypointTour
 {
    public:
-	WaypointTour(const Scenario& s, std::uint32_t seed) : s_(s), rng_(seed)
+	WaypointTour(const Scenario& s, std::uint32_t seed) : s_(s), rng_(seed), script_(s.scriptedWaypoints())
 	{
 		lo_ = s.waypoint_margin_m;
 		hi_ = s.world_size_m - s.waypoint_margin_m;
@@ -75,13 +76,22 @@ class WaypointTour
 	{
 		Eigen::Vector2d best = pose.head<2>();
 		double best_distance = -1;
-		for (int i = 0; i < kWaypointDraws; ++i)
+		if (!script_.empty())
 		{
-			const Eigen::Vector2d c(rng_.drawUniform(lo_, hi_), rng_.drawUniform(lo_, hi_));
-			const double distance = (c - pose.head<2>()).norm();
-			if (distance > best_distance) best = c, best_distance = distance;
-			if (distance >= min_distance_) break;
+			// Scenario::validate() spaces the script so each waypoint is
+			// reachable from wherever the previous one was reached.
+			best = script_[next_scripted_];
+			best_distance = (best - pose.head<2>()).norm();
+			next_scripted_ = (next_scripted_ + 1) % script_.size();
 		}
+		else
+			for (int i = 0; i < kWaypointDraws; ++i)
+			{
+				const Eigen::Vector2d c(rng_.drawUniform(lo_, hi_), rng_.drawUniform(lo_, hi_));
+				const double distance = (c - pose.head<2>()).norm();
+				if (distance > best_distance) best = c, best_distance = distance;
+				if (distance >= min_distance_) break;
+			}
 		waypoint_ = best;
 		has_waypoint_ = true;
 		// Safety net against orbiting (e.g. a waypoint area smaller than the
@@ -93,6 +103,8 @@ class WaypointTour
 
 	const Scenario& s_;
 	mrpt::random::CRandomGenerator rng_;
+	std::vector<Eigen::Vector2d> script_;  ///< scripted waypoints; empty: random ones
+	std::size_t next_scripted_ = 0;	 ///< index in script_ of the next waypoint to head for
 	double lo_ = 0, hi_ = 0, max_turn_rate_ = 0, min_distance_ = 0;
 	Eigen::Vector2d waypoint_ = Eigen::Vector2d::Zero();
 	bool has_waypoint_ = false;
@@ -137,8 +149,18 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario)
 	const int n = scenario_.features_per_side;
 	const double spacing = scenario_.featureSpacing();
 	features_.reserve(static_cast<std::size_t>(n) * n);
+	feature_ids_.reserve(static_cast<std::size_t>(n) * n);
 	for (int row = 0; row < n; ++row)
-		for (int col = 0; col < n; ++col) features_.emplace_back((col + 0.5) * spacing, (row + 0.5) * spacing);
+		for (int col = 0; col < n; ++col)
+		{
+			const Eigen::Vector2d p((col + 0.5) * spacing, (row + 0.5) * spacing);
+			// The grid index stays the ID: removed features leave gaps in the
+			// IDs, and the remaining features keep the IDs they have without
+			// the band.
+			if (scenario_.inFeaturelessBand(p.x())) continue;
+			features_.push_back(p);
+			feature_ids_.push_back(static_cast<LandmarkId>(row * n + col));
+		}
 }
 
 Pose2 Simulator::midpointIncrement(double distance_m, double angle_rad)
@@ -166,6 +188,7 @@ SimulationSummary Simulator::simulate(const std::function<void(const SimulatedSt
 	SimulationSummary summary;
 	summary.features = features_.size();
 	std::vector<bool> seen(features_.size(), false);
+	std::size_t sparse_run = 0;	 // consecutive scans so far with fewer than two measurements
 
 	Pose2 pose(s.start_x_m, s.start_y_m, wrapAngle(s.start_yaw_deg * kDegToRad));
 	for (int k = 0; k < s.steps; ++k)
@@ -216,11 +239,15 @@ SimulationSummary Simulator::simulate(const std::function<void(const SimulatedSt
 			m.range_m = std::max(0.0, range + s.std_range_m * noise.drawGaussian1D_normalized());
 			m.bearing_rad = wrapAngle(bearing + std_bearing * noise.drawGaussian1D_normalized());
 			m.cov = measurement_cov;
-			m.id = static_cast<LandmarkId>(i);
+			m.id = feature_ids_[i];
 			scan.measurements.push_back(m);
 			seen[i] = true;
 		}
 		summary.measurements += scan.measurements.size();
+		if (scan.measurements.empty()) ++summary.scans_without_measurements;
+		if (scan.measurements.size() == 1) ++summary.scans_with_one_measurement;
+		sparse_run = scan.measurements.size() < 2 ? sparse_run + 1 : 0;
+		summary.longest_run_below_two_measurements = std::max(summary.longest_run_below_two_measurements, sparse_run);
 		step.input.scan = std::move(scan);
 		step.true_pose = pose;
 		sink(step);
@@ -236,7 +263,7 @@ SimulationSummary Simulator::writeRawlog(const std::string& rawlog_path) const
 	if (!folder.empty()) ensureDirectory(folder.string());
 
 	GroundTruth truth;
-	for (std::size_t i = 0; i < features_.size(); ++i) truth.landmarks[static_cast<LandmarkId>(i)] = features_[i];
+	for (std::size_t i = 0; i < features_.size(); ++i) truth.landmarks[feature_ids_[i]] = features_[i];
 	truth.path.reserve(static_cast<std::size_t>(scenario_.steps));
 
 	SimulationSummary summary;

@@ -8,6 +8,10 @@
 /// World frame: the square [0, world_size_m] x [0, world_size_m], origin at
 /// its bottom-left corner, x to the right, y up.
 
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
 namespace esif
 {
 class ParamBinder;
@@ -24,6 +28,14 @@ struct Scenario
 	/// Features form an n x n grid, uniformly spaced rows and columns with a
 	/// half-spacing margin to the square's sides; >= 1
 	int features_per_side = 14;
+	/// A featureless band across the world, for the scans that see fewer than
+	/// two mapped features (book Sec. 3.4.1, admissible measurements): grid
+	/// features with featureless_x_min_m <= x <= featureless_x_max_m are
+	/// removed. The band is off when both are equal (default: both 0);
+	/// featureless_x_min_m > featureless_x_max_m is an error. Removed features
+	/// leave their IDs unused [m]
+	double featureless_x_min_m = 0.0;
+	double featureless_x_max_m = 0.0;  ///< see featureless_x_min_m [m]
 
 	// ---- robot motion (the true controls)
 	double speed_mps = 1.0;	 ///< constant true forward speed [m/s]; > 0
@@ -32,6 +44,13 @@ struct Scenario
 	/// [m]; >= 0. The robot may overshoot that area by up to a turning radius
 	/// (speed_mps / max turn rate) while turning towards the next waypoint.
 	double waypoint_margin_m = 5.0;
+	/// Scripted tour instead of random waypoints: "x1 y1; x2 y2; ..." in the
+	/// world frame [m], visited in order, then again from the first, for as
+	/// long as the steps last. Empty (default): the random tour. At least two
+	/// waypoints, each inside the square, each at least minWaypointSpacing()
+	/// from the one before it (the first from the start, the first from the
+	/// last) so the robot can always reach it; waypoint_margin_m is then unused.
+	std::string waypoints;
 	double start_x_m = 1.0;	 ///< start position, from the bottom-left corner [m]
 	double start_y_m = 1.0;	 ///< start position, from the bottom-left corner [m]
 	double start_yaw_deg = 45.0;  ///< start heading [deg] (45 = towards the square's centre)
@@ -54,12 +73,38 @@ struct Scenario
 	void declare(ParamBinder& b);
 
 	/// Checks the rules that involve several fields (the start inside the
-	/// square, a non-empty waypoint area); throws ConfigError naming the
+	/// square, a non-empty waypoint area, an ordered featureless band) and the
+	/// waypoint list (see `waypoints`); throws ConfigError naming the
 	/// [simulation] key at fault. Per-field rules are checked by declare().
 	void validate() const;
 
 	/// Spacing between two neighbouring features [m].
 	double featureSpacing() const { return world_size_m / features_per_side; }
+
+	/// Whether the featureless band is on (featureless_x_min_m < featureless_x_max_m).
+	bool hasFeaturelessBand() const { return featureless_x_min_m < featureless_x_max_m; }
+
+	/// Whether a feature at world abscissa `x_m` lies in the featureless band.
+	bool inFeaturelessBand(double x_m) const
+	{
+		return hasFeaturelessBand() && x_m >= featureless_x_min_m && x_m <= featureless_x_max_m;
+	}
+
+	/// The scripted waypoints parsed from `waypoints` (empty: random tour);
+	/// throws ConfigError naming the key when the text is malformed. The
+	/// rules on their positions are checked by validate().
+	std::vector<Eigen::Vector2d> scriptedWaypoints() const;
+
+	/// Least distance between consecutive scripted waypoints [m]: a turning
+	/// diameter (2 speed_mps / max turn rate), plus twice the distance at
+	/// which a waypoint counts as reached, so that the next waypoint lies
+	/// outside both minimum turning circles of the robot wherever it reaches
+	/// the previous one.
+	double minWaypointSpacing() const;
+
+	/// The robot switches to its next waypoint once this close to the
+	/// current one [m].
+	static constexpr double kWaypointReach_m = 1.0;
 };
 
 }  // namespace esif

@@ -1,14 +1,16 @@
 #pragma once
 /// \file Simulator.h
 /// The book's simulated experiments (Sec. 3.5, 4.6.1, 4.6.2): a unicycle robot
-/// with odometry and a range-bearing sensor drives a random waypoint tour in a
-/// square world of point features on a grid, and the run is written as a
-/// standard MRPT rawlog plus MRPT-style ground-truth files.
+/// with odometry and a range-bearing sensor drives a random (or scripted)
+/// waypoint tour in a square world of point features on a grid (optionally
+/// with a featureless band), and the run is written as a standard MRPT rawlog
+/// plus MRPT-style ground-truth files.
 ///
 /// Conventions of the output:
-/// - landmark ID = 0-based feature index, row-major from the bottom-left
+/// - landmark ID = 0-based grid index, row-major from the bottom-left
 ///   feature (ID = row * features_per_side + column); the ground-truth file
-///   uses the same IDs;
+///   uses the same IDs; features removed by a featureless band leave their
+///   IDs unused, so the IDs then have gaps;
 /// - step k holds the odometry increment from pose k-1 to pose k (step 0: a
 ///   zero increment) and the scan taken at pose k; ground-truth path row k is
 ///   pose k;
@@ -46,6 +48,12 @@ struct SimulationSummary
 	std::size_t features = 0;  ///< features in the world
 	std::size_t features_seen = 0;	///< features measured at least once
 	double path_length_m = 0;  ///< length of the true path [m]
+	std::size_t scans_without_measurements = 0;	 ///< scans that measure no feature
+	std::size_t scans_with_one_measurement = 0;	 ///< scans that measure exactly one feature
+	/// Longest run of consecutive scans with fewer than two measurements:
+	/// scans that cannot locate the robot relative to the map on their own
+	/// (book Sec. 3.4.1, admissible measurements).
+	std::size_t longest_run_below_two_measurements = 0;
 
 	/// Mean number of measurements per scan.
 	double meanMeasurementsPerScan() const { return steps ? double(measurements) / steps : 0.0; }
@@ -59,8 +67,13 @@ class Simulator
 
 	const Scenario& scenario() const { return scenario_; }
 
-	/// True feature positions in the world frame; index = landmark ID.
+	/// True feature positions in the world frame, in grid order; the landmark
+	/// ID of features()[i] is featureIds()[i], which is i when there is no
+	/// featureless band.
 	const std::vector<Eigen::Vector2d>& features() const { return features_; }
+
+	/// Landmark IDs (grid indices) of features(), increasing.
+	const std::vector<LandmarkId>& featureIds() const { return feature_ids_; }
 
 	/// Runs the whole scenario, handing each step to `sink` in order. The
 	/// random generators are re-seeded on every call, so two calls produce
@@ -81,6 +94,7 @@ class Simulator
    private:
 	Scenario scenario_;
 	std::vector<Eigen::Vector2d> features_;
+	std::vector<LandmarkId> feature_ids_;  ///< parallel to features_
 };
 
 }  // namespace esif
