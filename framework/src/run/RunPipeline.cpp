@@ -2,6 +2,7 @@
 #include <esif/core/Errors.h>
 #include <esif/eval/Evaluator.h>
 #include <esif/io/AtomicFile.h>
+#include <esif/io/FigureWriter.h>
 #include <esif/io/GroundTruth.h>
 #include <esif/io/MapWriter.h>
 #include <esif/io/RawlogReader.h>
@@ -168,6 +169,9 @@ Stats runPipeline(const RunRequest& request, PluginLoader& loader)
 	map_options.image_size_px = host.image_size_px;
 	writeMapOutputs(result.record, request.out_dir, map_options);
 	const auto dir = std::filesystem::path(request.out_dir);
+	writeStepTimesImage(result.step_us, result.landmark_counts, (dir / "step_times.png").string(), host.image_size_px);
+	if (const auto pattern = plugin->informationPattern())
+		writeInformationPatternImage(*pattern, (dir / "info_matrix.png").string(), host.image_size_px);
 	writeTextAtomically((dir / "params.ini").string(), effectiveParamsIni(host, *plugin));
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	Stats stats = collectStats(host, request, log, result, *plugin, accuracy, total_wall_s);

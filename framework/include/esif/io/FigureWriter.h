@@ -1,0 +1,59 @@
+#pragma once
+/// \file FigureWriter.h
+/// Figures of a run's cost drawn by the host, whatever the plugin:
+/// info_matrix.png (the book's Fig. 3.12-3.13: where the information matrix
+/// and its Cholesky factor are non-zero) and step_times.png (Fig. 3.20:
+/// processing time of each step against the number of landmarks mapped).
+/// Each is written atomically.
+
+#include <esif/core/InformationPattern.h>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace esif
+{
+/// Where writeInformationPatternImage() draws one n x n matrix: the square
+/// of side_px pixels with its top-left corner at (x0, y0). Entry (i, j)
+/// covers columns x0 + floor(j * side_px / n) to x0 + floor((j + 1) *
+/// side_px / n) - 1 (at least one) and likewise rows from i. When n <=
+/// the room available, side_px is a multiple of n, so every entry is an
+/// equal block; when n is larger, several entries share a pixel, which is
+/// black if any of them is non-zero.
+struct MatrixPanel
+{
+	int x0 = 0;
+	int y0 = 0;
+	int side_px = 0;
+};
+
+/// The panels of writeInformationPatternImage(p, path, size_px): the
+/// information matrix, then the factor unless it is empty (0 x 0).
+/// Throws ConfigError when size_px is outside [200, 16384].
+std::vector<MatrixPanel> informationPatternPanels(const InformationPattern& p, int size_px);
+
+/// Writes a PNG, size_px high and size_px wide per panel, with the non-zeros
+/// (entries != 0; NaN counts) of `p.information` and, beside it, of
+/// `p.factor` in black on white, each panel titled with its name, size and
+/// non-zero count, e.g. "information matrix 1176x1176, nz = 44692" and
+/// "Cholesky factor (distance reordering), nz = 128043". A matrix that is not
+/// square is drawn in the square of its larger dimension.
+/// Throws ConfigError for size_px outside [200, 16384] before writing, and
+/// InputError naming `path` when it cannot be written (nothing is left behind).
+void writeInformationPatternImage(const InformationPattern& p, const std::string& path, int size_px);
+
+/// Writes a PNG, width_px wide and 3/4 of that high, with one dot per step
+/// at (landmark_counts[k], step_us[k] in ms) on linear axes from 0 with round
+/// ticks, and the median time of the steps in each of about 50 bins of the
+/// landmark axis as a line, so that growth with map size shows. The time
+/// axis ends at the 99.9th percentile (nearest rank) of the times; the title
+/// says how many steps above it are clipped (not drawn). Non-finite times
+/// are left out. Throws std::invalid_argument when the two vectors differ in
+/// length, ConfigError for width_px outside [200, 16384] (both before
+/// writing), and InputError naming `path` when it cannot be written.
+void writeStepTimesImage(
+	const std::vector<double>& step_us, const std::vector<std::size_t>& landmark_counts, const std::string& path,
+	int width_px);
+
+}  // namespace esif

@@ -1,0 +1,337 @@
+/// \file FigureWriter.cpp
+/// info_matrix.png (book Fig. 3.12-3.13) and step_times.png (Fig. 3.20).
+
+#include <esif/io/FigureWriter.h>
+
+#include "FigureCanvas.h"
+#include "MapPalette.h"
+
+#include <mrpt/img/CImage.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace esif
+{
+namespace
+{
+using namespace figure_canvas;
+using Sparse = Eigen::SparseMatrix<double>;
+
+// --- info_matrix.png ---------------------------------------------------------
+
+constexpr int kPanelMargin = 16;  ///< white room around each panel's matrix [px]
+
+/// Height of the title band above the matrices, the same for every panel.
+int titleBandPx() { return kFontLarge.h + 2 * kPanelMargin; }
+
+long long squareSize(const Sparse& m) { return std::max<long long>(m.rows(), m.cols()); }
+
+/// Entries != 0 (a NaN counts: it is a non-zero gone wrong).
+std::size_t nonZeroCount(const Sparse& m)
+{
+	std::size_t nz = 0;
+	for (Eigen::Index k = 0; k < m.outerSize(); ++k)
+		for (Sparse::InnerIterator it(m, k); it; ++it) nz += it.value() != 0.0;
+	return nz;
+}
+
+/// The panel at position `index` (0 = left) for an n x n matrix.
+MatrixPanel placePanel(int index, long long n, int size_px)
+{
+	const int room = std::min(size_px - 2 * kPanelMargin, size_px - titleBandPx() - kPanelMargin);
+	MatrixPanel p;
+	p.side_px = (n > 0 && n <= room) ? static_cast<int>(room / n * n) : room;
+	p.x0 = index * size_px + (size_px - p.side_px) / 2;
+	p.y0 = titleBandPx() + (room - p.side_px) / 2;
+	return p;
+}
+
+/// Black pixels where `m` is non-zero, following MatrixPanel's mapping.
+void drawPattern(mrpt::img::CImage& img, const MatrixPanel& panel, const Sparse& m)
+{
+	const long long n = squareSize(m), side = panel.side_px;
+	if (n == 0) return;
+	const auto first = [&](long long i) { return i * side / n; };
+	const auto last = [&](long long i) { return std::max(first(i), first(i + 1) - 1); };
+	for (Eigen::Index k = 0; k < m.outerSize(); ++k)
+		for (Sparse::InnerIterator it(m, k); it; ++it)
+		{
+			if (it.value() == 0.0) continue;
+			for (long long y = first(it.row()); y <= last(it.row()); ++y)
+				for (long long x = first(it.col()); x <= last(it.col()); ++x)
+					putPixel(img, panel.x0 + static_cast<int>(x), panel.y0 + static_cast<int>(y), kInk);
+		}
+}
+
+/// One panel: title centred over a grey frame around the pattern.
+void drawMatrixPanel(
+	mrpt::img::CImage& img, const MatrixPanel& panel, const Sparse& m, const std::string& title, int size_px)
+{
+	const int s = panel.side_px;
+	// The frame one pixel outside the pattern, set pixel by pixel: MRPT's
+	// rectangle() strokes inside its corners and would cover the first row.
+	for (int t = -1; t <= s; ++t)
+	{
+		putPixel(img, panel.x0 + t, panel.y0 - 1, kFrameColor);
+		putPixel(img, panel.x0 + t, panel.y0 + s, kFrameColor);
+		putPixel(img, panel.x0 - 1, panel.y0 + t, kFrameColor);
+		putPixel(img, panel.x0 + s, panel.y0 + t, kFrameColor);
+	}
+	drawPattern(img, panel, m);
+	const Font f = fittingFont(title, size_px - 2 * kPanelMargin, {kFontLarge, kFontMedium, kFontSmall, kFontTiny});
+	centredText(img, panel.x0 + s / 2, (titleBandPx() - f.h) / 2, title, f, kTextColor);
+}
+
+std::string informationTitle(const Sparse& m)
+{
+	return "information matrix " + std::to_string(m.rows()) + "x" + std::to_string(m.cols()) +
+		   ", nz = " + std::to_string(nonZeroCount(m));
+}
+
+std::string factorTitle(const InformationPattern& p)
+{
+	const std::string order = p.factor_order.empty() ? "" : " (" + p.factor_order + ")";
+	return "Cholesky factor" + order + ", nz = " + std::to_string(nonZeroCount(p.factor));
+}
+
+// --- step_times.png ----------------------------------------------------------
+
+constexpr double kClipPercentile = 0.999;
+constexpr double kTargetBins = 50;
+
+struct StepPoint
+{
+	double landmarks;
+	double ms;
+};
+
+/// Linear map from data [0, x_top] x [0, y_top] onto the plot rectangle.
+struct Axes
+{
+	int x0 = 0, y0 = 0, x1 = 0, y1 = 0;	 ///< plot rectangle [px], y0 at the top
+	double x_top = 1, y_top = 1;
+	int px(double x) const { return x0 + static_cast<int>(std::lround((x1 - x0) * x / x_top)); }
+	int py(double y) const { return y1 - static_cast<int>(std::lround((y1 - y0) * std::min(y, y_top) / y_top)); }
+};
+
+/// Fonts for a figure width: tuned at 1000 px.
+struct Fonts
+{
+	Font title, body, label;
+	explicit Fonts(int w)
+		: title(w >= 600 ? kFontLarge : kFontMedium),
+		  body(w >= 600 ? kFontMedium : kFontSmall),
+		  label(w >= 600 ? kFontSmall : kFontTiny)
+	{
+	}
+};
+
+std::vector<StepPoint> finitePoints(const std::vector<double>& step_us, const std::vector<std::size_t>& counts)
+{
+	std::vector<StepPoint> pts;
+	pts.reserve(step_us.size());
+	for (std::size_t k = 0; k < step_us.size(); ++k)
+		if (std::isfinite(step_us[k])) pts.push_back({static_cast<double>(counts[k]), step_us[k] / 1000.0});
+	return pts;
+}
+
+/// Nearest-rank percentile (as stats.json's step_us_p99); 0 for no data.
+double percentile(std::vector<double> v, double p)
+{
+	if (v.empty()) return 0;
+	std::sort(v.begin(), v.end());
+	const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(v.size())));
+	return v[std::min(v.size() - 1, rank == 0 ? 0 : rank - 1)];
+}
+
+double median(std::vector<double> v)
+{
+	const std::size_t mid = v.size() / 2;
+	std::nth_element(v.begin(), v.begin() + mid, v.end());
+	if (v.size() % 2) return v[mid];
+	return 0.5 * (v[mid] + *std::max_element(v.begin(), v.begin() + mid));
+}
+
+/// Whole landmark counts per bin: about kTargetBins bins over [0, x_max].
+long long binWidth(double x_max) { return std::max(1LL, static_cast<long long>(std::ceil((x_max + 1) / kTargetBins))); }
+
+/// (bin centre, median time) of every non-empty bin, left to right. Clipped
+/// steps count too: a median is robust to them.
+std::vector<StepPoint> binMedians(const std::vector<StepPoint>& pts, long long width)
+{
+	std::map<long long, std::vector<double>> bins;
+	for (const StepPoint& p : pts) bins[static_cast<long long>(p.landmarks) / width].push_back(p.ms);
+	std::vector<StepPoint> medians;
+	for (const auto& [bin, ms] : bins) medians.push_back({bin * width + 0.5 * (width - 1), median(ms)});
+	return medians;
+}
+
+/// Draws step_times.png's content; one method per layer.
+class StepTimesPainter
+{
+   public:
+	StepTimesPainter(const std::vector<StepPoint>& pts, int width_px)
+		: pts_(pts), w_(width_px), h_(width_px * 3 / 4), fonts_(w_), img_(blankImage(w_, h_))
+	{
+		std::vector<double> ms;
+		for (const StepPoint& p : pts_) ms.push_back(p.ms);
+		clip_ms_ = percentile(ms, kClipPercentile);
+		clipped_ = static_cast<std::size_t>(std::count_if(ms.begin(), ms.end(), [&](double v) { return v > clip_ms_; }));
+		double x_max = 0;
+		for (const StepPoint& p : pts_) x_max = std::max(x_max, p.landmarks);
+		bin_width_ = binWidth(x_max);
+		layoutAxes(x_max);
+	}
+
+	mrpt::img::CImage paint()
+	{
+		drawGridAndTicks();
+		drawPoints();
+		drawMedians();
+		drawAxes();
+		drawTitles();
+		return img_;
+	}
+
+   private:
+	void layoutAxes(double x_max)
+	{
+		const double x_step = map_geometry::niceStep(std::max(1.0, x_max), 8);
+		axes_.x_top = std::max(1.0, std::ceil(std::max(1.0, x_max) / x_step) * x_step);
+		axes_.y_top = clip_ms_ > 0 ? 1.05 * clip_ms_ : 1.0;
+		x_ticks_ = niceTicks(axes_.x_top, 8);
+		y_ticks_ = niceTicks(axes_.y_top, 6);
+		int label_w = 0;
+		for (double t : y_ticks_) label_w = std::max(label_w, textWidth(tickLabel(t), fonts_.label));
+		const int pad = 8;
+		axes_.x0 = pad + label_w + 8;
+		axes_.x1 = w_ - 3 * pad;
+		axes_.y0 = fonts_.title.h + fonts_.body.h + fonts_.label.h + 5 * pad;
+		axes_.y1 = h_ - (fonts_.label.h + fonts_.body.h + 4 * pad);
+	}
+
+	void drawGridAndTicks()
+	{
+		const Font& f = fonts_.label;
+		for (double t : x_ticks_)
+		{
+			const int x = axes_.px(t);
+			img_.line(x, axes_.y0, x, axes_.y1, kGridColor, 1);
+			img_.line(x, axes_.y1, x, axes_.y1 + 5, kInk, 1);
+			centredText(img_, x, axes_.y1 + 8, tickLabel(t), f, kTextColor);
+		}
+		for (double t : y_ticks_)
+		{
+			const int y = axes_.py(t);
+			img_.line(axes_.x0, y, axes_.x1, y, kGridColor, 1);
+			img_.line(axes_.x0 - 5, y, axes_.x0, y, kInk, 1);
+			const std::string s = tickLabel(t);
+			text(img_, axes_.x0 - 8 - textWidth(s, f), y - f.h / 2, s, f, kTextColor);
+		}
+	}
+
+	void drawPoints()
+	{
+		const int d = w_ >= 1200 ? 1 : 0;  // half size of a dot beyond its centre pixel
+		for (const StepPoint& p : pts_)
+		{
+			if (p.ms > clip_ms_) continue;
+			const int x = axes_.px(p.landmarks), y = axes_.py(p.ms);
+			img_.filledRectangle(x - d, y - d, x + d + 1, y + d + 1, map_palette::kPathColor);
+		}
+	}
+
+	void drawMedians()
+	{
+		const std::vector<StepPoint> medians = binMedians(pts_, bin_width_);
+		const unsigned thick = w_ >= 600 ? 2 : 1;
+		for (std::size_t i = 0; i < medians.size(); ++i)
+		{
+			const int x = axes_.px(medians[i].landmarks), y = axes_.py(medians[i].ms);
+			img_.filledRectangle(x - 2, y - 2, x + 2, y + 2, map_palette::kLandmarkColor);
+			if (i > 0)
+				img_.line(
+					axes_.px(medians[i - 1].landmarks), axes_.py(medians[i - 1].ms), x, y, map_palette::kLandmarkColor,
+					thick);
+		}
+	}
+
+	void drawAxes()
+	{
+		img_.line(axes_.x0, axes_.y0, axes_.x0, axes_.y1, kInk, 1);
+		img_.line(axes_.x0, axes_.y1, axes_.x1, axes_.y1, kInk, 1);
+	}
+
+	void drawTitles()
+	{
+		const int pad = 8;
+		const std::string title = "processing time per step vs landmarks mapped";
+		centredText(img_, w_ / 2, pad, title, fittingFont(title, w_ - 2 * pad, {fonts_.title, kFontSmall, kFontTiny}),
+					kTextColor);
+		const std::string sub = subtitle();
+		centredText(img_, w_ / 2, 2 * pad + fonts_.title.h, sub,
+					fittingFont(sub, w_ - 2 * pad, {fonts_.body, kFontSmall, kFontTiny}), kMutedTextColor);
+		text(img_, pad, axes_.y0 - fonts_.label.h - pad, "time per step [ms]", fonts_.label, kTextColor);
+		centredText(img_, (axes_.x0 + axes_.x1) / 2, h_ - fonts_.body.h - pad, "landmarks mapped", fonts_.body,
+					kTextColor);
+	}
+
+	std::string subtitle() const
+	{
+		char clip[160];
+		std::snprintf(clip, sizeof(clip), "%zu above the 99.9th percentile (%.3g ms) clipped", clipped_, clip_ms_);
+		const std::string bins = bin_width_ == 1 ? "per landmark count"
+												 : "per bin of " + std::to_string(bin_width_) + " landmark counts";
+		return std::to_string(pts_.size()) + " steps, " + clip + "; red: median " + bins;
+	}
+
+	const std::vector<StepPoint>& pts_;
+	const int w_, h_;
+	const Fonts fonts_;
+	mrpt::img::CImage img_;
+	double clip_ms_ = 0;
+	std::size_t clipped_ = 0;
+	long long bin_width_ = 1;
+	Axes axes_;
+	std::vector<double> x_ticks_, y_ticks_;
+};
+
+}  // namespace
+
+std::vector<MatrixPanel> informationPatternPanels(const InformationPattern& p, int size_px)
+{
+	validateSize("image_size_px", size_px);
+	std::vector<MatrixPanel> panels{placePanel(0, squareSize(p.information), size_px)};
+	if (p.factor.size() > 0) panels.push_back(placePanel(1, squareSize(p.factor), size_px));
+	return panels;
+}
+
+void writeInformationPatternImage(const InformationPattern& p, const std::string& path, int size_px)
+{
+	const std::vector<MatrixPanel> panels = informationPatternPanels(p, size_px);
+	mrpt::img::CImage img = blankImage(static_cast<int>(panels.size()) * size_px, size_px);
+	drawMatrixPanel(img, panels[0], p.information, informationTitle(p.information), size_px);
+	if (panels.size() > 1) drawMatrixPanel(img, panels[1], p.factor, factorTitle(p), size_px);
+	savePngAtomically(img, path);
+}
+
+void writeStepTimesImage(
+	const std::vector<double>& step_us, const std::vector<std::size_t>& landmark_counts, const std::string& path,
+	int width_px)
+{
+	if (step_us.size() != landmark_counts.size())
+		throw std::invalid_argument(
+			path + ": " + std::to_string(step_us.size()) + " step times but " +
+			std::to_string(landmark_counts.size()) + " landmark counts");
+	validateSize("image_size_px", width_px);
+	const std::vector<StepPoint> pts = finitePoints(step_us, landmark_counts);
+	savePngAtomically(StepTimesPainter(pts, width_px).paint(), path);
+}
+
+}  // namespace esif
