@@ -1,14 +1,18 @@
 #include "CommandLine.h"
 #include "Commands.h"
 
+#include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
 #include <esif/eval/ComparisonTable.h>
+#include <esif/eval/RunDifference.h>
 #include <esif/io/AtomicFile.h>
+#include <esif/io/RunOutputReader.h>
 #include <esif/io/StatsJson.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <sys/wait.h>
@@ -54,6 +58,40 @@ std::vector<std::string> runFolders(const std::vector<std::string>& configs, con
 	return dirs;
 }
 
+/// The label a config's run will carry: its [esif] label, else the config
+/// file name (as the run pipeline sets it). Known before running, so that a
+/// wrong --reference fails at once.
+std::string configLabel(const ConfigFile& config)
+{
+	const std::string label = config.section("esif").getString("label", "");
+	return label.empty() ? fs::path(config.origin()).stem().string() : label;
+}
+
+/// Index of the run `reference` names: by label, else by run folder name.
+std::size_t referenceIndex(
+	const std::string& reference, const std::vector<std::string>& configs, const std::vector<std::string>& labels,
+	const std::vector<std::string>& dirs)
+{
+	std::vector<std::size_t> hits;
+	for (std::size_t i = 0; i < labels.size(); ++i)
+		if (labels[i] == reference) hits.push_back(i);
+	if (hits.empty())
+		for (std::size_t i = 0; i < dirs.size(); ++i)
+			if (fs::path(dirs[i]).filename().string() == reference) hits.push_back(i);
+	if (hits.size() == 1) return hits.front();
+	std::string list;
+	if (hits.empty())
+	{
+		for (const auto& l : labels) list += (list.empty() ? "" : ", ") + l;
+		throw ConfigError(
+			"esif compare: --reference '" + reference + "': not the label of a compared run (labels: " + list + ")");
+	}
+	for (const auto i : hits) list += (list.empty() ? "" : ", ") + configs[i];
+	throw ConfigError(
+		"esif compare: --reference '" + reference + "': several runs have this label (" + list +
+		"); give each config its own [esif] label");
+}
+
 Stats readStats(const std::string& path)
 {
 	std::ifstream in(path);
@@ -75,14 +113,40 @@ int compareCommand(int argc, char** argv)
 	TCLAP::ValueArg<std::string> out("o", "out", "output folder (one subfolder per config)", true, "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> plugin_dir("", "plugin-dir", "extra folder to search for plugins", false, "", "DIR",
 											cmd);
+	TCLAP::ValueArg<std::string> reference(
+		"", "reference",
+		"label of the run the others are compared with (for data without ground truth): adds each run's "
+		"difference from it, in the shared initial-pose frame without alignment, as ref_traj_rms_m, "
+		"ref_traj_max_m, ref_heading_rms_deg (poses of the same step), ref_landmark_rms_m, ref_landmark_max_m "
+		"and ref_landmarks_matched (landmarks of the same ID, so runs must use the rawlog's landmark IDs; the "
+		"reference's row shows zeros and its own landmark count)",
+		false, "", "LABEL", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 
 	const auto config_list = splitCommas(configs.getValue());
 	if (config_list.empty()) throw ConfigError("esif compare: --configs: no config file given");
 	for (const auto& c : config_list)
 		if (!fs::is_regular_file(c)) throw ConfigError(c + ": config file not found");
-	ensureDirectory(out.getValue());
 	const auto dirs = runFolders(config_list, out.getValue());
+	std::optional<std::size_t> ref;
+	if (reference.isSet())
+	{
+		std::vector<ConfigFile> parsed;
+		std::vector<std::string> labels;
+		for (const auto& c : config_list)
+		{
+			parsed.push_back(ConfigFile::load(c));
+			labels.push_back(configLabel(parsed.back()));
+		}
+		ref = referenceIndex(reference.getValue(), config_list, labels, dirs);
+		// Landmarks are paired by ID: a filter that associates on its own numbers them itself.
+		for (const auto& config : parsed)
+			if (config.section("esif").getBool("hide_landmark_ids", false))
+				std::cerr << "esif: warning: " << config.origin()
+						  << ": hide_landmark_ids = true: its landmarks carry its own IDs, so ref_landmark_* pair "
+							 "landmarks of unrelated IDs\n";
+	}
+	ensureDirectory(out.getValue());
 
 	std::vector<Stats> runs;
 	for (std::size_t i = 0; i < config_list.size(); ++i)
@@ -97,10 +161,23 @@ int compareCommand(int argc, char** argv)
 		runs.push_back(readStats((fs::path(dirs[i]) / "stats.json").string()));
 	}
 
-	const std::string text = comparisonText(runs);
+	std::string note;
+	if (ref)
+	{
+		const RunOutputs reference_outputs = readRunOutputs(dirs[*ref]);
+		for (std::size_t i = 0; i < runs.size(); ++i)
+			setDifferenceStats(
+				runs[i], i == *ref ? referenceItself(reference_outputs)
+								   : runDifference(readRunOutputs(dirs[i]), reference_outputs));
+		note = "ref_*: difference from run '" + reference.getValue() +
+			   "' in the initial-pose frame, no alignment (trajectory by step, landmarks by ID)\n";
+	}
+
+	const std::string text = comparisonText(runs) + note;
 	writeTextAtomically((fs::path(out.getValue()) / "comparison.csv").string(), comparisonCsv(runs));
 	writeTextAtomically((fs::path(out.getValue()) / "comparison.md").string(),
-						"# esif compare on " + rawlog.getValue() + "\n\n" + comparisonMarkdown(runs));
+						"# esif compare on " + rawlog.getValue() + "\n\n" + comparisonMarkdown(runs) +
+							(note.empty() ? "" : "\n" + note));
 	std::cout << text;
 	return 0;
 }

@@ -1,4 +1,5 @@
 #include <esif/eval/ComparisonTable.h>
+#include <esif/eval/RunDifference.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -34,6 +35,16 @@ std::string cell(const Stats& s, const std::string& key)
 
 std::string label(const Stats& s) { return s.get("label") ? statText(*s.get("label")) : "?"; }
 
+/// comparisonKeys(), then the difference-from-reference keys when a run has them.
+std::vector<std::string> tableKeys(const std::vector<Stats>& runs)
+{
+	std::vector<std::string> keys = comparisonKeys();
+	for (const auto& k : runDifferenceKeys())
+		if (std::any_of(runs.begin(), runs.end(), [&](const Stats& s) { return s.get(k).has_value(); }))
+			keys.push_back(k);
+	return keys;
+}
+
 std::string csvEscape(const std::string& t)
 {
 	if (t.find_first_of(",\"\n") == std::string::npos) return t;
@@ -45,13 +56,14 @@ std::string csvEscape(const std::string& t)
 
 std::string comparisonText(const std::vector<Stats>& runs)
 {
+	const auto keys = tableKeys(runs);
 	std::size_t key_w = 0;
-	for (const auto& k : comparisonKeys()) key_w = std::max(key_w, k.size());
+	for (const auto& k : keys) key_w = std::max(key_w, k.size());
 	std::vector<std::size_t> col_w;
 	for (const auto& r : runs)
 	{
 		std::size_t w = label(r).size();
-		for (const auto& k : comparisonKeys()) w = std::max(w, cell(r, k).size());
+		for (const auto& k : keys) w = std::max(w, cell(r, k).size());
 		col_w.push_back(w);
 	}
 	std::ostringstream out;
@@ -65,7 +77,7 @@ std::string comparisonText(const std::vector<Stats>& runs)
 		out << "\n";
 	};
 	row("run", [](const Stats& s) { return label(s); });
-	for (const auto& k : comparisonKeys()) row(k, [&](const Stats& s) { return cell(s, k); });
+	for (const auto& k : keys) row(k, [&](const Stats& s) { return cell(s, k); });
 	return out.str();
 }
 
@@ -77,7 +89,7 @@ std::string comparisonMarkdown(const std::vector<Stats>& runs)
 	out << "\n|---|";
 	for (std::size_t i = 0; i < runs.size(); ++i) out << "---:|";
 	out << "\n";
-	for (const auto& k : comparisonKeys())
+	for (const auto& k : tableKeys(runs))
 	{
 		out << "| " << k << " |";
 		for (const auto& r : runs) out << " " << cell(r, k) << " |";

@@ -11,7 +11,9 @@
 
 namespace esif
 {
-/// The keys shown in the terminal and Markdown tables, in order.
+/// The keys shown in the terminal and Markdown tables, in order; the tables
+/// add runDifferenceKeys() (ref_*, RunDifference.h) after them when a run
+/// has those keys (`esif compare --reference`).
 const std::vector<std::string>& comparisonKeys();
 
 std::string comparisonText(const std::vector<Stats>& runs);

@@ -1,0 +1,267 @@
+// Reading trajectory.tum / landmarks.txt back, and one run's difference from
+// a reference run, on hand-made files whose differences are known.
+
+#include <EsifTestSupport.h>
+
+#include <esif/core/Errors.h>
+#include <esif/eval/ComparisonTable.h>
+#include <esif/eval/RunDifference.h>
+#include <esif/io/MapWriter.h>
+#include <esif/io/RunOutputReader.h>
+
+#include <gtest/gtest.h>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace
+{
+using namespace esif;
+
+constexpr double kDeg = M_PI / 180.0;
+
+/// One TUM row of a planar pose (x, y, yaw [deg]) at time t.
+std::string tumRow(double t, double x, double y, double yaw_deg)
+{
+	std::ostringstream s;
+	s << std::setprecision(17) << t << " " << x << " " << y << " 0 0 0 " << std::sin(0.5 * yaw_deg * kDeg) << " "
+	  << std::cos(0.5 * yaw_deg * kDeg) << "\n";
+	return s.str();
+}
+
+std::string write(const test::TempDir& dir, const std::string& name, const std::string& text)
+{
+	const auto path = dir.file(name);
+	std::ofstream(path) << text;
+	return path;
+}
+
+/// The InputError message of `f`, or "" when it does not throw one.
+template <class F>
+std::string inputErrorOf(F f)
+{
+	try
+	{
+		f();
+	}
+	catch (const InputError& e)
+	{
+		return e.what();
+	}
+	return "";
+}
+
+TEST(RunOutputReader, ReadsWhatTheWritersWrite)
+{
+	test::TempDir dir;
+	std::vector<TrajectoryPoint> traj(3);
+	traj[0].time_s = 0.0;
+	traj[1].time_s = 0.1;
+	traj[1].pose.mean = {1.5, -2.0, 3.0};
+	traj[2].time_s = 0.2;
+	traj[2].pose.mean = {2.0, -2.5, -3.1};
+	writeTrajectoryTum(traj, dir.file("trajectory.tum"));
+	Estimate est;
+	est.landmarks.resize(2);
+	est.landmarks[0].id = 7;
+	est.landmarks[0].mean << 1.25, -3.5;
+	est.landmarks[0].cov << 0.04, 0.01, 0.01, 0.09;
+	est.landmarks[1].id = 3;
+	est.landmarks[1].mean << std::nan(""), 0;  // a diverged landmark is written as nan
+	writeLandmarksTxt(est, dir.file("landmarks.txt"));
+
+	const RunOutputs back = readRunOutputs(dir.path());
+	ASSERT_EQ(back.trajectory.size(), 3u);
+	EXPECT_EQ(back.trajectory[1].time_s, 0.1);
+	EXPECT_NEAR(back.trajectory[1].pose.x, 1.5, 1e-15);
+	EXPECT_NEAR(back.trajectory[1].pose.phi, 3.0, 1e-12);
+	EXPECT_NEAR(back.trajectory[2].pose.phi, -3.1, 1e-12);
+	ASSERT_EQ(back.landmarks.size(), 2u);
+	EXPECT_EQ(back.landmarks[0].id, 7);
+	EXPECT_EQ(back.landmarks[0].mean, Eigen::Vector2d(1.25, -3.5));
+	EXPECT_EQ(back.landmarks[0].cov(0, 1), 0.01);
+	EXPECT_EQ(back.landmarks[0].cov(1, 1), 0.09);
+	EXPECT_EQ(back.landmarks[1].id, 3);
+	EXPECT_TRUE(std::isnan(back.landmarks[1].mean.x()));
+}
+
+TEST(RunDifference, LandmarksMatchedByIdWithKnownRmsAndMax)
+{
+	RunOutputs ref, run;
+	ref.landmarks = {{1, {0, 0}, {}}, {2, {10, 10}, {}}, {3, {5, 5}, {}}};
+	// ID 1 off by (3, 4): 5 m; ID 2 off by 1 m; ID 3 missing; ID 9 is not in the reference.
+	run.landmarks = {{9, {100, 100}, {}}, {2, {10, 11}, {}}, {1, {3, 4}, {}}};
+	const RunDifference d = runDifference(run, ref);
+	EXPECT_EQ(d.landmarks_in_reference, 3u);
+	EXPECT_EQ(d.landmarks_matched, 2u);
+	ASSERT_TRUE(d.landmark_max_m && d.landmark_rms_m);
+	EXPECT_DOUBLE_EQ(*d.landmark_max_m, 5.0);
+	EXPECT_DOUBLE_EQ(*d.landmark_rms_m, std::sqrt((25.0 + 1.0) / 2.0));
+	// No trajectories: nothing to compare.
+	EXPECT_EQ(d.steps_compared, 0u);
+	EXPECT_FALSE(d.trajectory_rms_m);
+	EXPECT_FALSE(d.trajectory_max_m);
+	EXPECT_FALSE(d.heading_rms_deg);
+}
+
+TEST(RunDifference, NonFiniteAndUnmatchedLandmarksAreNotCounted)
+{
+	RunOutputs ref, run;
+	ref.landmarks = {{1, {0, 0}, {}}, {2, {std::nan(""), 0}, {}}, {3, {1, 1}, {}}};
+	run.landmarks = {{1, {0, 2}, {}}, {2, {0, 0}, {}}, {3, {INFINITY, 1}, {}}, {4, {0, 0}, {}}};
+	const RunDifference d = runDifference(run, ref);
+	EXPECT_EQ(d.landmarks_matched, 1u);
+	EXPECT_EQ(d.landmarks_in_reference, 3u);
+	EXPECT_DOUBLE_EQ(*d.landmark_rms_m, 2.0);
+	EXPECT_DOUBLE_EQ(*d.landmark_max_m, 2.0);
+
+	RunOutputs none;
+	none.landmarks = {{5, {0, 0}, {}}};
+	const RunDifference e = runDifference(none, ref);
+	EXPECT_EQ(e.landmarks_matched, 0u);
+	EXPECT_FALSE(e.landmark_rms_m);
+	EXPECT_FALSE(e.landmark_max_m);
+}
+
+TEST(RunDifference, TrajectoryByStepWithHeadingWrappedAt180)
+{
+	test::TempDir dir;
+	const auto ref_path = write(
+		dir, "ref.tum",
+		"# esif trajectory (TUM): timestamp x y z qx qy qz qw\n" + tumRow(0, 0, 0, 0) + tumRow(1, 1, 0, 179) +
+			tumRow(2, 2, 0, 90));
+	// Step 0: same pose. Step 1: (3, 4) off, heading -179 vs 179 = 2 deg across
+	// the wrap. Step 2: 1 m off, heading 100 vs 90 deg. Step 3: not in the reference.
+	const auto run_path = write(
+		dir, "run.tum",
+		tumRow(0, 0, 0, 0) + "\n" + tumRow(1, 4, 4, -179) + tumRow(2, 2, 1, 100) + tumRow(3, 50, 50, 0));
+	RunOutputs ref, run;
+	ref.trajectory = readTrajectoryTum(ref_path);
+	run.trajectory = readTrajectoryTum(run_path);
+	ASSERT_EQ(run.trajectory.size(), 4u);
+	EXPECT_NEAR(run.trajectory[1].pose.phi, -179 * kDeg, 1e-12);
+
+	const RunDifference d = runDifference(run, ref);
+	EXPECT_EQ(d.steps_compared, 3u);
+	EXPECT_NEAR(*d.trajectory_max_m, 5.0, 1e-12);
+	EXPECT_NEAR(*d.trajectory_rms_m, std::sqrt((0.0 + 25.0 + 1.0) / 3.0), 1e-12);
+	EXPECT_NEAR(*d.heading_rms_deg, std::sqrt((0.0 + 4.0 + 100.0) / 3.0), 1e-9);
+	// Symmetric in the two runs.
+	const RunDifference r = runDifference(ref, run);
+	EXPECT_NEAR(*r.heading_rms_deg, *d.heading_rms_deg, 1e-12);
+	EXPECT_NEAR(*r.trajectory_rms_m, *d.trajectory_rms_m, 1e-12);
+}
+
+TEST(RunDifference, StepsArePairedByTimeNotLine)
+{
+	RunOutputs ref, run;
+	ref.trajectory = {{0.0, {0, 0, 0}}, {0.5, {1, 0, 0}}, {1.0, {2, 0, 0}}};
+	run.trajectory = {{0.5, {1, 2, 0}}, {1.0, {2, 0, 0}}};
+	const RunDifference d = runDifference(run, ref);
+	EXPECT_EQ(d.steps_compared, 2u);
+	EXPECT_DOUBLE_EQ(*d.trajectory_max_m, 2.0);
+	EXPECT_DOUBLE_EQ(*d.trajectory_rms_m, std::sqrt(2.0));
+	EXPECT_DOUBLE_EQ(*d.heading_rms_deg, 0.0);
+}
+
+TEST(RunDifference, ReferenceItselfIsZeroWithItsOwnCount)
+{
+	RunOutputs ref;
+	ref.trajectory = {{0.0, {0, 0, 0}}, {1.0, {1, 2, 3}}};
+	ref.landmarks = {{1, {1, 1}, {}}, {2, {std::nan(""), 0}, {}}};
+	const RunDifference d = referenceItself(ref);
+	EXPECT_EQ(*d.trajectory_rms_m, 0.0);
+	EXPECT_EQ(*d.trajectory_max_m, 0.0);
+	EXPECT_EQ(*d.heading_rms_deg, 0.0);
+	EXPECT_EQ(*d.landmark_rms_m, 0.0);
+	EXPECT_EQ(*d.landmark_max_m, 0.0);
+	EXPECT_EQ(d.landmarks_matched, 2u);
+	EXPECT_EQ(d.landmarks_in_reference, 2u);
+}
+
+TEST(RunDifference, ColumnsAppearInTablesOnlyWhenSet)
+{
+	Stats a, b;
+	a.set("label", StatValue(std::string("ekf")));
+	b.set("label", StatValue(std::string("other")));
+	for (const auto& k : runDifferenceKeys())
+	{
+		EXPECT_EQ(comparisonText({a, b}).find(k), std::string::npos) << k;
+		EXPECT_EQ(comparisonMarkdown({a, b}).find(k), std::string::npos) << k;
+		EXPECT_EQ(comparisonCsv({a, b}).find(k), std::string::npos) << k;
+	}
+	RunOutputs ref, run;
+	ref.landmarks = {{1, {0, 0}, {}}, {2, {1, 1}, {}}};
+	run.landmarks = {{1, {3, 4}, {}}};
+	setDifferenceStats(a, referenceItself(ref));
+	setDifferenceStats(b, runDifference(run, ref));
+	const auto csv = comparisonCsv({a, b});
+	EXPECT_NE(csv.find("label,ref_traj_rms_m,ref_traj_max_m,ref_heading_rms_deg,ref_landmark_rms_m,"
+					   "ref_landmark_max_m,ref_landmarks_matched\n"),
+			  std::string::npos)
+		<< csv;
+	EXPECT_NE(csv.find("ekf,,,,0,0,2\n"), std::string::npos) << csv;
+	EXPECT_NE(csv.find("other,,,,5,5,1\n"), std::string::npos) << csv;
+	const auto text = comparisonText({a, b});
+	for (const auto& k : runDifferenceKeys()) EXPECT_NE(text.find(k), std::string::npos) << k;
+	EXPECT_NE(comparisonMarkdown({a, b}).find("| ref_landmarks_matched | 2 | 1 |"), std::string::npos);
+}
+
+TEST(RunOutputReader, MalformedLinesNameFileAndLine)
+{
+	test::TempDir dir;
+	const std::string ok = tumRow(0, 0, 0, 0);
+	struct Case
+	{
+		std::string text, expected;
+	};
+	for (const Case& c : std::vector<Case>{
+			 {"# header\n" + ok + "0.1 1 2 0 0 0 zero 1\n", "t.tum:3: 'zero' is not a number"},
+			 {ok + "0.1 1 2 0 0 0 1\n", "t.tum:2: expected 8 numbers 'timestamp x y z qx qy qz qw', found 7"},
+			 {ok + "0.1 1 2 0 0 0 0.5 1 7\n", "t.tum:2: expected 8 numbers"},
+			 {ok + ok, "t.tum:2: timestamp 0 is not after the previous one (0)"},
+			 {"nan 0 0 0 0 0 0 1\n", "t.tum:1: timestamp nan is not finite"},
+			 {"0 0 0 0 0 0 0 0\n", "t.tum:1: quaternion"},
+			 {ok + "1 2 3 0 0 0 0 1x\n", "t.tum:2: '1x' is not a number"},
+		 })
+	{
+		const auto path = write(dir, "t.tum", c.text);
+		const auto msg = inputErrorOf([&] { readTrajectoryTum(path); });
+		EXPECT_NE(msg.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in '" << msg << "'";
+		EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+		EXPECT_EQ(msg.rfind(path, 0), 0u) << msg;
+	}
+	for (const Case& c : std::vector<Case>{
+			 {"# id x y cxx cxy cyy\n1 0 0 0 0 0\n1 2 3 0 0 0\n",
+			  "l.txt:3: duplicate landmark ID 1 (first on line 2)"},
+			 {"1 0 0 0 0\n", "l.txt:1: expected 'id x y cxx cxy cyy' (an integer ID and 5 numbers), found 5 values"},
+			 {"\n1.5 0 0 0 0 0\n", "l.txt:2: landmark ID '1.5' is not an integer"},
+			 {"1 0 y 0 0 0\n", "l.txt:1: 'y' is not a number"},
+		 })
+	{
+		const auto path = write(dir, "l.txt", c.text);
+		const auto msg = inputErrorOf([&] { readLandmarksTxt(path); });
+		EXPECT_NE(msg.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in '" << msg << "'";
+		EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+	}
+}
+
+TEST(RunOutputReader, MissingFilesAreNamed)
+{
+	test::TempDir dir;
+	EXPECT_EQ(inputErrorOf([&] { readTrajectoryTum(dir.file("none.tum")); }),
+			  dir.file("none.tum") + ": trajectory not found");
+	EXPECT_EQ(inputErrorOf([&] { readLandmarksTxt(dir.path()); }), dir.path() + ": not a regular file");
+	write(dir, "trajectory.tum", tumRow(0, 0, 0, 0));
+	EXPECT_EQ(inputErrorOf([&] { readRunOutputs(dir.path()); }), dir.file("landmarks.txt") + ": landmark map not found");
+}
+
+TEST(RunOutputReader, EmptyFilesHoldNothing)
+{
+	test::TempDir dir;
+	EXPECT_TRUE(readTrajectoryTum(write(dir, "t.tum", "# only a header\n")).empty());
+	EXPECT_TRUE(readLandmarksTxt(write(dir, "l.txt", "")).empty());
+}
+
+}  // namespace

@@ -1,0 +1,164 @@
+// `esif compare --reference LABEL` as a user runs it: EKF and D-SLAM on a
+// small simulated rawlog, each run's difference from the reference in
+// comparison.csv / .md and the printed table, and a one-line error for a
+// label that is not one of the runs.
+
+#include <EsifTestSupport.h>
+
+#include <esif/eval/RunDifference.h>
+
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+namespace
+{
+using esif::test::runEsif;
+using esif::test::sourcePath;
+using esif::test::TempDir;
+
+/// comparison.csv as label -> (column -> text).
+std::map<std::string, std::map<std::string, std::string>> readCsv(const std::string& path)
+{
+	std::ifstream in(path);
+	const auto split = [](const std::string& line) {
+		std::vector<std::string> cells;
+		std::stringstream ss(line);
+		std::string c;
+		while (std::getline(ss, c, ',')) cells.push_back(c);
+		if (!line.empty() && line.back() == ',') cells.emplace_back();
+		return cells;
+	};
+	std::string line;
+	std::getline(in, line);
+	const auto header = split(line);
+	std::map<std::string, std::map<std::string, std::string>> rows;
+	while (std::getline(in, line))
+	{
+		const auto cells = split(line);
+		EXPECT_EQ(cells.size(), header.size()) << line;
+		std::map<std::string, std::string> row;
+		for (std::size_t k = 0; k < header.size() && k < cells.size(); ++k) row[header[k]] = cells[k];
+		rows[row["label"]] = row;
+	}
+	return rows;
+}
+
+double number(const std::map<std::string, std::string>& row, const std::string& key)
+{
+	const auto it = row.find(key);
+	if (it == row.end() || it->second.empty()) return std::nan("");
+	return std::stod(it->second);
+}
+
+/// One small rawlog (configs/sim/small.ini, 200 steps), the EKF and D-SLAM
+/// (different filters, so different estimates), shared by the tests.
+class CompareReference : public ::testing::Test
+{
+   protected:
+	static void SetUpTestSuite()
+	{
+		dir_ = std::make_unique<TempDir>();
+		const auto r = runEsif(
+			"simulate --config '" + sourcePath("configs/sim/small.ini") + "' --out '" + dir_->file("small.rawlog") +
+			"'");
+		ASSERT_EQ(r.exit_code, 0) << r.out;
+		std::ofstream(dir_->file("dslam.ini")) << "[esif]\nplugin = Dslam\nlabel = dslam\n[dslam]\nassociation = known_ids\n";
+	}
+	static void TearDownTestSuite() { dir_.reset(); }
+
+	static std::string compareArgs(const std::string& out, const std::string& extra)
+	{
+		return "compare --configs '" + sourcePath("configs/ekf.ini") + "," + dir_->file("dslam.ini") +
+			   "' --rawlog '" + dir_->file("small.rawlog") + "' --out '" + dir_->file(out) + "' " + extra;
+	}
+
+	static std::unique_ptr<TempDir> dir_;
+};
+std::unique_ptr<TempDir> CompareReference::dir_;
+
+TEST_F(CompareReference, AddsDifferenceColumns)
+{
+	const auto r = runEsif(compareArgs("cmp", "--reference ekf"));
+	ASSERT_EQ(r.exit_code, 0) << r.out;
+	for (const auto& k : esif::runDifferenceKeys()) EXPECT_NE(r.out.find(k), std::string::npos) << k << "\n" << r.out;
+
+	const auto rows = readCsv(dir_->file("cmp/comparison.csv"));
+	ASSERT_EQ(rows.size(), 2u);
+	ASSERT_TRUE(rows.count("ekf") && rows.count("dslam"));
+	const auto& ref = rows.at("ekf");
+	const auto& other = rows.at("dslam");
+	for (const char* k :
+		 {"ref_traj_rms_m", "ref_traj_max_m", "ref_heading_rms_deg", "ref_landmark_rms_m", "ref_landmark_max_m"})
+	{
+		EXPECT_EQ(number(ref, k), 0.0) << k;
+		EXPECT_TRUE(std::isfinite(number(other, k))) << k;
+		EXPECT_GT(number(other, k), 0.0) << k;  // another noise model gives another estimate
+	}
+	EXPECT_LE(number(other, "ref_traj_rms_m"), number(other, "ref_traj_max_m"));
+	EXPECT_LE(number(other, "ref_landmark_rms_m"), number(other, "ref_landmark_max_m"));
+	EXPECT_LT(number(other, "ref_traj_max_m"), 2.0);  // same data, same IDs: close, not diverged
+	// The reference's row shows its own landmark count; both runs map the same landmarks (known IDs).
+	EXPECT_EQ(number(ref, "ref_landmarks_matched"), number(ref, "landmarks"));
+	EXPECT_GT(number(ref, "landmarks"), 0.0);
+	EXPECT_EQ(number(other, "ref_landmarks_matched"), number(ref, "landmarks"));
+
+	std::ifstream md(dir_->file("cmp/comparison.md"));
+	std::stringstream text;
+	text << md.rdbuf();
+	for (const auto& k : esif::runDifferenceKeys())
+		EXPECT_NE(text.str().find("| " + k + " |"), std::string::npos) << k;
+	EXPECT_NE(text.str().find("difference from run 'ekf'"), std::string::npos) << text.str();
+}
+
+TEST_F(CompareReference, WithoutReferenceNoColumns)
+{
+	const auto r = runEsif(compareArgs("plain", ""));
+	ASSERT_EQ(r.exit_code, 0) << r.out;
+	EXPECT_EQ(r.out.find("ref_"), std::string::npos) << r.out;
+	std::ifstream csv(dir_->file("plain/comparison.csv"));
+	std::string header;
+	std::getline(csv, header);
+	EXPECT_EQ(header.find("ref_"), std::string::npos) << header;
+}
+
+TEST_F(CompareReference, UnknownLabelIsOneLineErrorBeforeAnyRun)
+{
+	const auto r = runEsif(compareArgs("bad", "--reference nope"));
+	EXPECT_EQ(r.exit_code, 1) << r.out;
+	EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+	EXPECT_NE(r.out.find("esif: error: esif compare: --reference 'nope': not the label of a compared run "
+						 "(labels: ekf, dslam)"),
+			  std::string::npos)
+		<< r.out;
+	EXPECT_FALSE(std::filesystem::exists(dir_->file("bad")));
+}
+
+TEST_F(CompareReference, RunFolderNameAlsoNamesTheReference)
+{
+	// configs/ekf.ini under another label: its run folder is "renamed", its label "other_name".
+	std::ifstream ekf(sourcePath("configs/ekf.ini"));
+	std::stringstream text;
+	text << ekf.rdbuf();
+	std::string ini = text.str();
+	const auto at = ini.find("label  = ekf\n");
+	ASSERT_NE(at, std::string::npos) << ini;
+	ini.replace(at, std::string("label  = ekf\n").size(), "label = other_name\n");
+	std::ofstream(dir_->file("renamed.ini")) << ini;
+	const auto r = runEsif(
+		"compare --configs '" + sourcePath("configs/ekf.ini") + "," + dir_->file("renamed.ini") + "' --rawlog '" +
+		dir_->file("small.rawlog") + "' --out '" + dir_->file("byfolder") + "' --reference renamed");
+	ASSERT_EQ(r.exit_code, 0) << r.out;
+	const auto rows = readCsv(dir_->file("byfolder/comparison.csv"));
+	ASSERT_TRUE(rows.count("other_name")) << r.out;
+	EXPECT_EQ(number(rows.at("other_name"), "ref_traj_max_m"), 0.0);
+	// Same filter, same data: the same estimate.
+	EXPECT_NEAR(number(rows.at("ekf"), "ref_traj_max_m"), 0.0, 1e-9);
+}
+
+}  // namespace
