@@ -1,6 +1,7 @@
 #include "ReferencePair.h"
 
 #include <cmath>
+#include <limits>
 
 namespace esif::dslam
 {
@@ -26,7 +27,7 @@ std::optional<std::pair<int, int>> chooseReferencePair(const std::vector<Referen
 {
 	const int n = static_cast<int>(candidates.size());
 	std::optional<std::pair<int, int>> best;
-	double best_score = -1;
+	double best_score = -std::numeric_limits<double>::infinity();
 	for (int a = 0; a < n; ++a)
 		for (int b = a + 1; b < n; ++b)
 		{
