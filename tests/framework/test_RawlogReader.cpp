@@ -114,6 +114,23 @@ TEST(RawlogReader, HiddenIdsAreKeptForScoring)
 	EXPECT_EQ(log.true_ids[1][0], 7);
 }
 
+TEST(RawlogReader, EachNoiseOverrideReplacesOnlyItsOwnVariance)
+{
+	test::TempDir dir;
+	writeActionsSfLog(dir.file("a.rawlog"), 2);
+	RawlogReadOptions range_only;
+	range_only.sensor_std_range_m = 0.5;
+	const auto r = readRawlog(dir.file("a.rawlog"), range_only).steps[0].scan->measurements[0].cov;
+	EXPECT_NEAR(r(0, 0), 0.25, 1e-12);
+	EXPECT_NEAR(r(1, 1), 1e-4, 1e-10);  // the rawlog's 0.01 rad
+	RawlogReadOptions bearing_only;
+	bearing_only.sensor_std_bearing_rad = 0.02;
+	const auto b = readRawlog(dir.file("a.rawlog"), bearing_only).steps[0].scan->measurements[0].cov;
+	EXPECT_NEAR(b(0, 0), 0.01, 1e-8);  // the rawlog's 0.1 m
+	EXPECT_NEAR(b(1, 1), 4e-4, 1e-12);
+	EXPECT_EQ(b(0, 1), 0.0);
+}
+
 TEST(RawlogReader, ObservationsOnlyWithAbsoluteOdometry)
 {
 	test::TempDir dir;

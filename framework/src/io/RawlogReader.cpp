@@ -102,13 +102,16 @@ class StepBuilder
 		const std::string& what) const
 	{
 		Eigen::Matrix2d cov;
-		if (options_.sensor_std_range_m > 0 && options_.sensor_std_bearing_rad > 0)
-			cov = Eigen::Vector2d(std::pow(options_.sensor_std_range_m, 2), std::pow(options_.sensor_std_bearing_rad, 2))
-					  .asDiagonal();
-		else if (obs.validCovariances)
+		if (obs.validCovariances)
 			cov = m.covariance.asEigen().topLeftCorner<2, 2>();
 		else
 			cov = Eigen::Vector2d(std::pow(obs.sensor_std_range, 2), std::pow(obs.sensor_std_yaw, 2)).asDiagonal();
+		// Each override replaces its own variance; a range-bearing correlation
+		// in the rawlog no longer holds once one side's noise is replaced.
+		const bool range_set = options_.sensor_std_range_m > 0, bearing_set = options_.sensor_std_bearing_rad > 0;
+		if (range_set || bearing_set) cov(0, 1) = cov(1, 0) = 0;
+		if (range_set) cov(0, 0) = std::pow(options_.sensor_std_range_m, 2);
+		if (bearing_set) cov(1, 1) = std::pow(options_.sensor_std_bearing_rad, 2);
 		if (!cov.allFinite() || Eigen::LLT<Eigen::Matrix2d>(cov).info() != Eigen::Success || cov(0, 0) <= 0 ||
 			cov(1, 1) <= 0)
 			throw InputError(
