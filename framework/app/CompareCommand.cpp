@@ -67,7 +67,8 @@ std::string configLabel(const ConfigFile& config)
 	return label.empty() ? fs::path(config.origin()).stem().string() : label;
 }
 
-/// Index of the run `reference` names: by label, else by run folder name.
+/// Index of the run `reference` names: by label, else (or among runs of
+/// one label) by run folder name.
 std::size_t referenceIndex(
 	const std::string& reference, const std::vector<std::string>& configs, const std::vector<std::string>& labels,
 	const std::vector<std::string>& dirs)
@@ -78,6 +79,9 @@ std::size_t referenceIndex(
 	if (hits.empty())
 		for (std::size_t i = 0; i < dirs.size(); ++i)
 			if (fs::path(dirs[i]).filename().string() == reference) hits.push_back(i);
+	if (hits.size() > 1)  // one label, several configs: their run folders still differ
+		for (const auto i : hits)
+			if (fs::path(dirs[i]).filename().string() == reference) return i;
 	if (hits.size() == 1) return hits.front();
 	std::string list;
 	if (hits.empty())
@@ -86,10 +90,15 @@ std::size_t referenceIndex(
 		throw ConfigError(
 			"esif compare: --reference '" + reference + "': not the label of a compared run (labels: " + list + ")");
 	}
-	for (const auto i : hits) list += (list.empty() ? "" : ", ") + configs[i];
+	std::string folders;
+	for (const auto i : hits)
+	{
+		list += (list.empty() ? "" : ", ") + configs[i];
+		folders += (folders.empty() ? "" : ", ") + fs::path(dirs[i]).filename().string();
+	}
 	throw ConfigError(
 		"esif compare: --reference '" + reference + "': several runs have this label (" + list +
-		"); give each config its own [esif] label");
+		"); name one of their run folders (" + folders + ") or give each config its own [esif] label");
 }
 
 Stats readStats(const std::string& path)
@@ -118,8 +127,8 @@ int compareCommand(int argc, char** argv)
 		"label of the run the others are compared with (for data without ground truth): adds each run's "
 		"difference from it, in the shared initial-pose frame without alignment, as ref_traj_rms_m, "
 		"ref_traj_max_m, ref_heading_rms_deg (poses of the same step), ref_landmark_rms_m, ref_landmark_max_m "
-		"and ref_landmarks_matched (landmarks of the same ID, so runs must use the rawlog's landmark IDs; the "
-		"reference's row shows zeros and its own landmark count)",
+		"and ref_landmarks_matched (landmarks with the same ID: the runs must use the rawlog's landmark IDs). "
+		"The reference's row shows zeros and its own landmark count",
 		false, "", "LABEL", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 

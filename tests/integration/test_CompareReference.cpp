@@ -137,6 +137,18 @@ TEST_F(CompareReference, UnknownLabelIsOneLineErrorBeforeAnyRun)
 			  std::string::npos)
 		<< r.out;
 	EXPECT_FALSE(std::filesystem::exists(dir_->file("bad")));
+
+	// Two configs of one label: ambiguous unless a run folder is named.
+	for (const char* name : {"s1.ini", "s2.ini"})
+		std::ofstream(dir_->file(name)) << "[esif]\nplugin = EkfSlam\nlabel = same\n";
+	const auto twice = runEsif(
+		"compare --configs '" + dir_->file("s1.ini") + "," + dir_->file("s2.ini") + "' --rawlog '" +
+		dir_->file("small.rawlog") + "' --out '" + dir_->file("bad") + "' --reference same");
+	EXPECT_EQ(twice.exit_code, 1) << twice.out;
+	EXPECT_EQ(std::count(twice.out.begin(), twice.out.end(), '\n'), 1) << twice.out;
+	EXPECT_NE(twice.out.find("several runs have this label"), std::string::npos) << twice.out;
+	EXPECT_NE(twice.out.find("run folders (s1, s2)"), std::string::npos) << twice.out;
+	EXPECT_FALSE(std::filesystem::exists(dir_->file("bad")));
 }
 
 TEST_F(CompareReference, RunFolderNameAlsoNamesTheReference)
