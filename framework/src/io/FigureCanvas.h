@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <initializer_list>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,28 @@ inline Font fittingFont(const std::string& s, int width_px, std::initializer_lis
 	for (const Font& f : fonts)
 		if (textWidth(s, f) <= width_px) return f;
 	return *(fonts.end() - 1);
+}
+
+/// `s` broken at spaces into lines at most `width_px` wide in `font` (a
+/// word longer than that gets a line of its own).
+inline std::vector<std::string> wrapText(const std::string& s, const Font& font, int width_px)
+{
+	std::vector<std::string> lines;
+	std::string line, word;
+	std::istringstream words(s);
+	while (words >> word)
+	{
+		const std::string longer = line.empty() ? word : line + " " + word;
+		if (!line.empty() && textWidth(longer, font) > width_px)
+		{
+			lines.push_back(line);
+			line = word;
+		}
+		else
+			line = longer;
+	}
+	if (!line.empty()) lines.push_back(line);
+	return lines;
 }
 
 /// Text with its top-left corner at (x, y).

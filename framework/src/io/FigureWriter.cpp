@@ -48,7 +48,7 @@ MatrixPanel placePanel(int index, long long n, int size_px)
 	MatrixPanel p;
 	p.side_px = (n > 0 && n <= room) ? static_cast<int>(room / n * n) : room;
 	p.x0 = index * size_px + (size_px - p.side_px) / 2;
-	p.y0 = titleBandPx() + (room - p.side_px) / 2;
+	p.y0 = titleBandPx();  // right under the title; spare room goes below
 	return p;
 }
 
@@ -94,10 +94,14 @@ std::string informationTitle(const Sparse& m)
 		   ", nz = " + std::to_string(nonZeroCount(m));
 }
 
+/// "Cholesky factor (distance reordering), nz = N"; when factor_order names
+/// the factor itself ("incomplete Cholesky preconditioner, distance
+/// reordering"), it leads the title instead of "Cholesky factor".
 std::string factorTitle(const InformationPattern& p)
 {
-	const std::string order = p.factor_order.empty() ? "" : " (" + p.factor_order + ")";
-	return "Cholesky factor" + order + ", nz = " + std::to_string(nonZeroCount(p.factor));
+	const std::string nz = ", nz = " + std::to_string(nonZeroCount(p.factor));
+	if (p.factor_order.find("Cholesky") != std::string::npos) return p.factor_order + nz;
+	return "Cholesky factor" + (p.factor_order.empty() ? "" : " (" + p.factor_order + ")") + nz;
 }
 
 // --- step_times.png ----------------------------------------------------------
@@ -186,6 +190,7 @@ class StepTimesPainter
 		double x_max = 0;
 		for (const StepPoint& p : pts_) x_max = std::max(x_max, p.landmarks);
 		bin_width_ = binWidth(x_max);
+		composeSubtitle();
 		layoutAxes(x_max);
 	}
 
@@ -212,7 +217,7 @@ class StepTimesPainter
 		const int pad = 8;
 		axes_.x0 = pad + label_w + 8;
 		axes_.x1 = w_ - 3 * pad;
-		axes_.y0 = fonts_.title.h + fonts_.body.h + fonts_.label.h + 5 * pad;
+		axes_.y0 = fonts_.title.h + static_cast<int>(subtitle_.size()) * (sub_font_.h + pad / 2) + fonts_.label.h + 4 * pad;
 		axes_.y1 = h_ - (fonts_.label.h + fonts_.body.h + 4 * pad);
 	}
 
@@ -254,7 +259,8 @@ class StepTimesPainter
 		for (std::size_t i = 0; i < medians.size(); ++i)
 		{
 			const int x = axes_.px(medians[i].landmarks), y = axes_.py(medians[i].ms);
-			img_.filledRectangle(x - 2, y - 2, x + 2, y + 2, map_palette::kLandmarkColor);
+			const int m = thick;  // marker half size
+			img_.filledRectangle(x - m, y - m, x + m, y + m, map_palette::kLandmarkColor);
 			if (i > 0)
 				img_.line(
 					axes_.px(medians[i - 1].landmarks), axes_.py(medians[i - 1].ms), x, y, map_palette::kLandmarkColor,
@@ -274,21 +280,28 @@ class StepTimesPainter
 		const std::string title = "processing time per step vs landmarks mapped";
 		centredText(img_, w_ / 2, pad, title, fittingFont(title, w_ - 2 * pad, {fonts_.title, kFontSmall, kFontTiny}),
 					kTextColor);
-		const std::string sub = subtitle();
-		centredText(img_, w_ / 2, 2 * pad + fonts_.title.h, sub,
-					fittingFont(sub, w_ - 2 * pad, {fonts_.body, kFontSmall, kFontTiny}), kMutedTextColor);
+		for (std::size_t i = 0; i < subtitle_.size(); ++i)
+			centredText(img_, w_ / 2, 2 * pad + fonts_.title.h + static_cast<int>(i) * (sub_font_.h + pad / 2),
+						subtitle_[i], sub_font_, kMutedTextColor);
 		text(img_, pad, axes_.y0 - fonts_.label.h - pad, "time per step [ms]", fonts_.label, kTextColor);
 		centredText(img_, (axes_.x0 + axes_.x1) / 2, h_ - fonts_.body.h - pad, "landmarks mapped", fonts_.body,
 					kTextColor);
 	}
 
-	std::string subtitle() const
+	/// What is clipped and what the red line is, in the body font on one
+	/// line when it fits, else wrapped in a smaller font.
+	void composeSubtitle()
 	{
 		char clip[160];
-		std::snprintf(clip, sizeof(clip), "%zu above the 99.9th percentile (%.3g ms) clipped", clipped_, clip_ms_);
-		const std::string bins = bin_width_ == 1 ? "per landmark count"
-												 : "per bin of " + std::to_string(bin_width_) + " landmark counts";
-		return std::to_string(pts_.size()) + " steps, " + clip + "; red: median " + bins;
+		std::snprintf(
+			clip, sizeof(clip), "%zu steps, %zu above the 99.9th percentile (%.3g ms) clipped", pts_.size(), clipped_,
+			clip_ms_);
+		const std::string median =
+			bin_width_ == 1 ? "per landmark count" : "per bin of " + std::to_string(bin_width_) + " landmark counts";
+		const std::string sub = std::string(clip) + "; red: median " + median;
+		const int room = w_ - 16;
+		sub_font_ = textWidth(sub, fonts_.body) <= room ? fonts_.body : (w_ >= 400 ? kFontSmall : kFontTiny);
+		subtitle_ = wrapText(sub, sub_font_, room);
 	}
 
 	const std::vector<StepPoint>& pts_;
@@ -300,6 +313,8 @@ class StepTimesPainter
 	long long bin_width_ = 1;
 	Axes axes_;
 	std::vector<double> x_ticks_, y_ticks_;
+	std::vector<std::string> subtitle_;
+	Font sub_font_ = kFontTiny;
 };
 
 }  // namespace

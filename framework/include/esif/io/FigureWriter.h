@@ -37,7 +37,9 @@ std::vector<MatrixPanel> informationPatternPanels(const InformationPattern& p, i
 /// (entries != 0; NaN counts) of `p.information` and, beside it, of
 /// `p.factor` in black on white, each panel titled with its name, size and
 /// non-zero count, e.g. "information matrix 1176x1176, nz = 44692" and
-/// "Cholesky factor (distance reordering), nz = 128043". A matrix that is not
+/// "Cholesky factor (distance reordering), nz = 128043" (when factor_order
+/// itself names the factor, e.g. "incomplete Cholesky preconditioner,
+/// distance reordering", it is the factor's title). A matrix that is not
 /// square is drawn in the square of its larger dimension.
 /// Throws ConfigError for size_px outside [200, 16384] before writing, and
 /// InputError naming `path` when it cannot be written (nothing is left behind).
