@@ -60,10 +60,31 @@ struct StepReport
 struct CostFigures
 {
 	std::size_t state_dim = 0;	///< dimension of the estimated state vector
+	/// Robot poses in the state vector (book Table 5.1 "number of poses"):
+	/// 1 for EKF SLAM, 0 for D-SLAM's map, every pose for full SLAM.
+	std::size_t poses_in_state = 0;
 	/// Non-zeros of the information matrix; empty for covariance-form filters.
 	std::optional<std::size_t> info_nnz;
 	/// Further plugin-specific counters (name, value), e.g. reorderings.
 	std::vector<std::pair<std::string, double>> counters;
 };
+
+/// Which estimator of the book a plugin implements. The host and `esif
+/// compare` use it to place a run in the book's tables (Table 5.1 columns)
+/// and to find the optimization baseline every filter is measured against;
+/// they never look at plugin names.
+enum class Formulation
+{
+	Other,	///< none of the book's estimators
+	EkfSlam,  ///< classical EKF SLAM (Sec. 1.2.1)
+	FullSlamOptimum,  ///< MAP estimate over all poses and landmarks (Sec. 1.2.2.2): the baseline
+	Dslam,	///< D-SLAM (Ch. 3)
+	DslamLocalMapJoining,  ///< D-SLAM local map joining filter (Ch. 4)
+	Slsjf  ///< sparse local submap joining filter (Ch. 5)
+};
+
+/// Stable name of a formulation for stats.json ("ekf_slam", "full_slam",
+/// "dslam", "dslam_local_map_joining", "slsjf", "other").
+const char* formulationName(Formulation f);
 
 }  // namespace esif

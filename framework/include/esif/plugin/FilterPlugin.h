@@ -58,6 +58,21 @@ class FilterPlugin : public mrpt::rtti::CObject
 	/// Current cost figures: state dimension, information non-zeros, counters.
 	virtual CostFigures costFigures() const = 0;
 
+	/// Which of the book's estimators this plugin is (stats.json "formulation").
+	virtual Formulation formulation() const { return Formulation::Other; }
+
+	/// True when the plugin cannot associate measurements itself and needs
+	/// every measurement it should use to carry a landmark ID (from the
+	/// rawlog, or from another run's decisions via [esif] associations_from).
+	/// The host refuses to start such a plugin on input without any ID.
+	virtual bool needsLandmarkIds() const { return false; }
+
+	/// For smoothers: the pose after every step, re-estimated with all data,
+	/// available after finish() (index k = step k). The host then reports
+	/// this trajectory instead of the online robotPose() of each step.
+	/// Filters keep the default (none).
+	virtual std::optional<std::vector<PoseEstimate>> smoothedTrajectory() const { return std::nullopt; }
+
 	/// Sparsity of the information matrix and its factor, for information-form
 	/// back-ends; the host draws it as info_matrix.png. Called once, after
 	/// finish(). Covariance-form back-ends keep the default (none).
