@@ -254,6 +254,7 @@ CostFigures Dslam::costFigures() const
 	const SparseCounters sc = map_->core().counters();
 	c.state_dim = static_cast<std::size_t>(map_->core().stateDim());
 	c.info_nnz = sc.information_nnz;
+	c.poses_in_state = 0;  // the map state holds features only (Sec. 3.1.3)
 	c.counters = sc.list();
 	const auto add = [&](const char* name, double v) { c.counters.emplace_back(name, v); };
 	add("admissible_scans", static_cast<double>(tally_.admissible));

@@ -40,6 +40,7 @@ class Dslam : public FilterPlugin
 	PoseEstimate robotPose() const override;
 	Estimate estimate() const override;
 	CostFigures costFigures() const override;
+	Formulation formulation() const override { return Formulation::Dslam; }
 	std::optional<InformationPattern> informationPattern() const override;
 
    private:

@@ -174,6 +174,7 @@ CostFigures EkfSlam::costFigures() const
 {
 	CostFigures c;
 	c.state_dim = core_.stateDim();
+	c.poses_in_state = 1;  // the current robot pose
 	c.counters.emplace_back("jcbb_nodes", static_cast<double>(jcbb_nodes_));
 	return c;
 }

@@ -25,6 +25,7 @@ class EkfSlam : public FilterPlugin
 	PoseEstimate robotPose() const override;
 	Estimate estimate() const override;
 	CostFigures costFigures() const override;
+	Formulation formulation() const override { return Formulation::EkfSlam; }
 
    private:
 	/// Decides, for each measurement, match / new / rejected (the report) and
