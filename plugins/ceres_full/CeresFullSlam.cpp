@@ -1,0 +1,243 @@
+#include "CeresFullSlam.h"
+
+#include "MarginalCovariances.h"
+
+#include <esif/core/Errors.h>
+#include <esif/models/RangeBearingModel.h>
+
+#include <Eigen/SparseCore>
+#include <chrono>
+#include <thread>
+
+IMPLEMENTS_MRPT_OBJECT(CeresFullSlam, FilterPlugin, esif)
+
+namespace esif
+{
+using namespace ceres_full;
+
+namespace
+{
+double secondsSince(std::chrono::steady_clock::time_point t0)
+{
+	return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// A zero increment with zero covariance says the robot did not move (e.g.
+/// the first step of an imported log): the step keeps the current pose
+/// rather than adding a pose tied by a constraint that cannot be whitened.
+bool isStandStill(const OdometryIncrement& odometry)
+{
+	return odometry.cov.isZero(0) && odometry.delta.x == 0 && odometry.delta.y == 0 && odometry.delta.phi == 0;
+}
+}  // namespace
+
+void CeresFullSlam::configure(const ConfigSection& section)
+{
+	loadParams(params_, section);
+	graph_ = std::make_unique<FullSlamGraph>(makeLoss());
+	if (!params_.initial_run.empty())
+		guess_ = InitialGuess::load(params_.initial_run, section.describeKey("initial_run", params_.initial_run));
+}
+
+std::unique_ptr<ceres::LossFunction> CeresFullSlam::makeLoss() const
+{
+	// Ceres losses act on the squared whitened norm s; both keep rho(s) ~ s
+	// below scale^2, so inliers are weighted as in eq. 1.21.
+	switch (params_.robust_loss)
+	{
+		case RobustLoss::Huber: return std::make_unique<ceres::HuberLoss>(params_.robust_loss_scale);
+		case RobustLoss::Cauchy: return std::make_unique<ceres::CauchyLoss>(params_.robust_loss_scale);
+		case RobustLoss::None: break;
+	}
+	return nullptr;
+}
+
+StepReport CeresFullSlam::processStep(const StepInput& step)
+{
+	if (step.odometry && !isStandStill(*step.odometry))
+	{
+		// The starting value of the new pose: dead reckoning from the current
+		// estimate (eq. 1.3), or the pose another run estimated for this step.
+		const Pose2 initial = guess_ ? guess_->poseAfterStep(step.index)
+									 : compose(graph_->pose(current_pose_), toPose2(step.odometry->delta));
+		current_pose_ = graph_->addPose(current_pose_, *step.odometry, initial, "odometry");
+	}
+	step_pose_.push_back(current_pose_);
+
+	StepReport report;
+	if (step.scan)
+	{
+		const Pose2 sensor = toPose2(step.scan->sensor_on_robot);
+		const auto& ms = step.scan->measurements;
+		for (std::size_t i = 0; i < ms.size(); ++i)
+			report.associations.push_back(
+				observe(ms[i], sensor, "measurement " + std::to_string(i)));
+	}
+	if (params_.resolve_every_steps > 0 &&
+		step_pose_.size() % static_cast<std::size_t>(params_.resolve_every_steps) == 0)
+		solve();
+	return report;
+}
+
+Association CeresFullSlam::observe(const RangeBearing& m, const Pose2& sensor, const std::string& where)
+{
+	// Without an ID the measurement cannot be placed in eq. 1.18: the run
+	// that provided the associations rejected it.
+	if (!m.id) return {Association::Kind::Rejected, -1};
+	const LandmarkId id = *m.id;
+	Association a{Association::Kind::Matched, id};
+	if (!graph_->hasLandmark(id))
+	{
+		// First sighting: the inverse observation model from the current
+		// pose estimate, unless another run mapped this landmark.
+		const auto from_guess = guess_ ? guess_->landmark(id) : std::nullopt;
+		graph_->addLandmark(
+			id, from_guess ? *from_guess
+						   : landmarkFromRangeBearing(graph_->pose(current_pose_), sensor, m.range_m, m.bearing_rad)
+								 .position);
+		a.kind = Association::Kind::New;
+	}
+	graph_->addObservation(current_pose_, id, m, sensor, where);
+	return a;
+}
+
+int CeresFullSlam::threads() const
+{
+	if (params_.threads > 0) return params_.threads;
+	return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+void CeresFullSlam::solve()
+{
+	if (graph_->residualDim() == 0) return;
+	ceres::Solver::Options options;
+	options.minimizer_type = ceres::TRUST_REGION;
+	options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+	options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+	options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+	options.max_num_iterations = params_.max_iterations;
+	options.function_tolerance = params_.function_tolerance;
+	options.gradient_tolerance = params_.gradient_tolerance;
+	options.parameter_tolerance = params_.parameter_tolerance;
+	options.num_threads = threads();
+	options.logging_type = ceres::SILENT;
+
+	const auto t0 = std::chrono::steady_clock::now();
+	ceres::Solver::Summary summary;
+	ceres::Solve(options, &graph_->problem(), &summary);
+	if (summary.termination_type == ceres::FAILURE || summary.termination_type == ceres::USER_FAILURE)
+		throw NumericalError("full-SLAM solve failed: " + summary.message);
+
+	++tally_.solves;
+	tally_.final_iterations = static_cast<int>(summary.iterations.size()) - 1;  // entry 0 is the start
+	tally_.iterations += tally_.final_iterations;
+	tally_.final_solve_s = secondsSince(t0);
+	tally_.solve_s += tally_.final_solve_s;
+	tally_.final_initial_cost = summary.initial_cost;
+	tally_.final_cost = summary.final_cost;
+	tally_.converged = summary.termination_type == ceres::CONVERGENCE;
+}
+
+void CeresFullSlam::finish()
+{
+	solve();
+	computeCovariances();
+	finished_ = true;
+}
+
+void CeresFullSlam::computeCovariances()
+{
+	if (params_.covariance == CovarianceScope::None) return;
+	std::vector<const double*> blocks;
+	for (const LandmarkId id : graph_->landmarkIds()) blocks.push_back(graph_->landmarkBlock(id));
+	if (params_.covariance == CovarianceScope::AllPoses)
+	{
+		for (std::size_t i = 1; i < graph_->poseCount(); ++i) blocks.push_back(graph_->poseBlock(i));
+	}
+	else if (!FullSlamGraph::isGauge(current_pose_))
+		blocks.push_back(graph_->poseBlock(current_pose_));
+	if (blocks.empty()) return;
+	const auto t0 = std::chrono::steady_clock::now();
+	marginals_ = marginalCovariances(graph_->problem(), blocks, threads());
+	tally_.covariance_s = secondsSince(t0);
+}
+
+PoseEstimate CeresFullSlam::poseEstimate(std::size_t pose) const
+{
+	PoseEstimate p;
+	p.mean = toTPose2D(graph_->pose(pose));
+	const auto it = marginals_.find(const_cast<FullSlamGraph&>(*graph_).poseBlock(pose));
+	if (it != marginals_.end()) p.cov = it->second;
+	return p;
+}
+
+PoseEstimate CeresFullSlam::robotPose() const { return poseEstimate(current_pose_); }
+
+Estimate CeresFullSlam::estimate() const
+{
+	Estimate e;
+	e.robot = robotPose();
+	auto& graph = const_cast<FullSlamGraph&>(*graph_);	// block addresses only; nothing is modified
+	for (const LandmarkId id : graph_->landmarkIds())
+	{
+		LandmarkEstimate l;
+		l.id = id;
+		l.mean = graph_->landmark(id);
+		const auto it = marginals_.find(graph.landmarkBlock(id));
+		if (it != marginals_.end()) l.cov = it->second;
+		e.landmarks.push_back(l);
+	}
+	return e;
+}
+
+std::optional<std::vector<PoseEstimate>> CeresFullSlam::smoothedTrajectory() const
+{
+	if (!finished_) return std::nullopt;
+	std::vector<PoseEstimate> out;
+	out.reserve(step_pose_.size());
+	for (const std::size_t pose : step_pose_) out.push_back(poseEstimate(pose));
+	return out;
+}
+
+CostFigures CeresFullSlam::costFigures() const
+{
+	CostFigures c;
+	c.state_dim = graph_->parameterDim();
+	c.poses_in_state = graph_->poseCount() - 1;	 // the gauge pose is fixed, not estimated
+	c.info_nnz = graph_->informationNonZeros();
+	const auto add = [&](const char* name, double v) { c.counters.emplace_back(name, v); };
+	add("residuals", static_cast<double>(graph_->residualDim()));
+	add("chi2_dof", static_cast<double>(graph_->residualDim()) - static_cast<double>(graph_->parameterDim()));
+	add("chi2", 2 * tally_.final_cost);	// Ceres' cost is half the sum of squares
+	add("initial_chi2", 2 * tally_.final_initial_cost);
+	add("solves", tally_.solves);
+	add("iterations", tally_.iterations);
+	add("final_iterations", tally_.final_iterations);
+	add("solve_s", tally_.solve_s);
+	add("final_solve_s", tally_.final_solve_s);
+	add("converged", tally_.converged ? 1 : 0);
+	add("covariance_s", tally_.covariance_s);
+	return c;
+}
+
+std::optional<InformationPattern> CeresFullSlam::informationPattern() const
+{
+	// J^T J at the optimum, poses first then landmarks (the gauge pose left out).
+	auto& graph = const_cast<FullSlamGraph&>(*graph_);	// Evaluate() reads the blocks only
+	if (graph.residualDim() == 0) return std::nullopt;
+	ceres::Problem::EvaluateOptions options;
+	for (std::size_t i = 1; i < graph.poseCount(); ++i) options.parameter_blocks.push_back(graph.poseBlock(i));
+	for (const LandmarkId id : graph.landmarkIds()) options.parameter_blocks.push_back(graph.landmarkBlock(id));
+	options.apply_loss_function = true;
+	options.num_threads = threads();
+	ceres::CRSMatrix crs;
+	graph.problem().Evaluate(options, nullptr, nullptr, nullptr, &crs);
+	const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> j(
+		crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(), crs.cols.data(),
+		crs.values.data());
+	InformationPattern p;
+	p.information = Eigen::SparseMatrix<double>(j.transpose()) * Eigen::SparseMatrix<double>(j);
+	return p;
+}
+
+}  // namespace esif

@@ -1,0 +1,76 @@
+#pragma once
+/// \file CeresFullSlam.h
+/// Full SLAM by nonlinear least squares (book Sec. 1.2.2.2, eq. 1.17-1.22):
+/// the maximum-a-posteriori estimate of every robot pose and every landmark
+/// given all odometry and all measurements, solved by Ceres
+/// (Levenberg-Marquardt on sparse normal equations, CHOLMOD). It is the
+/// optimum every filter is measured against. It does not associate: it uses
+/// the measurements' landmark IDs (from the rawlog, or another run's
+/// decisions through [esif] associations_from).
+
+#include "CeresFullParams.h"
+#include "FullSlamGraph.h"
+#include "InitialGuess.h"
+
+#include <esif/plugin/FilterPlugin.h>
+
+#include <memory>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+namespace esif
+{
+class CeresFullSlam : public FilterPlugin
+{
+	DEFINE_MRPT_OBJECT(CeresFullSlam, esif)
+
+   public:
+	std::string sectionName() const override { return "ceres_full"; }
+	void configure(const ConfigSection& section) override;
+	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
+	StepReport processStep(const StepInput& step) override;
+	void finish() override;
+	PoseEstimate robotPose() const override;
+	Estimate estimate() const override;
+	CostFigures costFigures() const override;
+	Formulation formulation() const override { return Formulation::FullSlamOptimum; }
+	bool needsLandmarkIds() const override { return true; }
+	std::optional<std::vector<PoseEstimate>> smoothedTrajectory() const override;
+	std::optional<InformationPattern> informationPattern() const override;
+
+	/// Statistics of the solves so far.
+	struct SolveTally
+	{
+		int solves = 0;
+		int iterations = 0;	 ///< over all solves
+		int final_iterations = 0;  ///< of the last solve
+		double solve_s = 0;	 ///< over all solves [s]
+		double final_solve_s = 0;
+		double final_initial_cost = 0;	///< Ceres cost (half the sum of squares) before the last solve
+		double final_cost = 0;	///< ... and after it
+		bool converged = false;	 ///< the last solve met a tolerance (not the iteration limit)
+		double covariance_s = 0;
+	};
+	const SolveTally& tally() const { return tally_; }
+	const ceres_full::FullSlamGraph& graph() const { return *graph_; }
+
+   private:
+	void solve();
+	void computeCovariances();
+	std::unique_ptr<ceres::LossFunction> makeLoss() const;
+	Association observe(const RangeBearing& m, const Pose2& sensor, const std::string& where);
+	int threads() const;
+	PoseEstimate poseEstimate(std::size_t pose) const;
+
+	ceres_full::CeresFullParams params_;
+	std::unique_ptr<ceres_full::FullSlamGraph> graph_ = std::make_unique<ceres_full::FullSlamGraph>();
+	std::optional<ceres_full::InitialGuess> guess_;
+	std::size_t current_pose_ = 0;
+	std::vector<std::size_t> step_pose_;  ///< pose index after each step
+	std::unordered_map<const double*, Eigen::MatrixXd> marginals_;
+	SolveTally tally_;
+	bool finished_ = false;
+};
+
+}  // namespace esif

@@ -1,0 +1,87 @@
+#include "FullSlamGraph.h"
+
+#include "Residuals.h"
+
+#include <esif/core/Errors.h>
+
+namespace esif::ceres_full
+{
+namespace
+{
+ceres::Problem::Options problemOptions()
+{
+	ceres::Problem::Options o;
+	o.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // the graph owns its one loss
+	// Residual blocks are only ever added: removal bookkeeping is not needed.
+	o.enable_fast_removal = false;
+	return o;
+}
+}  // namespace
+
+FullSlamGraph::FullSlamGraph(std::unique_ptr<ceres::LossFunction> loss)
+	: loss_(std::move(loss)), problem_(std::make_unique<ceres::Problem>(problemOptions()))
+{
+	poses_.push_back({0, 0, 0});
+	problem_->AddParameterBlock(poses_.back().data(), 3);
+	problem_->SetParameterBlockConstant(poses_.back().data());	// the gauge: the map frame
+}
+
+std::size_t FullSlamGraph::addPose(
+	std::size_t from, const OdometryIncrement& odometry, const Pose2& initial, const std::string& where)
+{
+	Eigen::Matrix3d w;
+	if (!sqrtInformation<3>(odometry.cov, w))
+		throw NumericalError(where + ": covariance is not symmetric positive definite");
+	poses_.push_back({initial.x(), initial.y(), esif::wrapAngle(initial.z())});
+	double* added = poses_.back().data();
+	const Eigen::Vector3d delta(odometry.delta.x, odometry.delta.y, odometry.delta.phi);
+	problem_->AddResidualBlock(OdometryResidual::create(delta, w), nullptr, poses_[from].data(), added);
+	residual_dim_ += 3;
+	linkBlocks(poses_[from].data(), isGauge(from) ? 0 : 3, added, 3);
+	return poses_.size() - 1;
+}
+
+void FullSlamGraph::addLandmark(LandmarkId id, const Eigen::Vector2d& initial)
+{
+	landmark_index_.emplace(id, landmarks_.size());
+	landmark_ids_.push_back(id);
+	landmarks_.push_back({initial.x(), initial.y()});
+	problem_->AddParameterBlock(landmarks_.back().data(), 2);
+}
+
+void FullSlamGraph::addObservation(
+	std::size_t pose, LandmarkId id, const RangeBearing& m, const Pose2& sensor_on_robot, const std::string& where)
+{
+	Eigen::Matrix2d w;
+	if (!sqrtInformation<2>(m.cov, w))
+		throw NumericalError(where + ": covariance is not symmetric positive definite");
+	double* lm = landmarkBlock(id);
+	problem_->AddResidualBlock(
+		RangeBearingResidual::create(Eigen::Vector2d(m.range_m, m.bearing_rad), w, sensor_on_robot), loss_.get(),
+		poses_[pose].data(), lm);
+	residual_dim_ += 2;
+	linkBlocks(poses_[pose].data(), isGauge(pose) ? 0 : 3, lm, 2);
+}
+
+Eigen::Vector2d FullSlamGraph::landmark(LandmarkId id) const
+{
+	const auto& l = landmarks_[landmark_index_.at(id)];
+	return {l[0], l[1]};
+}
+
+void FullSlamGraph::setPose(std::size_t i, const Pose2& p) { poses_[i] = {p.x(), p.y(), esif::wrapAngle(p.z())}; }
+
+void FullSlamGraph::linkBlocks(const double* a, int dim_a, const double* b, int dim_b)
+{
+	if (dim_a == 0 || dim_b == 0) return;  // the gauge pose is not in the state
+	const auto key = a < b ? std::make_pair(a, b) : std::make_pair(b, a);
+	if (linked_.insert(key).second) off_diagonal_nnz_ += static_cast<std::size_t>(dim_a * dim_b);
+}
+
+std::size_t FullSlamGraph::informationNonZeros() const
+{
+	const std::size_t diagonal = 9 * (poses_.size() - 1) + 4 * landmarks_.size();
+	return diagonal + 2 * off_diagonal_nnz_;
+}
+
+}  // namespace esif::ceres_full

@@ -1,0 +1,98 @@
+#pragma once
+/// \file FullSlamGraph.h
+/// The full-SLAM problem of book Sec. 1.2.2.2 as a Ceres problem: every robot
+/// pose and every landmark is a parameter block, every odometry increment and
+/// every range-bearing measurement a residual block (eq. 1.18-1.21). The
+/// first pose is the origin of the map frame and held constant (the gauge).
+/// It also keeps the block structure of J, to report the non-zeros of the
+/// information matrix J^T J (book Table 5.1) without forming it.
+
+#include <esif/core/StepInput.h>
+#include <esif/models/Se2.h>
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Core>
+#include <array>
+#include <deque>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+namespace esif::ceres_full
+{
+class FullSlamGraph
+{
+   public:
+	/// `loss` (may be null) is applied to every range-bearing term; the graph
+	/// keeps ownership of it.
+	explicit FullSlamGraph(std::unique_ptr<ceres::LossFunction> loss = nullptr);
+
+	/// Adds pose `from` (+) odometry as a new pose, initialised at `initial`,
+	/// and its process-model term. Returns the new pose's index. Throws
+	/// InputError naming `where` when the odometry covariance is not SPD.
+	std::size_t addPose(std::size_t from, const OdometryIncrement& odometry, const Pose2& initial,
+						const std::string& where);
+
+	bool hasLandmark(LandmarkId id) const { return landmark_index_.count(id) > 0; }
+	void addLandmark(LandmarkId id, const Eigen::Vector2d& initial);
+
+	/// Adds the range-bearing term of `m` taken at pose `pose` of landmark
+	/// `id` (already added). Throws NumericalError naming `where` when the
+	/// measurement covariance is not SPD.
+	void addObservation(std::size_t pose, LandmarkId id, const RangeBearing& m, const Pose2& sensor_on_robot,
+						const std::string& where);
+
+	std::size_t poseCount() const { return poses_.size(); }
+	std::size_t landmarkCount() const { return landmarks_.size(); }
+	/// Landmark IDs in the order they were first seen.
+	const std::vector<LandmarkId>& landmarkIds() const { return landmark_ids_; }
+
+	Pose2 pose(std::size_t i) const { return Eigen::Map<const Eigen::Vector3d>(poses_[i].data()); }
+	Eigen::Vector2d landmark(LandmarkId id) const;
+	void setPose(std::size_t i, const Pose2& p);
+
+	double* poseBlock(std::size_t i) { return poses_[i].data(); }
+	double* landmarkBlock(LandmarkId id) { return landmarks_[landmark_index_.at(id)].data(); }
+	/// True for the gauge pose (index 0), which is not estimated.
+	static bool isGauge(std::size_t pose) { return pose == 0; }
+
+	ceres::Problem& problem() { return *problem_; }
+
+	/// Residual count m and estimated-parameter count n: at the optimum of
+	/// the plain least-squares problem, 2 x cost ~ chi-square(m - n).
+	std::size_t residualDim() const { return residual_dim_; }
+	std::size_t parameterDim() const { return 3 * (poses_.size() - 1) + 2 * landmarks_.size(); }
+
+	/// Non-zeros of J^T J over the estimated blocks (both triangles): each
+	/// block's square plus twice every distinct pair of blocks that share a
+	/// residual (pose-pose links from odometry, pose-feature links from
+	/// observations).
+	std::size_t informationNonZeros() const;
+
+   private:
+	void linkBlocks(const double* a, int dim_a, const double* b, int dim_b);
+
+	std::unique_ptr<ceres::LossFunction> loss_;
+	std::unique_ptr<ceres::Problem> problem_;
+	// deques: parameter blocks must never move once Ceres holds their address.
+	std::deque<std::array<double, 3>> poses_;
+	std::deque<std::array<double, 2>> landmarks_;
+	std::unordered_map<LandmarkId, std::size_t> landmark_index_;
+	std::vector<LandmarkId> landmark_ids_;
+	std::size_t residual_dim_ = 0;
+
+	struct PairHash
+	{
+		std::size_t operator()(const std::pair<const double*, const double*>& p) const
+		{
+			return std::hash<const double*>()(p.first) * 31 + std::hash<const double*>()(p.second);
+		}
+	};
+	std::unordered_set<std::pair<const double*, const double*>, PairHash> linked_;
+	std::size_t off_diagonal_nnz_ = 0;	///< one triangle
+};
+
+}  // namespace esif::ceres_full
