@@ -3,11 +3,14 @@
 
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
+#include <esif/eval/BaselineComparison.h>
+#include <esif/eval/BookTable.h>
 #include <esif/eval/ComparisonTable.h>
 #include <esif/eval/RunDifference.h>
 #include <esif/io/AtomicFile.h>
 #include <esif/io/RunOutputReader.h>
 #include <esif/io/StatsJson.h>
+#include <esif/run/RunOrder.h>
 
 #include <filesystem>
 #include <fstream>
@@ -109,6 +112,77 @@ Stats readStats(const std::string& path)
 	ss << in.rdbuf();
 	return Stats::fromJson(ss.str(), path);
 }
+
+/// Every config parsed once, before any run: labels and associations_from
+/// decide the reference and the run order, and a broken INI fails at once.
+std::vector<PlannedRun> planRuns(const std::vector<std::string>& configs)
+{
+	std::vector<PlannedRun> planned;
+	for (const auto& c : configs)
+	{
+		const ConfigFile config = ConfigFile::load(c);
+		const auto host = config.section("esif");
+		planned.push_back(
+			{c, configLabel(config), host.getString("associations_from", ""), host.getBool("hide_landmark_ids", false)});
+	}
+	return planned;
+}
+
+/// Landmarks are paired with the reference's by ID: runs whose IDs come from
+/// elsewhere (a filter associating on its own numbers them itself) pair
+/// unrelated landmarks.
+void warnAboutUnrelatedIds(
+	const std::vector<PlannedRun>& planned, const std::vector<std::optional<std::size_t>>& sources, std::size_t ref)
+{
+	const std::string reference_origin = landmarkIdOrigin(planned, sources, ref);
+	for (std::size_t i = 0; i < planned.size(); ++i)
+		if (const auto origin = landmarkIdOrigin(planned, sources, i); origin != reference_origin)
+			std::cerr << "esif: warning: " << planned[i].config << ": its landmark IDs are " << origin
+					  << ", the reference's " << reference_origin
+					  << ": ref_landmark_* pair landmarks of unrelated IDs\n";
+}
+
+/// Shared settings of every `esif run` child.
+struct ChildSettings
+{
+	std::string rawlog;
+	std::optional<std::string> ground_truth;
+	std::optional<std::string> plugin_dir;
+};
+
+/// Runs one config as `esif run` into `dir`; `associations_dir` is the run
+/// folder of the config its associations_from names, if any.
+Stats runConfig(
+	const std::string& config, const std::string& dir, const std::optional<std::string>& associations_dir,
+	const ChildSettings& settings)
+{
+	std::vector<std::string> args = {"esif", "run", "--quiet", "--config", config, "--rawlog", settings.rawlog,
+									 "--out", dir};
+	if (settings.ground_truth) args.insert(args.end(), {"--ground-truth", *settings.ground_truth});
+	if (settings.plugin_dir) args.insert(args.end(), {"--plugin-dir", *settings.plugin_dir});
+	if (associations_dir) args.insert(args.end(), {"--associations-from", *associations_dir});
+	std::cerr << "esif compare: running " << config
+			  << (associations_dir ? " (data association of " + *associations_dir + ")" : std::string()) << "\n";
+	if (const int code = runChild(args); code != 0)
+		throw InputError("compare: the run of " + config + " failed (exit " + std::to_string(code) + ")");
+	return readStats((fs::path(dir) / "stats.json").string());
+}
+
+std::string labelOf(const Stats& run) { return run.text("label").value_or("?"); }
+
+/// Adds the ref_* keys (difference from run `ref`) to every run; returns the
+/// note line, which calls the reference `who` (e.g. "run 'ekf'").
+std::string addReferenceColumns(
+	std::vector<Stats>& runs, const std::vector<std::string>& dirs, std::size_t ref, const std::string& who)
+{
+	const RunOutputs reference_outputs = readRunOutputs(dirs[ref]);
+	for (std::size_t i = 0; i < runs.size(); ++i)
+		setDifferenceStats(
+			runs[i], i == ref ? referenceItself(reference_outputs)
+							  : runDifference(readRunOutputs(dirs[i]), reference_outputs));
+	return "ref_*: difference from " + who +
+		   " in the initial-pose frame, no alignment (trajectory by step, landmarks by ID)\n";
+}
 }  // namespace
 
 int compareCommand(int argc, char** argv)
@@ -128,7 +202,8 @@ int compareCommand(int argc, char** argv)
 		"difference from it, in the shared initial-pose frame without alignment, as ref_traj_rms_m, "
 		"ref_traj_max_m, ref_heading_rms_deg (poses of the same step), ref_landmark_rms_m, ref_landmark_max_m "
 		"and ref_landmarks_matched (landmarks with the same ID: the runs must use the rawlog's landmark IDs). "
-		"The reference's row shows zeros and its own landmark count",
+		"The reference's row shows zeros and its own landmark count. Default without ground truth: the "
+		"optimization baseline (the full-SLAM run), if any",
 		false, "", "LABEL", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 
@@ -137,56 +212,53 @@ int compareCommand(int argc, char** argv)
 	for (const auto& c : config_list)
 		if (!fs::is_regular_file(c)) throw ConfigError(c + ": config file not found");
 	const auto dirs = runFolders(config_list, out.getValue());
+	const auto planned = planRuns(config_list);
 	std::optional<std::size_t> ref;
 	if (reference.isSet())
 	{
-		std::vector<ConfigFile> parsed;
 		std::vector<std::string> labels;
-		for (const auto& c : config_list)
-		{
-			parsed.push_back(ConfigFile::load(c));
-			labels.push_back(configLabel(parsed.back()));
-		}
+		for (const auto& p : planned) labels.push_back(p.label);
 		ref = referenceIndex(reference.getValue(), config_list, labels, dirs);
-		// Landmarks are paired by ID: a filter that associates on its own numbers them itself.
-		for (const auto& config : parsed)
-			if (config.section("esif").getBool("hide_landmark_ids", false))
-				std::cerr << "esif: warning: " << config.origin()
-						  << ": hide_landmark_ids = true: its landmarks carry its own IDs, so ref_landmark_* pair "
-							 "landmarks of unrelated IDs\n";
 	}
+	const auto sources = associationSources(planned);
+	const auto order = runOrder(planned, sources);
+	if (ref) warnAboutUnrelatedIds(planned, sources, *ref);
 	ensureDirectory(out.getValue());
 
-	std::vector<Stats> runs;
-	for (std::size_t i = 0; i < config_list.size(); ++i)
-	{
-		std::vector<std::string> args = {"esif", "run", "--quiet", "--config", config_list[i], "--rawlog",
-										 rawlog.getValue(), "--out", dirs[i]};
-		if (ground_truth.isSet()) args.insert(args.end(), {"--ground-truth", ground_truth.getValue()});
-		if (plugin_dir.isSet()) args.insert(args.end(), {"--plugin-dir", plugin_dir.getValue()});
-		std::cerr << "esif compare: running " << config_list[i] << "\n";
-		if (const int code = runChild(args); code != 0)
-			throw InputError("compare: the run of " + config_list[i] + " failed (exit " + std::to_string(code) + ")");
-		runs.push_back(readStats((fs::path(dirs[i]) / "stats.json").string()));
-	}
+	const ChildSettings settings{
+		rawlog.getValue(), ground_truth.isSet() ? std::optional<std::string>(ground_truth.getValue()) : std::nullopt,
+		plugin_dir.isSet() ? std::optional<std::string>(plugin_dir.getValue()) : std::nullopt};
+	std::vector<Stats> runs(config_list.size());  // in the configs' order, whatever the run order
+	for (const auto i : order)
+		runs[i] = runConfig(
+			config_list[i], dirs[i], sources[i] ? std::optional<std::string>(dirs[*sources[i]]) : std::nullopt,
+			settings);
 
+	// Filters are measured against the optimum: by accuracy ratios with ground
+	// truth, else (unless --reference says otherwise) by their difference from it.
 	std::string note;
-	if (ref)
+	const BaselineChoice baseline = findBaseline(runs);
+	if (baseline.warning) std::cerr << "esif: warning: " << *baseline.warning << "\n";
+	const bool with_truth = hasGroundTruthFigures(runs);
+	if (baseline.index && with_truth)
 	{
-		const RunOutputs reference_outputs = readRunOutputs(dirs[*ref]);
-		for (std::size_t i = 0; i < runs.size(); ++i)
-			setDifferenceStats(
-				runs[i], i == *ref ? referenceItself(reference_outputs)
-								   : runDifference(readRunOutputs(dirs[i]), reference_outputs));
-		note = "ref_*: difference from run '" + reference.getValue() +
-			   "' in the initial-pose frame, no alignment (trajectory by step, landmarks by ID)\n";
+		setBaselineRatios(runs, *baseline.index);
+		note += baselineNote(labelOf(runs[*baseline.index]));
+	}
+	if (ref)
+		note += addReferenceColumns(runs, dirs, *ref, "run '" + reference.getValue() + "'");
+	else if (baseline.index && !with_truth)
+	{
+		warnAboutUnrelatedIds(planned, sources, *baseline.index);
+		note += addReferenceColumns(
+			runs, dirs, *baseline.index, "the optimization baseline '" + labelOf(runs[*baseline.index]) + "'");
 	}
 
-	const std::string text = comparisonText(runs) + note;
+	const std::string text = comparisonText(runs) + note + "\n" + bookTable51Text(runs);
 	writeTextAtomically((fs::path(out.getValue()) / "comparison.csv").string(), comparisonCsv(runs));
 	writeTextAtomically((fs::path(out.getValue()) / "comparison.md").string(),
 						"# esif compare on " + rawlog.getValue() + "\n\n" + comparisonMarkdown(runs) +
-							(note.empty() ? "" : "\n" + note));
+							(note.empty() ? "" : "\n" + note) + "\n" + bookTable51Markdown(runs));
 	std::cout << text;
 	return 0;
 }

@@ -22,6 +22,11 @@ int runCommand(int argc, char** argv)
 	TCLAP::ValueArg<std::string> out("o", "out", "output folder", true, "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> plugin_dir("", "plugin-dir", "extra folder to search for plugins", false, "", "DIR",
 											cmd);
+	TCLAP::ValueArg<std::string> associations_from(
+		"", "associations-from",
+		"run folder whose associations.txt gives every measurement's landmark ID (overrides [esif] "
+		"associations_from; esif compare sets it for a config naming another's label)",
+		false, "", "DIR", cmd);
 	TCLAP::SwitchArg quiet("q", "quiet", "no progress bar and no summary", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 
@@ -31,6 +36,7 @@ int runCommand(int argc, char** argv)
 	if (ground_truth.isSet()) request.ground_truth_prefix = ground_truth.getValue();
 	request.out_dir = out.getValue();
 	request.progress_bar = !quiet.getValue();
+	if (associations_from.isSet()) request.associations_from = associations_from.getValue();
 	PluginLoader loader(plugin_dir.isSet() ? std::vector<std::string>{plugin_dir.getValue()} : std::vector<std::string>{});
 	const Stats stats = runPipeline(request, loader);
 	if (!quiet.getValue())

@@ -1,3 +1,4 @@
+#include <esif/eval/BaselineComparison.h>
 #include <esif/eval/ComparisonTable.h>
 #include <esif/eval/RunDifference.h>
 
@@ -35,13 +36,15 @@ std::string cell(const Stats& s, const std::string& key)
 
 std::string label(const Stats& s) { return s.get("label") ? statText(*s.get("label")) : "?"; }
 
-/// comparisonKeys(), then the difference-from-reference keys when a run has them.
+/// comparisonKeys(), then the ratios to the optimization baseline and the
+/// difference-from-reference keys when a run has them.
 std::vector<std::string> tableKeys(const std::vector<Stats>& runs)
 {
 	std::vector<std::string> keys = comparisonKeys();
-	for (const auto& k : runDifferenceKeys())
-		if (std::any_of(runs.begin(), runs.end(), [&](const Stats& s) { return s.get(k).has_value(); }))
-			keys.push_back(k);
+	for (const auto* optional_keys : {&baselineRatioKeys(), &runDifferenceKeys()})
+		for (const auto& k : *optional_keys)
+			if (std::any_of(runs.begin(), runs.end(), [&](const Stats& s) { return s.get(k).has_value(); }))
+				keys.push_back(k);
 	return keys;
 }
 

@@ -44,6 +44,14 @@ std::optional<double> Stats::number(const std::string& key) const
 	return std::nullopt;
 }
 
+std::optional<std::string> Stats::text(const std::string& key) const
+{
+	const auto v = get(key);
+	if (!v) return std::nullopt;
+	if (const auto* t = std::get_if<std::string>(&*v)) return *t;
+	return std::nullopt;
+}
+
 namespace
 {
 std::string quoted(const std::string& s)

@@ -25,6 +25,18 @@ void checkReport(const StepReport& report, const StepInput& step, const std::str
 			"plugin " + plugin + " reported " + std::to_string(report.associations.size()) + " associations for " +
 			std::to_string(expected) + " measurements at step " + std::to_string(step.index));
 }
+
+/// Puts a smoother's re-estimated poses in place of the online ones; the
+/// keyframes keep the steps they were chosen at (by the online poses).
+void applySmoothedTrajectory(const std::vector<PoseEstimate>& smoothed, RunRecord& record)
+{
+	if (smoothed.size() != record.trajectory.size())
+		throw std::logic_error(
+			"plugin " + record.plugin + " returned a smoothed trajectory of " + std::to_string(smoothed.size()) +
+			" poses for " + std::to_string(record.trajectory.size()) + " steps");
+	for (std::size_t k = 0; k < smoothed.size(); ++k) record.trajectory[k].pose = smoothed[k];
+	for (auto& keyframe : record.keyframes) keyframe.pose = smoothed[keyframe.step];
+}
 }  // namespace
 
 ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions& options)
@@ -34,6 +46,7 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 	out.record.rawlog = log.path;
 	out.step_us.reserve(log.steps.size());
 	out.landmark_counts.reserve(log.steps.size());
+	out.reports.reserve(log.steps.size());
 	std::size_t landmarks = 0;
 	out.record.trajectory.reserve(log.steps.size());
 
@@ -55,6 +68,7 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 		}
 		out.step_us.push_back(microsecondsSince(t0));
 		checkReport(report, step, out.record.plugin);
+		out.reports.push_back(report);
 		for (const auto& a : report.associations) landmarks += a.kind == Association::Kind::New;
 		out.landmark_counts.push_back(landmarks);
 		out.audit.record(report, log.true_ids[k]);
@@ -65,7 +79,7 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 		if (log.frames[k] &&
 			(!last_keyframe || (p.head<2>() - last_keyframe->head<2>()).norm() >= options.keyframe_min_distance_m))
 		{
-			out.record.keyframes.push_back({pose, log.frames[k]});
+			out.record.keyframes.push_back({pose, log.frames[k], k});
 			last_keyframe = p;
 		}
 		progress.update(k + 1);
@@ -75,6 +89,7 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 	out.finish_us = microsecondsSince(t_finish);
 	out.wall_s = microsecondsSince(t_start) * 1e-6;
 	progress.finish();
+	if (const auto smoothed = plugin.smoothedTrajectory()) applySmoothedTrajectory(*smoothed, out.record);
 	out.record.final_estimate = plugin.estimate();
 	return out;
 }

@@ -1,12 +1,14 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
 #include <esif/eval/Evaluator.h>
+#include <esif/io/AssociationFile.h>
 #include <esif/io/AtomicFile.h>
 #include <esif/io/FigureWriter.h>
 #include <esif/io/GroundTruth.h>
 #include <esif/io/MapWriter.h>
 #include <esif/io/RawlogReader.h>
 #include <esif/run/HostParams.h>
+#include <esif/run/LandmarkIdRequirement.h>
 #include <esif/run/Replay.h>
 #include <esif/run/RunPipeline.h>
 
@@ -24,6 +26,7 @@ namespace esif
 namespace
 {
 constexpr const char* kHostSection = "esif";
+constexpr const char* kAssociationFile = "associations.txt";
 
 HostParams loadHostParams(const ConfigFile& cfg)
 {
@@ -50,6 +53,30 @@ FilterPlugin::Ptr createConfiguredPlugin(const ConfigFile& cfg, const HostParams
 				cfg.origin() + ": [" + name + "]: unknown section (expected [" + kHostSection + "] and [" +
 				plugin->sectionName() + "])");
 	return plugin;
+}
+
+/// DIR/associations.txt of `host.associations_from` (already overridden by the
+/// request), checked before the rawlog is read so that a wrong folder fails
+/// at once; nullopt when the rawlog's own IDs are used.
+std::optional<std::string> locateAssociations(const ConfigFile& cfg, const HostParams& host, const RunRequest& request)
+{
+	if (host.associations_from.empty()) return std::nullopt;
+	const std::string path = (std::filesystem::path(host.associations_from) / kAssociationFile).string();
+	if (std::filesystem::is_regular_file(path)) return path;
+	const std::string problem = path + " not found (run that config first)";
+	if (request.associations_from) throw ConfigError(cfg.origin() + ": --associations-from: " + problem);
+	throw ConfigError(cfg.section(kHostSection).describeKey("associations_from", problem));
+}
+
+RawlogReadOptions readOptionsOf(const HostParams& host)
+{
+	RawlogReadOptions options;
+	options.hide_landmark_ids = host.hide_landmark_ids;
+	options.sensor_std_range_m = host.sensor_std_range_m;
+	options.sensor_std_bearing_rad = host.sensor_std_bearing_deg * M_PI / 180.0;
+	options.odometry_obs_std_xy_m = host.odometry_obs_std_xy_m;
+	options.odometry_obs_std_phi_rad = host.odometry_obs_std_phi_deg * M_PI / 180.0;
+	return options;
 }
 
 std::optional<GroundTruth> findGroundTruth(const RunRequest& request)
@@ -87,6 +114,7 @@ Stats collectStats(
 	const auto& us = result.step_us;
 	const auto cost = plugin.costFigures();
 	s.set("plugin", StatValue(host.plugin));
+	s.set("formulation", StatValue(std::string(formulationName(plugin.formulation()))));
 	s.set("label", StatValue(host.label));
 	s.set("config", StatValue(request.config_path));
 	s.set("rawlog", StatValue(request.rawlog_path));
@@ -102,6 +130,7 @@ Stats collectStats(
 	s.set("finish_us", StatValue(result.finish_us));
 	s.set("peak_rss_mb", StatValue(peakRssMb()));
 	s.set("state_dim", StatValue(static_cast<long long>(cost.state_dim)));
+	s.set("poses_in_state", StatValue(static_cast<long long>(cost.poses_in_state)));
 	if (cost.info_nnz)
 		s.set("info_nnz", StatValue(static_cast<long long>(*cost.info_nnz)));
 	else
@@ -141,17 +170,15 @@ Stats runPipeline(const RunRequest& request, PluginLoader& loader)
 {
 	const auto t0 = std::chrono::steady_clock::now();
 	const ConfigFile cfg = ConfigFile::load(request.config_path);
-	const HostParams host = loadHostParams(cfg);
+	HostParams host = loadHostParams(cfg);
+	if (request.associations_from) host.associations_from = *request.associations_from;	// params.ini shows the folder used
 	auto plugin = createConfiguredPlugin(cfg, host, loader);
+	const auto associations = locateAssociations(cfg, host, request);
 
-	RawlogReadOptions read_options;
-	read_options.hide_landmark_ids = host.hide_landmark_ids;
-	read_options.sensor_std_range_m = host.sensor_std_range_m;
-	read_options.sensor_std_bearing_rad = host.sensor_std_bearing_deg * M_PI / 180.0;
-	read_options.odometry_obs_std_xy_m = host.odometry_obs_std_xy_m;
-	read_options.odometry_obs_std_phi_rad = host.odometry_obs_std_phi_deg * M_PI / 180.0;
-	const Rawlog log = readRawlog(request.rawlog_path, read_options);
+	Rawlog log = readRawlog(request.rawlog_path, readOptionsOf(host));
 	if (log.truncation_warning) std::cerr << "esif: warning: " << *log.truncation_warning << "\n";
+	if (associations) applyAssociations(log, readAssociationFile(*associations), *associations);
+	requireLandmarkIds(*plugin, log, {cfg.origin(), host.hide_landmark_ids, associations.value_or("")});
 	const auto truth = findGroundTruth(request);
 	ensureDirectory(request.out_dir);
 
@@ -173,6 +200,7 @@ Stats runPipeline(const RunRequest& request, PluginLoader& loader)
 	if (const auto pattern = plugin->informationPattern())
 		writeInformationPatternImage(*pattern, (dir / "info_matrix.png").string(), host.image_size_px);
 	writeTextAtomically((dir / "params.ini").string(), effectiveParamsIni(host, *plugin));
+	writeAssociationFile((dir / kAssociationFile).string(), result.reports, host.plugin, request.rawlog_path);
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	Stats stats = collectStats(host, request, log, result, *plugin, accuracy, total_wall_s);
 	writeTextAtomically((dir / "stats.json").string(), stats.toJson());

@@ -12,8 +12,9 @@
 namespace esif
 {
 /// The keys shown in the terminal and Markdown tables, in order; the tables
-/// add runDifferenceKeys() (ref_*, RunDifference.h) after them when a run
-/// has those keys (`esif compare --reference`).
+/// add baselineRatioKeys() (base_*, BaselineComparison.h) and
+/// runDifferenceKeys() (ref_*, RunDifference.h) after them when a run has
+/// those keys.
 const std::vector<std::string>& comparisonKeys();
 
 std::string comparisonText(const std::vector<Stats>& runs);

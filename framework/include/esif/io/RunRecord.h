@@ -26,6 +26,9 @@ struct Keyframe
 {
 	PoseEstimate pose;
 	mrpt::obs::CSensoryFrame::Ptr frame;
+	/// The step the frame was taken at, so that a smoother's re-estimated
+	/// trajectory (FilterPlugin::smoothedTrajectory) can replace `pose`.
+	std::size_t step = 0;
 };
 
 struct RunRecord

@@ -24,6 +24,8 @@ class Stats
 	std::optional<StatValue> get(const std::string& key) const;
 	/// The value as a number, nullopt for null, strings or missing keys.
 	std::optional<double> number(const std::string& key) const;
+	/// The value as a string, nullopt for numbers, null or missing keys.
+	std::optional<std::string> text(const std::string& key) const;
 	const std::vector<std::pair<std::string, StatValue>>& items() const { return items_; }
 
 	std::string toJson() const;

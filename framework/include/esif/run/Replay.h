@@ -2,6 +2,11 @@
 /// \file Replay.h
 /// The replay loop: feeds every step to a plugin, times it, records the
 /// trajectory, keyframes and association decisions.
+///
+/// Smoothers (FilterPlugin::smoothedTrajectory) re-estimate every pose once
+/// all data is in: after finish(), their trajectory replaces the online
+/// robotPose() of each step in the record, keyframe poses included, so maps,
+/// trajectory.tum and the accuracy figures show the smoothed estimate.
 
 #include <esif/eval/AssociationAudit.h>
 #include <esif/io/RawlogReader.h>
@@ -28,10 +33,15 @@ struct ReplayResult
 	double finish_us = 0;  ///< time of finish() [us]
 	double wall_s = 0;	///< whole replay, steps and finish() [s]
 	AssociationAudit audit;
+	/// The plugin's report of each step (index k = step k), for associations.txt.
+	std::vector<StepReport> reports;
 };
 
 /// Runs `plugin` over every step of `log`. A NumericalError from the plugin
-/// is rethrown with the step index prefixed.
+/// is rethrown with the step index prefixed. When the plugin offers a
+/// smoothed trajectory after finish(), it must hold exactly one pose per step
+/// (else std::logic_error naming the plugin: a plugin bug, not bad input); it
+/// then replaces the recorded trajectory and keyframe poses.
 ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions& options);
 
 }  // namespace esif

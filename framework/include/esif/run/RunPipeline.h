@@ -18,12 +18,23 @@ struct RunRequest
 	std::optional<std::string> ground_truth_prefix;
 	std::string out_dir;
 	bool progress_bar = true;
+	/// Overrides `[esif] associations_from` (`esif run --associations-from`,
+	/// which `esif compare` sets to the run folder of the config it names).
+	std::optional<std::string> associations_from;
 };
 
 /// Runs the whole pipeline and writes every output into request.out_dir:
 /// map.simplemap, landmarks.gz, landmarks.txt, trajectory.tum, scene.3Dscene,
-/// map.png, stats.json and params.ini (the effective parameters). Returns
-/// the stats. Warnings (e.g. a truncated rawlog) go to stderr.
+/// map.png, step_times.png, info_matrix.png (information-form plugins),
+/// associations.txt (the plugin's decision for every measurement, see
+/// AssociationFile.h), stats.json and params.ini (the effective parameters).
+/// Returns the stats. Warnings (e.g. a truncated rawlog) go to stderr.
+///
+/// With `associations_from` (INI key or request override) set, the landmark
+/// IDs of every measurement come from that folder's associations.txt before
+/// the replay; a plugin that needs IDs is refused when none remain
+/// (LandmarkIdRequirement.h). Config errors are found before any output is
+/// written.
 Stats runPipeline(const RunRequest& request, PluginLoader& loader);
 
 }  // namespace esif

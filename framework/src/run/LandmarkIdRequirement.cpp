@@ -1,0 +1,40 @@
+#include <esif/core/Errors.h>
+#include <esif/run/LandmarkIdRequirement.h>
+
+namespace esif
+{
+bool hasAnyLandmarkId(const Rawlog& log)
+{
+	for (const auto& step : log.steps)
+		if (step.scan)
+			for (const auto& m : step.scan->measurements)
+				if (m.id) return true;
+	return false;
+}
+
+namespace
+{
+/// The class name as the INI file gives it ("EkfSlam", not "esif::EkfSlam").
+std::string iniClassName(const FilterPlugin& plugin)
+{
+	const std::string name = plugin.GetRuntimeClass()->className;
+	const std::string prefix = "esif::";
+	return name.rfind(prefix, 0) == 0 ? name.substr(prefix.size()) : name;
+}
+}  // namespace
+
+void requireLandmarkIds(const FilterPlugin& plugin, const Rawlog& log, const LandmarkIdSource& source)
+{
+	if (!plugin.needsLandmarkIds() || hasAnyLandmarkId(log)) return;
+	const std::string head =
+		source.config_path + ": plugin " + iniClassName(plugin) + " needs landmark IDs, but ";
+	// The recorded run rejected every measurement: pointing at associations_from again would not help.
+	if (!source.associations_file.empty())
+		throw ConfigError(head + "the associations " + source.associations_file + " give none (every measurement rejected)");
+	throw ConfigError(
+		head + "the rawlog " + log.path + " has none" + (source.ids_hidden ? " (hide_landmark_ids = true)" : "") +
+		": set [esif] associations_from = <a run folder, or in esif compare the label of another config> to use "
+		"that run's data association");
+}
+
+}  // namespace esif

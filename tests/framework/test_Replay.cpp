@@ -1,0 +1,95 @@
+// The replay loop with a fake plugin: every step's report is kept, and a
+// smoother's trajectory replaces the online poses (keyframes included) only
+// when it has one pose per step.
+
+#include <FakePlugin.h>
+#include <FakeRawlog.h>
+
+#include <esif/run/Replay.h>
+
+#include <gtest/gtest.h>
+
+namespace
+{
+using esif::Association;
+using esif::test::FakePlugin;
+using esif::test::makeRawlog;
+
+const esif::ReplayOptions kQuiet{0, false};
+
+/// Four steps: two scans, an odometry-only step, one more scan.
+esif::Rawlog fourSteps() { return makeRawlog({{{7, std::nullopt}}, {{7}}, std::nullopt, {{8}}}); }
+
+std::vector<esif::PoseEstimate> smoothedPoses(std::size_t n)
+{
+	std::vector<esif::PoseEstimate> poses(n);
+	for (std::size_t k = 0; k < n; ++k) poses[k].mean = mrpt::math::TPose2D(100 + static_cast<double>(k), -5, 0.5);
+	return poses;
+}
+
+TEST(Replay, KeepsEveryStepsReport)
+{
+	FakePlugin plugin;
+	const auto log = fourSteps();
+	const auto result = esif::replay(plugin, log, kQuiet);
+	ASSERT_EQ(result.reports.size(), 4u);
+	ASSERT_EQ(result.reports[0].associations.size(), 2u);
+	EXPECT_EQ(result.reports[0].associations[0].kind, Association::Kind::New);
+	EXPECT_EQ(result.reports[0].associations[0].id, 7);
+	EXPECT_EQ(result.reports[0].associations[1].kind, Association::Kind::Rejected);
+	EXPECT_EQ(result.reports[1].associations[0].kind, Association::Kind::Matched);
+	EXPECT_TRUE(result.reports[2].associations.empty());
+	EXPECT_EQ(result.reports[3].associations[0].id, 8);
+}
+
+TEST(Replay, FilterKeepsOnlinePosesAndKeyframeSteps)
+{
+	FakePlugin plugin;
+	const auto result = esif::replay(plugin, fourSteps(), kQuiet);
+	ASSERT_EQ(result.record.trajectory.size(), 4u);
+	EXPECT_DOUBLE_EQ(result.record.trajectory[3].pose.mean.x, 4.0);  // dead reckoning, 1 m a step
+	ASSERT_EQ(result.record.keyframes.size(), 3u);	// the steps with a sensory frame
+	EXPECT_EQ(result.record.keyframes[0].step, 0u);
+	EXPECT_EQ(result.record.keyframes[1].step, 1u);
+	EXPECT_EQ(result.record.keyframes[2].step, 3u);
+	EXPECT_DOUBLE_EQ(result.record.keyframes[2].pose.mean.x, 4.0);
+}
+
+TEST(Replay, SmoothedTrajectoryReplacesPosesAndKeyframes)
+{
+	FakePlugin plugin;
+	plugin.smoothed = smoothedPoses(4);
+	(*plugin.smoothed)[3].cov = Eigen::Matrix3d::Identity() * 0.25;
+	const auto result = esif::replay(plugin, fourSteps(), kQuiet);
+	ASSERT_EQ(result.record.trajectory.size(), 4u);
+	for (std::size_t k = 0; k < 4; ++k)
+	{
+		EXPECT_EQ(result.record.trajectory[k].step, k);
+		EXPECT_DOUBLE_EQ(result.record.trajectory[k].pose.mean.x, 100.0 + static_cast<double>(k));
+		EXPECT_DOUBLE_EQ(result.record.trajectory[k].pose.mean.y, -5.0);
+	}
+	EXPECT_DOUBLE_EQ(result.record.trajectory[3].pose.cov(2, 2), 0.25);
+	ASSERT_EQ(result.record.keyframes.size(), 3u);
+	for (const auto& kf : result.record.keyframes)
+		EXPECT_DOUBLE_EQ(kf.pose.mean.x, 100.0 + static_cast<double>(kf.step)) << "keyframe of step " << kf.step;
+	EXPECT_DOUBLE_EQ(result.record.keyframes[2].pose.cov(2, 2), 0.25);
+}
+
+TEST(Replay, SmoothedTrajectoryOfWrongLengthNamesThePlugin)
+{
+	FakePlugin plugin;
+	plugin.smoothed = smoothedPoses(3);
+	try
+	{
+		esif::replay(plugin, fourSteps(), kQuiet);
+		FAIL() << "expected std::logic_error";
+	}
+	catch (const std::logic_error& e)
+	{
+		const std::string what = e.what();
+		EXPECT_NE(what.find("plugin esif::test::FakePlugin"), std::string::npos) << what;
+		EXPECT_NE(what.find("smoothed trajectory of 3 poses for 4 steps"), std::string::npos) << what;
+	}
+}
+
+}  // namespace

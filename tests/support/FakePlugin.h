@@ -1,0 +1,45 @@
+#pragma once
+/// \file FakePlugin.h
+/// A minimal FilterPlugin for host tests that need no real estimator: it
+/// dead-reckons the odometry, matches measurements by their IDs (rejecting
+/// those without), and can pose as a smoother or as a plugin that needs IDs.
+
+#include <esif/plugin/FilterPlugin.h>
+
+#include <optional>
+#include <set>
+#include <vector>
+
+namespace esif::test
+{
+class FakePlugin : public FilterPlugin
+{
+	DEFINE_MRPT_OBJECT(FakePlugin, esif::test)
+
+   public:
+	/// Returned by smoothedTrajectory() (none: a plain filter).
+	std::optional<std::vector<PoseEstimate>> smoothed;
+	bool needs_ids = false;	 ///< returned by needsLandmarkIds()
+	bool finished = false;	///< set by finish()
+
+	std::string sectionName() const override { return "fake"; }
+	void configure(const ConfigSection&) override {}
+	std::vector<ParamInfo> parameters() const override { return {}; }
+	StepReport processStep(const StepInput& step) override;
+	void finish() override { finished = true; }
+	PoseEstimate robotPose() const override { return pose_; }
+	Estimate estimate() const override { return {pose_, {}}; }
+	CostFigures costFigures() const override { return {}; }
+	bool needsLandmarkIds() const override { return needs_ids; }
+	std::optional<std::vector<PoseEstimate>> smoothedTrajectory() const override
+	{
+		// Like a real smoother: nothing before finish().
+		return finished ? smoothed : std::nullopt;
+	}
+
+   private:
+	PoseEstimate pose_;
+	std::set<LandmarkId> seen_;
+};
+
+}  // namespace esif::test
