@@ -8,6 +8,7 @@
 #include <esif/io/AtomicFile.h>
 #include <esif/io/MapWriter.h>
 
+#include "FigureCanvas.h"
 #include "MapGeometry.h"
 #include "MapPalette.h"
 
@@ -573,23 +574,7 @@ void writeMapImage(const RunRecord& run, const std::string& path, const MapWrite
 	mg::validateOptions(options);
 	const mrpt::img::CImage img = MapPainter(run, options).paint();
 
-	writeAtomically(path, [&](const std::string& tmp) {
-		// OpenCV picks the image format from the extension, and the temporary
-		// name ends in ".tmp": encode to a ".png" sibling, then move it onto
-		// the temporary name that writeAtomically renames into place.
-		const std::string png_tmp = tmp + ".png";
-		try
-		{
-			if (!img.saveToFile(png_tmp)) throw InputError(path + ": cannot write PNG image");
-			std::filesystem::rename(png_tmp, tmp);
-		}
-		catch (...)
-		{
-			std::error_code ec;
-			std::filesystem::remove(png_tmp, ec);
-			throw;
-		}
-	});
+	figure_canvas::savePngAtomically(img, path);
 }
 
 }  // namespace esif
