@@ -292,8 +292,7 @@ TEST(FigureWriter, EsifRunWritesStepTimesButNoInfoMatrixForTheEkf)
 {
 	TempDir dir;
 	const std::string rawlog = dir.file("small.rawlog");
-	const auto sim = esif::test::runEsif(
-		"simulate --config '" + esif::test::sourcePath("configs/sim/small.ini") + "' --out '" + rawlog + "'");
+	const auto sim = esif::test::simulateSmall(rawlog);
 	ASSERT_EQ(sim.exit_code, 0) << sim.out;
 	const std::string out = dir.file("out");
 	const auto run = esif::test::runEsif(

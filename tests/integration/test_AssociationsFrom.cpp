@@ -17,17 +17,10 @@
 
 namespace
 {
+using esif::test::readText;
 using esif::test::runEsif;
 using esif::test::sourcePath;
 using esif::test::TempDir;
-
-std::string readText(const std::string& path)
-{
-	std::ifstream in(path);
-	std::stringstream ss;
-	ss << in.rdbuf();
-	return ss.str();
-}
 
 /// Rows of an associations.txt (its comment header left out).
 std::string rowsOf(const std::string& path)
@@ -51,9 +44,7 @@ class AssociationsFrom : public ::testing::Test
 	static void SetUpTestSuite()
 	{
 		dir_ = std::make_unique<TempDir>();
-		const auto r = runEsif(
-			"simulate --config '" + sourcePath("configs/sim/small.ini") + "' --out '" + dir_->file("small.rawlog") +
-			"'");
+		const auto r = esif::test::simulateSmall(dir_->file("small.rawlog"));
 		ASSERT_EQ(r.exit_code, 0) << r.out;
 		std::ofstream(dir_->file("jcbb.ini"))
 			<< "[esif]\nplugin = EkfSlam\nlabel = jcbb\nhide_landmark_ids = true\n[ekf]\nassociation = jcbb\n";
@@ -142,9 +133,7 @@ TEST_F(AssociationsFrom, MissingFolderIsOneLineBeforeAnyOutput)
 TEST_F(AssociationsFrom, AssociationsOfAnotherRawlogAreRefused)
 {
 	ASSERT_EQ(runEsif(runArgs(dir_->file("ids.ini"), "for_other")).exit_code, 0);
-	const auto other = runEsif(
-		"simulate --config '" + sourcePath("configs/sim/small.ini") + "' --seed 7 --out '" +
-		dir_->file("other.rawlog") + "'");
+	const auto other = esif::test::simulateSmall(dir_->file("other.rawlog"), "--seed 7");
 	ASSERT_EQ(other.exit_code, 0) << other.out;
 	const auto r = runEsif(
 		"run -q --config '" + writeKnownIds("wrong.ini", dir_->file("for_other")) + "' --rawlog '" +

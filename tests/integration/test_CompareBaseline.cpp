@@ -13,17 +13,10 @@
 
 namespace
 {
+using esif::test::readText;
 using esif::test::runEsif;
 using esif::test::sourcePath;
 using esif::test::TempDir;
-
-std::string readText(const std::string& path)
-{
-	std::ifstream in(path);
-	std::stringstream ss;
-	ss << in.rdbuf();
-	return ss.str();
-}
 
 /// The line of `text` starting with `head`, or "" when there is none.
 std::string lineStarting(const std::string& text, const std::string& head, std::size_t from = 0)
@@ -50,9 +43,7 @@ class CompareBaseline : public ::testing::Test
 	static void SetUpTestSuite()
 	{
 		dir_ = std::make_unique<TempDir>();
-		const auto r = runEsif(
-			"simulate --config '" + sourcePath("configs/sim/small.ini") + "' --out '" + dir_->file("small.rawlog") +
-			"'");
+		const auto r = esif::test::simulateSmall(dir_->file("small.rawlog"));
 		ASSERT_EQ(r.exit_code, 0) << r.out;
 		std::filesystem::copy_file(dir_->file("small.rawlog"), dir_->file("nogt.rawlog"));
 		std::ofstream(dir_->file("ekf.ini")) << "[esif]\nplugin = EkfSlam\nlabel = ekf\n";

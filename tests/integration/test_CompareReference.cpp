@@ -64,9 +64,7 @@ class CompareReference : public ::testing::Test
 	static void SetUpTestSuite()
 	{
 		dir_ = std::make_unique<TempDir>();
-		const auto r = runEsif(
-			"simulate --config '" + sourcePath("configs/sim/small.ini") + "' --out '" + dir_->file("small.rawlog") +
-			"'");
+		const auto r = esif::test::simulateSmall(dir_->file("small.rawlog"));
 		ASSERT_EQ(r.exit_code, 0) << r.out;
 		std::ofstream(dir_->file("dslam.ini")) << "[esif]\nplugin = Dslam\nlabel = dslam\n[dslam]\nassociation = known_ids\n";
 	}

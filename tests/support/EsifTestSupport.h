@@ -10,7 +10,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 
 namespace esif::test
@@ -72,6 +74,25 @@ inline CommandResult runEsif(const std::string& args)
 	const int status = ::pclose(pipe);
 	r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 	return r;
+}
+
+/// The whole content of a text file ("" when it cannot be read).
+inline std::string readText(const std::string& path)
+{
+	std::ifstream in(path);
+	std::stringstream ss;
+	ss << in.rdbuf();
+	return ss.str();
+}
+
+/// Runs `esif simulate` on configs/sim/small.ini (200 steps, 16 features),
+/// writing `rawlog` and its ground truth beside it; `extra` adds options
+/// (e.g. "--seed 7").
+inline CommandResult simulateSmall(const std::string& rawlog, const std::string& extra = "")
+{
+	return runEsif(
+		"simulate --config '" + sourcePath("configs/sim/small.ini") + "' " + extra + (extra.empty() ? "" : " ") +
+		"--out '" + rawlog + "'");
 }
 
 }  // namespace esif::test

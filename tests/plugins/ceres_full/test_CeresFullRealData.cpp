@@ -11,7 +11,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <sstream>
 
 namespace
 {
@@ -24,10 +23,7 @@ Stats runAndReadStats(const std::string& config, const std::string& rawlog, cons
 {
 	const auto r = test::runEsif("run --quiet --config '" + config + "' --rawlog '" + rawlog + "' --out '" + out + "'");
 	EXPECT_EQ(r.exit_code, 0) << r.out;
-	std::ifstream in(out + "/stats.json");
-	std::stringstream ss;
-	ss << in.rdbuf();
-	return Stats::fromJson(ss.str(), out + "/stats.json");
+	return Stats::fromJson(test::readText(out + "/stats.json"), out + "/stats.json");
 }
 
 double number(const Stats& s, const std::string& key)
