@@ -20,6 +20,7 @@
 #include "CovarianceIntersection.h"
 #include "DslamMap.h"
 #include "KidnappedRobot.h"
+#include "KidnappedTestCase.h"
 #include "LocalSlam.h"
 #include "ReferencePair.h"
 #include "RelativeGeometry.h"
@@ -353,24 +354,14 @@ TEST(DslamUnitsReferencePair, F1IsTheOneMappedEarlier)
 // ===========================================================================
 // 3. Kidnapped robot, eq. (3.17)-(3.18)
 
-constexpr double kSigmaF = 0.05, kSigmaR = 0.1, kSigmaT = 0.02;
-
-KidnappedInput twoFeatures()
-{
-	// Robot truly at (0, 0, 0); f1 = (2, 0), f2 = (0, 2), independent map
-	// covariances sigma_f^2 I; exact measurements (2, 0) and (2, pi/2).
-	KidnappedInput in;
-	in.features = (Eigen::VectorXd(4) << 2, 0, 0, 2).finished();
-	in.features_cov = kSigmaF * kSigmaF * Eigen::MatrixXd::Identity(4, 4);
-	const Eigen::Matrix2d R = Eigen::Vector2d(kSigmaR * kSigmaR, kSigmaT * kSigmaT).asDiagonal();
-	in.z_loc = {{1, Eigen::Vector2d(2, 0), R}, {2, Eigen::Vector2d(2, M_PI / 2), R}};
-	in.initial_robot = Pose2::Zero();
-	return in;
-}
+using esif::dslam::cases::kSigmaF;
+using esif::dslam::cases::kSigmaR;
+using esif::dslam::cases::kSigmaT;
+using esif::dslam::cases::twoFeatureCase;
 
 TEST(DslamUnitsKidnappedRobot, HandComputedTwoFeatureCovariance)
 {
-	const KidnappedInput in = twoFeatures();
+	const KidnappedInput in = twoFeatureCase();
 	const GaussianState s = solveKidnappedRobot(in);
 	ASSERT_EQ(s.mean.size(), 7);
 	// Exact measurements, linearised at the truth: the mean is the truth.
@@ -415,7 +406,7 @@ TEST(DslamUnitsKidnappedRobot, HandComputedTwoFeatureCovariance)
 
 TEST(DslamUnitsKidnappedRobot, SmallPerturbationConvergesInOneStep)
 {
-	KidnappedInput in = twoFeatures();
+	KidnappedInput in = twoFeatureCase();
 	in.initial_robot = Pose2(0.01, -0.01, 0.5 * kDeg);	// 1 cm / 0.5 deg off
 	const GaussianState s = solveKidnappedRobot(in);
 	// One linearised (Gauss-Newton) step leaves an error of second order in
@@ -428,7 +419,7 @@ TEST(DslamUnitsKidnappedRobot, SmallPerturbationConvergesInOneStep)
 
 TEST(DslamUnitsKidnappedRobot, FewerThanTwoFeaturesThrow)
 {
-	KidnappedInput in = twoFeatures();
+	KidnappedInput in = twoFeatureCase();
 	in.z_loc.pop_back();
 	in.features.conservativeResize(2);
 	in.features_cov = in.features_cov.topLeftCorner(2, 2).eval();

@@ -5,6 +5,7 @@
 
 #include "CovarianceIntersection.h"
 #include "KidnappedRobot.h"
+#include "KidnappedTestCase.h"
 #include "RelativeGeometry.h"
 
 #include <NumericJacobian.h>
@@ -20,20 +21,10 @@ namespace
 using namespace esif;
 using namespace esif::dslam;
 
-constexpr double kSigmaF = 0.05, kSigmaR = 0.1, kSigmaT = 0.02;
-
-KidnappedInput twoFeatureCase()
-{
-	// Robot truly at the origin heading 0; f1 = (2, 0), f2 = (0, 2); exact
-	// measurements r = 2, bearings 0 and pi/2.
-	KidnappedInput in;
-	in.features = (Eigen::VectorXd(4) << 2, 0, 0, 2).finished();
-	in.features_cov = kSigmaF * kSigmaF * Eigen::MatrixXd::Identity(4, 4);
-	const Eigen::Matrix2d R = Eigen::Vector2d(kSigmaR * kSigmaR, kSigmaT * kSigmaT).asDiagonal();
-	in.z_loc = {{1, Eigen::Vector2d(2, 0), R}, {2, Eigen::Vector2d(2, M_PI / 2), R}};
-	in.initial_robot = Pose2::Zero();
-	return in;
-}
+using esif::dslam::cases::kSigmaF;
+using esif::dslam::cases::kSigmaR;
+using esif::dslam::cases::kSigmaT;
+using esif::dslam::cases::twoFeatureCase;
 
 TEST(KidnappedRobot, HandComputedTwoFeatureCase)
 {
