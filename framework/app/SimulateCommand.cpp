@@ -35,10 +35,7 @@ int simulateCommand(int argc, char** argv)
 	ConfigFile config = ConfigFile::load(config_arg.getValue());
 	// Through the INI so the seed is validated like any other value.
 	if (seed_arg.isSet()) config.set("simulation", "seed", std::to_string(seed_arg.getValue()));
-	const ConfigSection section = config.section("simulation");
-	Scenario scenario;
-	loadParams(scenario, section);
-	section.rejectUnknownKeys();
+	const Scenario scenario = Scenario::fromConfig(config);
 
 	try
 	{

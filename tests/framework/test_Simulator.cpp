@@ -37,15 +37,7 @@ namespace
 {
 const std::string kSmallIni = std::string(ESIF_SOURCE_DIR) + "/configs/sim/small.ini";
 
-Scenario loadScenario(const std::string& path)
-{
-	const ConfigFile config = ConfigFile::load(path);
-	const ConfigSection section = config.section("simulation");
-	Scenario s;
-	loadParams(s, section);
-	section.rejectUnknownKeys();
-	return s;
-}
+Scenario loadScenario(const std::string& path) { return Scenario::fromConfig(ConfigFile::load(path)); }
 
 Scenario scenarioFromText(const std::string& text)
 {

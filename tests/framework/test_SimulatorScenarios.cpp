@@ -33,12 +33,7 @@ namespace
 {
 Scenario loadScenario(const std::string& relative_path)
 {
-	const ConfigFile config = ConfigFile::load(test::sourcePath(relative_path));
-	const ConfigSection section = config.section("simulation");
-	Scenario s;
-	loadParams(s, section);
-	section.rejectUnknownKeys();
-	return s;
+	return Scenario::fromConfig(ConfigFile::load(test::sourcePath(relative_path)));
 }
 
 Scenario scenarioFromText(const std::string& text)

@@ -1,3 +1,4 @@
+#include <esif/config/ConfigFile.h>
 #include <esif/config/ConfigSection.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
@@ -55,6 +56,15 @@ void Scenario::declare(ParamBinder& b)
 	b.real("sensor_x_m", sensor_x_m, "sensor position on the robot [m]", Bounds::any());
 	b.real("sensor_y_m", sensor_y_m, "sensor position on the robot [m]", Bounds::any());
 	b.real("sensor_yaw_deg", sensor_yaw_deg, "sensor heading on the robot [deg]", Bounds::any());
+}
+
+Scenario Scenario::fromConfig(const ConfigFile& config)
+{
+	const ConfigSection section = config.section("simulation");
+	Scenario scenario;
+	loadParams(scenario, section);
+	section.rejectUnknownKeys();
+	return scenario;
 }
 
 void Scenario::validate() const

@@ -14,6 +14,7 @@
 
 namespace esif
 {
+class ConfigFile;
 class ParamBinder;
 
 struct Scenario
@@ -71,6 +72,11 @@ struct Scenario
 	/// Declares every field once, for loading (`loadParams(scenario,
 	/// section)`), validation of each value and listings.
 	void declare(ParamBinder& b);
+
+	/// The [simulation] section of `config`; throws ConfigError naming the
+	/// file and key for a bad value or an unknown key. Cross-field rules are
+	/// left to validate().
+	static Scenario fromConfig(const ConfigFile& config);
 
 	/// Checks the rules that involve several fields (the start inside the
 	/// square, a non-empty waypoint area, an ordered featureless band) and the
