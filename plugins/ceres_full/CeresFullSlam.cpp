@@ -5,7 +5,6 @@
 #include <esif/core/Errors.h>
 #include <esif/models/RangeBearingModel.h>
 
-#include <Eigen/SparseCore>
 #include <chrono>
 #include <thread>
 
@@ -166,7 +165,7 @@ PoseEstimate CeresFullSlam::poseEstimate(std::size_t pose) const
 {
 	PoseEstimate p;
 	p.mean = toTPose2D(graph_->pose(pose));
-	const auto it = marginals_.find(const_cast<FullSlamGraph&>(*graph_).poseBlock(pose));
+	const auto it = marginals_.find(graph_->poseBlock(pose));
 	if (it != marginals_.end()) p.cov = it->second;
 	return p;
 }
@@ -177,13 +176,12 @@ Estimate CeresFullSlam::estimate() const
 {
 	Estimate e;
 	e.robot = robotPose();
-	auto& graph = const_cast<FullSlamGraph&>(*graph_);	// block addresses only; nothing is modified
 	for (const LandmarkId id : graph_->landmarkIds())
 	{
 		LandmarkEstimate l;
 		l.id = id;
 		l.mean = graph_->landmark(id);
-		const auto it = marginals_.find(graph.landmarkBlock(id));
+		const auto it = marginals_.find(graph_->landmarkBlock(id));
 		if (it != marginals_.end()) l.cov = it->second;
 		e.landmarks.push_back(l);
 	}
@@ -223,20 +221,9 @@ CostFigures CeresFullSlam::costFigures() const
 std::optional<InformationPattern> CeresFullSlam::informationPattern() const
 {
 	// J^T J at the optimum, poses first then landmarks (the gauge pose left out).
-	auto& graph = const_cast<FullSlamGraph&>(*graph_);	// Evaluate() reads the blocks only
-	if (graph.residualDim() == 0) return std::nullopt;
-	ceres::Problem::EvaluateOptions options;
-	for (std::size_t i = 1; i < graph.poseCount(); ++i) options.parameter_blocks.push_back(graph.poseBlock(i));
-	for (const LandmarkId id : graph.landmarkIds()) options.parameter_blocks.push_back(graph.landmarkBlock(id));
-	options.apply_loss_function = true;
-	options.num_threads = threads();
-	ceres::CRSMatrix crs;
-	graph.problem().Evaluate(options, nullptr, nullptr, nullptr, &crs);
-	const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> j(
-		crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(), crs.cols.data(),
-		crs.values.data());
+	if (graph_->residualDim() == 0) return std::nullopt;
 	InformationPattern p;
-	p.information = Eigen::SparseMatrix<double>(j.transpose()) * Eigen::SparseMatrix<double>(j);
+	p.information = graph_->informationMatrix(threads());
 	return p;
 }
 

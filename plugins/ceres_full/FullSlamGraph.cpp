@@ -84,4 +84,19 @@ std::size_t FullSlamGraph::informationNonZeros() const
 	return diagonal + 2 * off_diagonal_nnz_;
 }
 
+Eigen::SparseMatrix<double> FullSlamGraph::informationMatrix(int threads)
+{
+	ceres::Problem::EvaluateOptions options;
+	for (std::size_t i = 1; i < poses_.size(); ++i) options.parameter_blocks.push_back(poseBlock(i));
+	for (const LandmarkId id : landmark_ids_) options.parameter_blocks.push_back(landmarkBlock(id));
+	options.apply_loss_function = true;
+	options.num_threads = threads;
+	ceres::CRSMatrix crs;
+	problem_->Evaluate(options, nullptr, nullptr, nullptr, &crs);
+	const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> j(
+		crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(), crs.cols.data(),
+		crs.values.data());
+	return Eigen::SparseMatrix<double>(j.transpose()) * Eigen::SparseMatrix<double>(j);
+}
+
 }  // namespace esif::ceres_full

@@ -13,6 +13,7 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <array>
 #include <deque>
 #include <memory>
@@ -55,7 +56,9 @@ class FullSlamGraph
 	void setPose(std::size_t i, const Pose2& p);
 
 	double* poseBlock(std::size_t i) { return poses_[i].data(); }
+	const double* poseBlock(std::size_t i) const { return poses_[i].data(); }
 	double* landmarkBlock(LandmarkId id) { return landmarks_[landmark_index_.at(id)].data(); }
+	const double* landmarkBlock(LandmarkId id) const { return landmarks_[landmark_index_.at(id)].data(); }
 	/// True for the gauge pose (index 0), which is not estimated.
 	static bool isGauge(std::size_t pose) { return pose == 0; }
 
@@ -71,6 +74,10 @@ class FullSlamGraph
 	/// residual (pose-pose links from odometry, pose-feature links from
 	/// observations).
 	std::size_t informationNonZeros() const;
+
+	/// J^T J at the current values, over the estimated blocks: poses 1..N,
+	/// then landmarks in first-seen order. Evaluates every residual.
+	Eigen::SparseMatrix<double> informationMatrix(int threads);
 
    private:
 	void linkBlocks(const double* a, int dim_a, const double* b, int dim_b);
