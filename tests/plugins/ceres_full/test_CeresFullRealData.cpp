@@ -28,14 +28,9 @@ Stats runAndReadStats(const std::string& config, const std::string& rawlog, cons
 
 double number(const Stats& s, const std::string& key)
 {
-	const auto v = s.get(key);
-	if (v)
-	{
-		if (const auto* d = std::get_if<double>(&*v)) return *d;
-		if (const auto* i = std::get_if<long long>(&*v)) return static_cast<double>(*i);
-	}
-	ADD_FAILURE() << "no number " << key;
-	return std::nan("");
+	const auto v = s.number(key);
+	if (!v) ADD_FAILURE() << "no number " << key;
+	return v.value_or(std::nan(""));
 }
 
 TEST(CeresFullRealData, ConvergesOnTheKfSlamDemoMoreAccuratelyThanTheEkf)
