@@ -1,181 +1,21 @@
 #include "EkfSlam.h"
 
-#include <esif/association/Chi2.h>
-#include <esif/core/Errors.h>
-
-#include <algorithm>
-#include <cmath>
-
 IMPLEMENTS_MRPT_OBJECT(EkfSlam, FilterPlugin, esif)
 
 namespace esif
 {
-namespace
-{
-constexpr double kDeg = M_PI / 180.0;
-}
-
 void EkfSlam::configure(const ConfigSection& section)
 {
 	loadParams(params_, section);
-	gate_distance2_new_ = chi2Quantile(params_.new_landmark_chi2_quantile, 2);
-}
-
-StepReport EkfSlam::processStep(const StepInput& step)
-{
-	if (step.odometry) core_.predict(*step.odometry);
-	if (!step.scan) return {};
-
-	std::vector<EkfSlamCore::Match> matches;
-	StepReport report = associateScan(step, matches);
-	core_.update(matches, toPose2(step.scan->sensor_on_robot));
-	addNewLandmarks(*step.scan, report);
-	return report;
-}
-
-StepReport EkfSlam::associateScan(const StepInput& step, std::vector<EkfSlamCore::Match>& matches)
-{
-	const auto& ms = step.scan->measurements;
-	const bool all_have_ids = std::all_of(ms.begin(), ms.end(), [](const RangeBearing& m) { return m.id.has_value(); });
-	switch (params_.association)
-	{
-		case EkfAssociation::KnownIds: return associateByIds(step, matches);
-		case EkfAssociation::Auto:
-			return all_have_ids ? associateByIds(step, matches) : associateByDistance(*step.scan, matches);
-		default: return associateByDistance(*step.scan, matches);
-	}
-}
-
-StepReport EkfSlam::associateByIds(const StepInput& step, std::vector<EkfSlamCore::Match>& matches) const
-{
-	StepReport report;
-	std::unordered_map<LandmarkId, bool> seen;
-	const auto& ms = step.scan->measurements;
-	for (std::size_t i = 0; i < ms.size(); ++i)
-	{
-		if (!ms[i].id)
-			throw InputError(
-				"step " + std::to_string(step.index) + ", measurement " + std::to_string(i) +
-				": no landmark ID but [ekf] association = known_ids");
-		const LandmarkId id = *ms[i].id;
-		// A second measurement of one landmark in one scan is not independent
-		// information about it: use the first only.
-		if (seen[id])
-		{
-			report.associations.push_back({Association::Kind::Rejected, id});
-			continue;
-		}
-		seen[id] = true;
-		const auto it = index_of_.find(id);
-		if (it == index_of_.end())
-			report.associations.push_back({Association::Kind::New, id});
-		else
-		{
-			report.associations.push_back({Association::Kind::Matched, id});
-			matches.push_back({it->second, Eigen::Vector2d(ms[i].range_m, ms[i].bearing_rad), ms[i].cov});
-		}
-	}
-	return report;
-}
-
-std::vector<std::size_t> EkfSlam::candidatesFor(const Scan& scan) const
-{
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
-	const double max_range = scan.max_range_m > 0 ? scan.max_range_m + params_.candidate_margin_m : INFINITY;
-	const double half_fov =
-		scan.fov_rad > 0 ? 0.5 * scan.fov_rad + params_.candidate_margin_deg * kDeg : INFINITY;
-	std::vector<std::size_t> out;
-	for (std::size_t i = 0; i < core_.landmarkCount(); ++i)
-	{
-		const auto h = core_.predictMeasurement(i, sensor);
-		// Within the range margin of the sensor the bearing says little (the
-		// robot may drive over a feature): such landmarks are always candidates.
-		const bool near = h.z(0) <= params_.candidate_margin_m;
-		if (near || (h.z(0) <= max_range && std::abs(h.z(1)) <= half_fov)) out.push_back(i);
-	}
-	return out;
-}
-
-StepReport EkfSlam::associateByDistance(const Scan& scan, std::vector<EkfSlamCore::Match>& matches)
-{
-	const auto& ms = scan.measurements;
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
-	const auto candidates = candidatesFor(scan);
-
-	AssociationInput in;
-	in.observations.resize(ms.size(), 2);
-	for (std::size_t i = 0; i < ms.size(); ++i) in.observations.row(i) << ms[i].range_m, ms[i].bearing_rad;
-	in.predictions.resize(candidates.size(), 2);
-	for (std::size_t j = 0; j < candidates.size(); ++j)
-		in.predictions.row(j) = core_.predictMeasurement(candidates[j], sensor).z.transpose();
-	in.covariance = core_.predictionCovariance(candidates, sensor);
-	// MRPT's association takes one noise for all measurements of a scan: the
-	// sensor's nominal covariance (that of the first measurement).
-	for (std::size_t j = 0; j < candidates.size() && !ms.empty(); ++j)
-		in.covariance.block<2, 2>(2 * j, 2 * j) += ms.front().cov;
-
-	const auto result = associate(
-		in, params_.association == EkfAssociation::NearestNeighbor ? AssociationMethod::NearestNeighbor
-																   : AssociationMethod::Jcbb,
-		params_.gate_chi2_quantile);
-	jcbb_nodes_ += result.jcbb_nodes;
-
-	StepReport report;
-	std::vector<bool> taken(candidates.size(), false);
-	for (std::size_t i = 0; i < ms.size(); ++i)
-	{
-		const int c = result.candidate_of[i];
-		if (c >= 0 && !taken[c])
-		{
-			taken[c] = true;
-			const std::size_t idx = candidates[c];
-			report.associations.push_back({Association::Kind::Matched, ids_[idx]});
-			matches.push_back({idx, Eigen::Vector2d(ms[i].range_m, ms[i].bearing_rad), ms[i].cov});
-		}
-		else if (c < 0 && result.min_distance2[i] > gate_distance2_new_)
-			report.associations.push_back({Association::Kind::New, -1});
-		else
-			report.associations.push_back({Association::Kind::Rejected, -1});
-	}
-	return report;
-}
-
-void EkfSlam::addNewLandmarks(const Scan& scan, StepReport& report)
-{
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
-	for (std::size_t i = 0; i < report.associations.size(); ++i)
-	{
-		auto& a = report.associations[i];
-		if (a.kind != Association::Kind::New) continue;
-		const auto& m = scan.measurements[i];
-		if (a.id < 0)
-		{
-			while (index_of_.count(next_own_id_)) ++next_own_id_;
-			a.id = next_own_id_++;
-		}
-		const std::size_t idx = core_.addLandmark(Eigen::Vector2d(m.range_m, m.bearing_rad), m.cov, sensor);
-		ids_.push_back(a.id);
-		index_of_[a.id] = idx;
-	}
-}
-
-PoseEstimate EkfSlam::robotPose() const { return {toTPose2D(core_.robot()), core_.robotCov()}; }
-
-Estimate EkfSlam::estimate() const
-{
-	Estimate e;
-	e.robot = robotPose();
-	e.landmarks.reserve(ids_.size());
-	for (std::size_t i = 0; i < ids_.size(); ++i) e.landmarks.push_back({ids_[i], core_.landmark(i), core_.landmarkCov(i)});
-	return e;
+	filter_ = LandmarkEkf(params_);
 }
 
 CostFigures EkfSlam::costFigures() const
 {
 	CostFigures c;
-	c.state_dim = core_.stateDim();
+	c.state_dim = filter_.core().stateDim();
 	c.poses_in_state = 1;  // the current robot pose
-	c.counters.emplace_back("jcbb_nodes", static_cast<double>(jcbb_nodes_));
+	c.counters.emplace_back("jcbb_nodes", static_cast<double>(filter_.jcbbNodes()));
 	return c;
 }
 

@@ -1,21 +1,24 @@
 #pragma once
-/// \file EkfParams.h
-/// Parameters of the EKF SLAM plugin, INI section [ekf].
+/// \file EkfAssociationParams.h
+/// How an EKF SLAM filter associates the measurements of a scan with its
+/// landmarks: landmark IDs, MRPT nearest neighbour or MRPT JCBB, and the
+/// gates. Declared inside the section of whoever runs the filter ([ekf] for
+/// the EKF plugin, a joining plugin's section for its local-map builder), with
+/// the same keys everywhere.
 
-#include <esif/association/DataAssociation.h>
 #include <esif/config/ParamBinder.h>
 
 namespace esif
 {
 enum class EkfAssociation
 {
-	Auto,  ///< known_ids when the measurement carries an ID, otherwise jcbb
+	Auto,  ///< known_ids when every measurement of the scan carries an ID, otherwise jcbb
 	KnownIds,
 	NearestNeighbor,
 	Jcbb
 };
 
-struct EkfParams
+struct EkfAssociationParams
 {
 	EkfAssociation association = EkfAssociation::Auto;	///< auto | known_ids | nn | jcbb
 	double gate_chi2_quantile = 0.99;  ///< individual-compatibility gate confidence, in (0, 1)

@@ -1,10 +1,8 @@
-#include "EkfParams.h"
-
-#include <esif/core/Errors.h>
+#include <esif/ekf/EkfAssociationParams.h>
 
 namespace esif
 {
-void EkfParams::declare(ParamBinder& b)
+void EkfAssociationParams::declare(ParamBinder& b)
 {
 	b.enumeration<EkfAssociation>(
 		"association", association,

@@ -1,0 +1,66 @@
+#pragma once
+/// \file LandmarkEkf.h
+/// EKF SLAM over identified landmarks (book Sec. 1.2.1): the dense core plus
+/// landmark identities and the data association of each scan (landmark IDs,
+/// MRPT NN or MRPT JCBB). One implementation for the EKF plugin and the
+/// local-map builder of the map-joining filters (Ch. 4-5), so both associate
+/// exactly alike.
+///
+/// A step is: prediction with the odometry (eq. 1.8), association of the
+/// scan, one joint update with every match (eq. 1.9-1.10), then the new
+/// landmarks initialised from their measurements.
+
+#include <esif/core/Estimate.h>
+#include <esif/ekf/EkfAssociationParams.h>
+#include <esif/ekf/EkfSlamCore.h>
+
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+namespace esif
+{
+class LandmarkEkf
+{
+   public:
+	/// Robot at the origin with zero covariance. Landmarks the filter creates
+	/// for measurements without an ID are numbered from `first_own_id` up,
+	/// skipping IDs already in the map.
+	explicit LandmarkEkf(const EkfAssociationParams& params = {}, LandmarkId first_own_id = 0);
+
+	/// One step: predict, associate, update, add new landmarks. Returns one
+	/// Association per measurement. Throws InputError when association =
+	/// known_ids and a measurement has no ID, NumericalError on a failed update.
+	StepReport processStep(const StepInput& step);
+
+	const EkfSlamCore& core() const { return core_; }
+	/// Landmark IDs in the core's order (index i = landmark i).
+	const std::vector<LandmarkId>& ids() const { return ids_; }
+	/// The core index of landmark `id`, if mapped.
+	std::optional<std::size_t> indexOf(LandmarkId id) const;
+	/// The ID the next landmark created without a measured ID would get (or a larger one).
+	LandmarkId nextOwnId() const { return next_own_id_; }
+	/// JCBB search nodes explored so far (MRPT's count).
+	std::size_t jcbbNodes() const { return jcbb_nodes_; }
+
+	PoseEstimate robotPose() const;
+	/// Robot pose and every landmark with its marginal covariance.
+	Estimate estimate() const;
+
+   private:
+	StepReport associateScan(const StepInput& step, std::vector<EkfSlamCore::Match>& matches);
+	StepReport associateByIds(const StepInput& step, std::vector<EkfSlamCore::Match>& matches) const;
+	StepReport associateByDistance(const Scan& scan, std::vector<EkfSlamCore::Match>& matches);
+	std::vector<std::size_t> candidatesFor(const Scan& scan) const;
+	void addNewLandmarks(const Scan& scan, StepReport& report);
+
+	EkfAssociationParams params_;
+	double gate_distance2_new_ = 0;	 // chi-square value of new_landmark_chi2_quantile
+	EkfSlamCore core_;
+	std::vector<LandmarkId> ids_;  // landmark index -> ID
+	std::unordered_map<LandmarkId, std::size_t> index_of_;
+	LandmarkId next_own_id_ = 0;
+	std::size_t jcbb_nodes_ = 0;
+};
+
+}  // namespace esif
