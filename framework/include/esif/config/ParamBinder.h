@@ -8,6 +8,7 @@
 /// b.real(...), b.integer(...), b.flag(...), b.choice(...) once per field.
 
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <string>
 #include <utility>
@@ -74,6 +75,41 @@ class ParamBinder
 		for (const auto& [name, value] : table)
 			if (name == current) field = value;
 	}
+};
+
+/// Forwards every declaration to `target` with `prefix` put before the key,
+/// so one parameter struct can be declared twice in one section (e.g. the
+/// EKF association keys of a joining plugin's local-map builder as
+/// `local_association`, `local_gate_chi2_quantile`, ...).
+class PrefixedBinder : public ParamBinder
+{
+   public:
+	PrefixedBinder(ParamBinder& target, std::string prefix) : target_(target), prefix_(std::move(prefix)) {}
+	void real(const char* key, double& field, const char* doc, Bounds bounds) override
+	{
+		target_.real(name(key), field, doc, bounds);
+	}
+	void integer(const char* key, int& field, const char* doc, Bounds bounds) override
+	{
+		target_.integer(name(key), field, doc, bounds);
+	}
+	void flag(const char* key, bool& field, const char* doc) override { target_.flag(name(key), field, doc); }
+	void text(const char* key, std::string& field, const char* doc) override { target_.text(name(key), field, doc); }
+	void choice(
+		const char* key, std::string& field, const std::vector<std::string>& options, const char* doc) override
+	{
+		target_.choice(name(key), field, options, doc);
+	}
+
+   private:
+	const char* name(const char* key)
+	{
+		names_.push_back(prefix_ + key);
+		return names_.back().c_str();
+	}
+	ParamBinder& target_;
+	std::string prefix_;
+	std::deque<std::string> names_;  // stable storage for the prefixed keys
 };
 
 /// Loads every declared parameter from `section` (absent keys keep their

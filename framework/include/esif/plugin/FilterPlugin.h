@@ -73,6 +73,13 @@ class FilterPlugin : public mrpt::rtti::CObject
 	/// Filters keep the default (none).
 	virtual std::optional<std::vector<PoseEstimate>> smoothedTrajectory() const { return std::nullopt; }
 
+	/// For filters that settle the association of a step only later (the
+	/// map-joining filters know a measurement's global landmark when its
+	/// local map is fused): every step's report with the final landmark IDs
+	/// (index k = step k), available after finish(). The host then writes
+	/// these to associations.txt and scores them instead of the online ones.
+	virtual std::optional<std::vector<StepReport>> finalReports() const { return std::nullopt; }
+
 	/// Sparsity of the information matrix and its factor, for information-form
 	/// back-ends; the host draws it as info_matrix.png. Called once, after
 	/// finish(). Covariance-form back-ends keep the default (none).

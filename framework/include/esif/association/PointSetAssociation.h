@@ -1,0 +1,57 @@
+#pragma once
+/// \file PointSetAssociation.h
+/// Association of two sets of 2-D points with full Gaussian uncertainty, in
+/// one Cartesian frame: the features of a local map against features of an
+/// earlier map or of the global map moved into the local map's frame (book
+/// Sec. 4.4.2 and 5.4.1). The two sets are independent (a local map is built
+/// from its own data), so the innovation of a pair (i, c) is z_i - y_c with
+/// covariance Pz_ii + Py_cc, and of a joint hypothesis the sum of the two
+/// joint blocks.
+///
+/// Hypotheses come from MRPT's data_association_full_covariance (JCBB or NN,
+/// Mahalanobis metric). MRPT takes one covariance per prediction and none
+/// per observation, so each prediction is given its joint covariance plus
+/// the covariance of its nearest observation: exact for the individual test
+/// of the natural pair, approximate across observations. The hypothesis is
+/// then checked with the exact joint covariance (joint compatibility,
+/// Neira & Tardos 2001); while it fails, the pair with the largest exact
+/// individual distance is dropped.
+
+#include <esif/association/DataAssociation.h>
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace esif
+{
+struct PointSets
+{
+	Eigen::MatrixXd observed;  ///< M x 2: points to associate (e.g. local-map features)
+	Eigen::MatrixXd observed_cov;  ///< 2M x 2M: their joint covariance
+	Eigen::MatrixXd candidates;	 ///< N x 2: candidate points in the same frame
+	Eigen::MatrixXd candidates_cov;	 ///< 2N x 2N: their joint covariance
+};
+
+struct PointAssociation
+{
+	/// For each observed point, the index of its candidate, or -1.
+	std::vector<int> candidate_of;
+	/// For each observed point, the smallest exact squared Mahalanobis
+	/// distance to any candidate (infinity when there is none): tells a new
+	/// point from an ambiguous one.
+	std::vector<double> min_distance2;
+	/// Exact joint squared Mahalanobis distance of the accepted pairs.
+	double joint_distance2 = 0;
+	/// Pairs MRPT proposed that the exact joint test removed.
+	std::size_t pairs_dropped = 0;
+	std::size_t jcbb_nodes = 0;
+};
+
+/// Associates `sets.observed` with `sets.candidates`. `gate_quantile` is the
+/// individual-compatibility confidence (2 dof), `joint_quantile` that of the
+/// exact joint test (2 dof per pair); both in (0, 1). Throws
+/// std::invalid_argument on inconsistent sizes.
+PointAssociation associatePointSets(
+	const PointSets& sets, AssociationMethod method, double gate_quantile, double joint_quantile);
+
+}  // namespace esif

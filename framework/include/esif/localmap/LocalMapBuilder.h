@@ -1,0 +1,85 @@
+#pragma once
+/// \file LocalMapBuilder.h
+/// Builds the local maps of the map-joining filters (book Sec. 4.2.1, 4.6,
+/// 5.1.1) from the host's steps: EKF SLAM (LandmarkEkf, the EKF plugin's
+/// filter and association) from a start pose with zero uncertainty, closed
+/// by the policy of LocalMapBuilderParams. The next map starts at the
+/// closed map's end pose, so start(k+1) = end(k) exactly, or one step later
+/// with that step's odometry as the link (eq. 5.4).
+///
+/// Landmark IDs: with the rawlog's IDs a feature keeps its ID in every map.
+/// Without them the builder numbers new features itself (from 1, unique over
+/// the whole log) and, when a map is closed, gives the features it matched
+/// to the previous map (PreviousMapMatcher) that map's IDs, so that equal
+/// IDs mean one feature in every map, as in the authors' files.
+
+#include <esif/ekf/LandmarkEkf.h>
+#include <esif/localmap/LocalMap.h>
+#include <esif/localmap/LocalMapBuilderParams.h>
+
+#include <optional>
+#include <set>
+#include <vector>
+
+namespace esif
+{
+class LocalMapBuilder
+{
+   public:
+	explicit LocalMapBuilder(const LocalMapBuilderParams& params);
+
+	/// Feeds one step into the open map (prediction, association, update,
+	/// new features); returns its association report with the open map's
+	/// IDs (provisional: a closed map's step_reports hold the final ones).
+	/// When the close policy fires after this step, the map is closed and
+	/// can be taken with takeClosedMap(). Throws NumericalError naming the
+	/// map when the closed map's covariance is not positive definite.
+	StepReport processStep(const StepInput& step);
+
+	/// The map the last processStep() closed, if any (then cleared).
+	std::optional<LocalMap> takeClosedMap();
+
+	/// Closes the open map at the end of the log if it covers any step.
+	std::optional<LocalMap> finish();
+
+	/// The open map's filter: robot pose and features in the open map's frame.
+	const LandmarkEkf& openMap() const { return ekf_; }
+	/// Index k of the open map.
+	std::size_t openMapIndex() const { return index_; }
+	/// Steps the open map has taken in.
+	std::size_t openMapSteps() const { return steps_; }
+	/// The open map's link odometry (odometry link mode, after its first step).
+	const std::optional<OdometryIncrement>& openMapLink() const { return link_; }
+
+	/// Features of the open map known to be in the previous map, for the
+	/// close rule (by ID, or matched geometrically when the builder numbered them).
+	std::size_t openMapCommonFeatures() const;
+
+	/// The authors' stabilisation (their StabNoise): a robot variance below
+	/// this is raised by it before the covariance is inverted, so a map in
+	/// which the robot did not move still has an information matrix.
+	static constexpr double kMinRobotVariance = 1e-6;
+
+   private:
+	bool policyWantsToClose() const;
+	LocalMap closeOpenMap();
+	std::vector<std::optional<std::size_t>> matchOwnFeaturesToPrevious() const;
+	void startNextMap();
+
+	LocalMapBuilderParams params_;
+	LandmarkEkf ekf_;
+	std::size_t index_ = 1;
+	std::size_t steps_ = 0, measurements_ = 0, first_step_ = 0, last_step_ = 0;
+	double travelled_m_ = 0;
+	bool link_pending_ = false;	 // odometry mode: the next step's odometry links the maps
+	std::optional<OdometryIncrement> link_;
+	std::set<LandmarkId> own_ids_;	// features of the open map numbered by the builder
+	std::vector<StepReport> reports_;  // the open map's steps
+	std::set<LandmarkId> ids_in_closed_maps_;
+	std::optional<LocalMap> previous_;	// the last closed map
+	std::optional<LocalMap> closed_;
+	static constexpr LandmarkId kFirstOwnId = 1;  // features the builder numbers: 1, 2, ...
+	LandmarkId next_own_id_ = kFirstOwnId;
+};
+
+}  // namespace esif

@@ -1,0 +1,42 @@
+#pragma once
+/// \file LocalMapBuilderParams.h
+/// When the local-map builder closes a map and how it associates inside one
+/// (book Sec. 4.4.4 and Sec. 5 intro). Declared inside the section of the
+/// joining plugin that builds its own local maps; `esif localmaps build`
+/// reads them from the same section, so the files it writes are the maps
+/// that plugin would fuse.
+///
+/// A map is closed after the step at which any of the limits set (> 0) is
+/// reached, but only once it holds at least local_map_min_common_features
+/// features of the previous map (the Ch. 4 rule; 0 for SLSJF). With every
+/// limit 0 the whole log is one local map. The last, partial map is closed
+/// at the end of the log whatever the rules say.
+
+#include <esif/config/ParamBinder.h>
+#include <esif/ekf/EkfAssociationParams.h>
+
+namespace esif
+{
+/// How the next local map starts.
+enum class LocalMapLink
+{
+	SharedPose,	 ///< at the previous map's end pose: start(k+1) = end(k), as in the book and the authors' data
+	Odometry	 ///< one step later: the odometry of that step links end(k) to start(k+1) (eq. 5.4)
+};
+
+struct LocalMapBuilderParams
+{
+	int local_map_steps = 45;  ///< close after this many steps; 0 = no step limit (Sec. 5.5: 18005 / 400)
+	int local_map_max_features = 0;	 ///< close once the map holds this many features; 0 = no limit
+	double local_map_max_distance_m = 0;  ///< close once the robot travelled this far in the map [m]; 0 = no limit
+	/// Close only once the map holds this many features of the previous map
+	/// (0 for SLSJF; 2 for D-SLAM map joining, Sec. 4.4.4).
+	int local_map_min_common_features = 0;
+	LocalMapLink local_map_link = LocalMapLink::SharedPose;	 ///< shared_pose | odometry
+	/// Association inside a local map (keys prefixed `local_`, e.g. local_association).
+	EkfAssociationParams association;
+
+	void declare(ParamBinder& b);
+};
+
+}  // namespace esif

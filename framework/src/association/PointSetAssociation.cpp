@@ -1,0 +1,144 @@
+#include <esif/association/Chi2.h>
+#include <esif/association/PointSetAssociation.h>
+
+#include <mrpt/math/CMatrixDynamic.h>
+#include <mrpt/slam/data_association.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace esif
+{
+namespace
+{
+mrpt::math::CMatrixDouble toMrpt(const Eigen::MatrixXd& m)
+{
+	mrpt::math::CMatrixDouble out(m.rows(), m.cols());
+	out.asEigen() = m;
+	return out;
+}
+
+void checkSizes(const PointSets& s)
+{
+	const auto M = s.observed.rows(), N = s.candidates.rows();
+	if (s.observed.cols() != 2 || s.candidates.cols() != 2 || s.observed_cov.rows() != 2 * M ||
+		s.observed_cov.cols() != 2 * M || s.candidates_cov.rows() != 2 * N || s.candidates_cov.cols() != 2 * N)
+		throw std::invalid_argument("associatePointSets: point and covariance sizes do not match");
+}
+
+/// Exact squared Mahalanobis distance of pair (i, c); infinity when its
+/// covariance is not positive definite.
+double pairDistance2(const PointSets& s, Eigen::Index i, Eigen::Index c)
+{
+	const Eigen::Matrix2d S = s.observed_cov.block<2, 2>(2 * i, 2 * i) + s.candidates_cov.block<2, 2>(2 * c, 2 * c);
+	const Eigen::LLT<Eigen::Matrix2d> llt(S);
+	if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+	const Eigen::Vector2d nu = (s.observed.row(i) - s.candidates.row(c)).transpose();
+	return nu.dot(llt.solve(nu));
+}
+
+/// Exact joint squared Mahalanobis distance of the pairs (i, candidate_of[i] >= 0).
+double jointDistance2(const PointSets& s, const std::vector<int>& candidate_of)
+{
+	std::vector<Eigen::Index> obs, cand;
+	for (std::size_t i = 0; i < candidate_of.size(); ++i)
+		if (candidate_of[i] >= 0) obs.push_back(static_cast<Eigen::Index>(i)), cand.push_back(candidate_of[i]);
+	if (obs.empty()) return 0;
+	const Eigen::Index k = static_cast<Eigen::Index>(obs.size());
+	Eigen::MatrixXd S(2 * k, 2 * k);
+	Eigen::VectorXd nu(2 * k);
+	for (Eigen::Index a = 0; a < k; ++a)
+	{
+		nu.segment<2>(2 * a) = (s.observed.row(obs[a]) - s.candidates.row(cand[a])).transpose();
+		for (Eigen::Index b = 0; b < k; ++b)
+			S.block<2, 2>(2 * a, 2 * b) = s.observed_cov.block<2, 2>(2 * obs[a], 2 * obs[b]) +
+				s.candidates_cov.block<2, 2>(2 * cand[a], 2 * cand[b]);
+	}
+	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
+	if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+	return nu.dot(llt.solve(nu));
+}
+
+/// Each candidate's covariance for MRPT: its joint block plus the covariance
+/// of its nearest observed point (Euclidean).
+Eigen::MatrixXd mrptPredictionCovariance(const PointSets& s)
+{
+	Eigen::MatrixXd cov = s.candidates_cov;
+	for (Eigen::Index c = 0; c < s.candidates.rows(); ++c)
+	{
+		Eigen::Index nearest = 0;
+		(s.observed.rowwise() - s.candidates.row(c)).rowwise().squaredNorm().minCoeff(&nearest);
+		cov.block<2, 2>(2 * c, 2 * c) += s.observed_cov.block<2, 2>(2 * nearest, 2 * nearest);
+	}
+	return 0.5 * (cov + cov.transpose());
+}
+
+/// MRPT's hypothesis; a candidate claimed twice (NN) goes to the closer point.
+std::vector<int> mrptHypothesis(
+	const PointSets& s, AssociationMethod method, double gate_quantile, std::size_t& nodes)
+{
+	mrpt::slam::TDataAssociationResults results;
+	mrpt::slam::data_association_full_covariance(
+		toMrpt(s.observed), toMrpt(s.candidates), toMrpt(mrptPredictionCovariance(s)), results,
+		method == AssociationMethod::Jcbb ? mrpt::slam::assocJCBB : mrpt::slam::assocNN, mrpt::slam::metricMaha,
+		gate_quantile, /*use_kdtree=*/false);
+	nodes = results.nNodesExploredInJCBB;
+	std::vector<int> candidate_of(s.observed.rows(), -1);
+	std::vector<int> owner(s.candidates.rows(), -1);
+	for (const auto& [obs, pred] : results.associations)
+	{
+		if (obs >= static_cast<std::size_t>(s.observed.rows()) || pred >= static_cast<std::size_t>(s.candidates.rows()))
+			continue;
+		const int i = static_cast<int>(obs), c = static_cast<int>(pred);
+		if (owner[c] >= 0)
+		{
+			if (pairDistance2(s, owner[c], c) <= pairDistance2(s, i, c)) continue;
+			candidate_of[owner[c]] = -1;
+		}
+		owner[c] = i;
+		candidate_of[i] = c;
+	}
+	return candidate_of;
+}
+}  // namespace
+
+PointAssociation associatePointSets(
+	const PointSets& sets, AssociationMethod method, double gate_quantile, double joint_quantile)
+{
+	checkSizes(sets);
+	PointAssociation out;
+	const auto M = sets.observed.rows(), N = sets.candidates.rows();
+	out.candidate_of.assign(M, -1);
+	out.min_distance2.assign(M, std::numeric_limits<double>::infinity());
+	if (M == 0 || N == 0) return out;  // MRPT asserts both are non-empty
+
+	for (Eigen::Index i = 0; i < M; ++i)
+		for (Eigen::Index c = 0; c < N; ++c) out.min_distance2[i] = std::min(out.min_distance2[i], pairDistance2(sets, i, c));
+
+	out.candidate_of = mrptHypothesis(sets, method, gate_quantile, out.jcbb_nodes);
+	const double individual_gate = chi2Quantile(gate_quantile, 2);
+	for (Eigen::Index i = 0; i < M; ++i)
+		if (out.candidate_of[i] >= 0 && pairDistance2(sets, i, out.candidate_of[i]) > individual_gate)
+			out.candidate_of[i] = -1, ++out.pairs_dropped;
+
+	// Exact joint compatibility; repair by dropping the worst pair.
+	for (;;)
+	{
+		const int pairs = static_cast<int>(std::count_if(
+			out.candidate_of.begin(), out.candidate_of.end(), [](int c) { return c >= 0; }));
+		out.joint_distance2 = jointDistance2(sets, out.candidate_of);
+		if (pairs == 0 || out.joint_distance2 <= chi2Quantile(joint_quantile, 2 * pairs)) break;
+		Eigen::Index worst = -1;
+		double worst_d2 = -1;
+		for (Eigen::Index i = 0; i < M; ++i)
+			if (out.candidate_of[i] >= 0)
+				if (const double d2 = pairDistance2(sets, i, out.candidate_of[i]); d2 > worst_d2) worst_d2 = d2, worst = i;
+		out.candidate_of[worst] = -1;
+		++out.pairs_dropped;
+	}
+	return out;
+}
+
+}  // namespace esif

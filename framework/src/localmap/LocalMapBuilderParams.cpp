@@ -1,0 +1,25 @@
+#include <esif/localmap/LocalMapBuilderParams.h>
+
+namespace esif
+{
+void LocalMapBuilderParams::declare(ParamBinder& b)
+{
+	b.integer("local_map_steps", local_map_steps, "close a local map after this many steps; 0 = no step limit",
+			  Bounds::nonNegative());
+	b.integer("local_map_max_features", local_map_max_features,
+			  "close a local map once it holds this many features; 0 = no limit", Bounds::nonNegative());
+	b.real("local_map_max_distance_m", local_map_max_distance_m,
+		   "close a local map once the robot travelled this far in it [m]; 0 = no limit", Bounds::nonNegative());
+	b.integer("local_map_min_common_features", local_map_min_common_features,
+			  "extend a local map until it holds this many features of the previous map (Ch. 4 needs 2)",
+			  Bounds::nonNegative());
+	b.enumeration<LocalMapLink>(
+		"local_map_link", local_map_link,
+		{{"shared_pose", LocalMapLink::SharedPose}, {"odometry", LocalMapLink::Odometry}},
+		"next map starts at the previous end pose (shared_pose) or one step later, linked by that step's "
+		"odometry (odometry, eq. 5.4)");
+	PrefixedBinder local(b, "local_");
+	association.declare(local);
+}
+
+}  // namespace esif
