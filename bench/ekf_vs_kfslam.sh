@@ -10,14 +10,28 @@
 # Medians over RUNS runs after one warm-up.
 #
 # usage: bench/ekf_vs_kfslam.sh RAWLOG STD_RANGE_M STD_BEARING_DEG [RUNS]
+#   RAWLOG "vicpark": out/data/vicpark.rawlog, imported on first use from
+#   ${VICPARK_TXT:-../shared/data/victoria_park/victoria_park.txt}.
 #   e.g. bench/ekf_vs_kfslam.sh rawlogs/grid196.rawlog 0.1 1 7
 #        bench/ekf_vs_kfslam.sh /usr/share/mrpt/datasets/kf-slam_demo.rawlog 0.01 0.1 7
-#        bench/ekf_vs_kfslam.sh rawlogs/vicpark.rawlog 0.5 2 7
+#        bench/ekf_vs_kfslam.sh vicpark 0.5 2 7
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ $# -ge 3 ] || { sed -n '2,15p' "$0"; exit 2; }
-rawlog=$(realpath "$1"); std_r=$2; std_b=$3; runs=${4:-7}
+[ $# -ge 3 ] || { sed -n '2,17p' "$0"; exit 2; }
 esif=$(realpath build/bin/esif); replay=$(realpath build/bin/mrpt_kf_replay)
+# Victoria Park is third-party data: neither it nor a rawlog made from it is
+# committed, so import it here (importer defaults, as README.md "Real data").
+# The importer writes atomically: an interrupted run leaves no partial file.
+if [ "$1" = vicpark ]; then
+  set -- out/data/vicpark.rawlog "${@:2}"
+  txt=${VICPARK_TXT:-../shared/data/victoria_park/victoria_park.txt}
+  if [ ! -f "$1" ]; then
+    [ -f "$txt" ] || { echo "bench/ekf_vs_kfslam.sh: $(realpath -m "$txt") not present (the Victoria Park dataset; set VICPARK_TXT)" >&2; exit 1; }
+    mkdir -p out/data
+    "$esif" import victoria-park --in "$txt" --out "$1" >&2
+  fi
+fi
+rawlog=$(realpath "$1"); std_r=$2; std_b=$3; runs=${4:-7}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 

@@ -1,16 +1,20 @@
 #pragma once
 /// \file EsifTestSupport.h
 /// Helpers shared by the test suites: temporary folders, running a plugin
-/// in-process on a rawlog, and running the `esif` binary as a user would.
+/// in-process on a rawlog, running the `esif` binary as a user would, and
+/// third-party data made into rawlogs on the fly.
 
 #include <esif/config/ConfigFile.h>
 #include <esif/io/RawlogReader.h>
 #include <esif/plugin/PluginLoader.h>
 #include <esif/run/Replay.h>
 
+#include <gtest/gtest.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -93,6 +97,27 @@ inline CommandResult simulateSmall(const std::string& rawlog, const std::string&
 	return runEsif(
 		"simulate --config '" + sourcePath("configs/sim/small.ini") + "' " + extra + (extra.empty() ? "" : " ") +
 		"--out '" + rawlog + "'");
+}
+
+/// The Victoria Park dataset (third-party data: read from the shared data
+/// folder beside the checkout, never committed, nor anything made from it).
+inline std::string victoriaParkDataset() { return sourcePath("../shared/data/victoria_park/victoria_park.txt"); }
+
+/// Makes `dir`/vicpark.rawlog from victoriaParkDataset() with `esif import
+/// victoria-park` and the importer's defaults (landmark IDs kept, 0.5 m /
+/// 2 deg noise), as README.md tells users to, and returns its path; nullopt
+/// when the dataset is absent, for the caller to
+/// `GTEST_SKIP() << test::victoriaParkDataset() << " not present"`.
+/// One rawlog per TempDir, because ctest runs the tests of one binary in
+/// parallel processes. A failed import is a test failure, not a skip.
+inline std::optional<std::string> importVictoriaPark(const TempDir& dir)
+{
+	const std::string dataset = victoriaParkDataset();
+	if (!std::filesystem::exists(dataset)) return std::nullopt;
+	const std::string rawlog = dir.file("vicpark.rawlog");
+	const auto r = runEsif("import victoria-park --in '" + dataset + "' --out '" + rawlog + "'");
+	EXPECT_EQ(r.exit_code, 0) << r.out;
+	return rawlog;
 }
 
 }  // namespace esif::test

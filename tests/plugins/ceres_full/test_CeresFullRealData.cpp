@@ -17,7 +17,6 @@ namespace
 using namespace esif;
 
 const std::string kDemo = std::string(ESIF_MRPT_DATASETS) + "/kf-slam_demo.rawlog";
-const std::string kVicpark = test::sourcePath("rawlogs/vicpark.rawlog");
 
 Stats runAndReadStats(const std::string& config, const std::string& rawlog, const std::string& out)
 {
@@ -59,7 +58,9 @@ constexpr double kVicparkChi2PerDof = 1.5;
 TEST(CeresFullRealData, ConvergesOnVictoriaParkWithTheDatasetsIds)
 {
 	test::TempDir dir;
-	const Stats full = runAndReadStats(test::sourcePath("configs/vicpark/ceres_full.ini"), kVicpark, dir.file("full"));
+	const auto vicpark = test::importVictoriaPark(dir);
+	if (!vicpark) GTEST_SKIP() << test::victoriaParkDataset() << " not present";
+	const Stats full = runAndReadStats(test::sourcePath("configs/vicpark/ceres_full.ini"), *vicpark, dir.file("full"));
 	EXPECT_EQ(number(full, "plugin_converged"), 1);
 	EXPECT_LT(number(full, "plugin_chi2") / number(full, "plugin_chi2_dof"), kVicparkChi2PerDof);
 	EXPECT_EQ(number(full, "landmarks"), 151);
@@ -71,11 +72,13 @@ TEST(CeresFullRealData, ConvergesOnVictoriaParkWithAnEkfRunsAssociations)
 	// The EKF associates the trees itself (IDs hidden); the baseline reuses
 	// its decisions through [esif] associations_from and starts from its map.
 	test::TempDir dir;
+	const auto vicpark = test::importVictoriaPark(dir);
+	if (!vicpark) GTEST_SKIP() << test::victoriaParkDataset() << " not present";
 	std::ofstream(dir.file("ekf.ini")) << "[esif]\nplugin = EkfSlam\nhide_landmark_ids = true\n[ekf]\nassociation = jcbb\n";
-	const Stats ekf = runAndReadStats(dir.file("ekf.ini"), kVicpark, dir.file("ekf"));
+	const Stats ekf = runAndReadStats(dir.file("ekf.ini"), *vicpark, dir.file("ekf"));
 	std::ofstream(dir.file("full.ini")) << "[esif]\nplugin = CeresFullSlam\nhide_landmark_ids = true\nassociations_from = "
 										<< dir.file("ekf") << "\n[ceres_full]\ninitial_run = " << dir.file("ekf") << "\n";
-	const Stats full = runAndReadStats(dir.file("full.ini"), kVicpark, dir.file("full"));
+	const Stats full = runAndReadStats(dir.file("full.ini"), *vicpark, dir.file("full"));
 	EXPECT_EQ(number(full, "plugin_converged"), 1);
 	EXPECT_LT(number(full, "plugin_chi2") / number(full, "plugin_chi2_dof"), kVicparkChi2PerDof);
 	EXPECT_EQ(number(full, "landmarks"), number(ekf, "landmarks"));
@@ -85,9 +88,11 @@ TEST(CeresFullRealData, ConvergesOnVictoriaParkWithAnEkfRunsAssociations)
 TEST(CeresFullRealData, WithoutAnyLandmarkIdItRefusesToStartWithOneClearLine)
 {
 	test::TempDir dir;
+	const auto vicpark = test::importVictoriaPark(dir);
+	if (!vicpark) GTEST_SKIP() << test::victoriaParkDataset() << " not present";
 	std::ofstream(dir.file("full.ini")) << "[esif]\nplugin = CeresFullSlam\nhide_landmark_ids = true\n";
 	const auto r = test::runEsif(
-		"run --quiet --config '" + dir.file("full.ini") + "' --rawlog '" + kVicpark + "' --out '" + dir.file("out") + "'");
+		"run --quiet --config '" + dir.file("full.ini") + "' --rawlog '" + *vicpark + "' --out '" + dir.file("out") + "'");
 	EXPECT_EQ(r.exit_code, 1) << r.out;
 	EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
 	EXPECT_NE(r.out.find("associations_from"), std::string::npos) << r.out;

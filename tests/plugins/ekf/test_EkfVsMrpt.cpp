@@ -116,7 +116,10 @@ std::pair<double, double> alignedDifference(
 
 TEST(EkfVsMrpt, VictoriaParkAgreesWithMrptUpToItsSkippedFirstMotion)
 {
-	const std::string vp = test::sourcePath("rawlogs/vicpark.rawlog");
+	test::TempDir dir;
+	const auto imported = test::importVictoriaPark(dir);
+	if (!imported) GTEST_SKIP() << test::victoriaParkDataset() << " not present";
+	const std::string& vp = *imported;
 	const Rawlog log = readRawlog(vp);	// noise stored by the importer: 0.5 m, 2 deg
 	auto ekf = test::makePlugin("EkfSlam", "association = known_ids\n");
 	const auto result = replay(*ekf, log, {0, false});
