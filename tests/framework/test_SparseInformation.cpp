@@ -165,6 +165,28 @@ TEST(InformationForm, MeasurementUpdateIsEquation315)
 	EXPECT_EQ(s.info.matrix().nonZeros(), 4u + 9u + 4u + 2 * 6u);
 }
 
+TEST(InformationForm, InformationMeasurementEqualsTheCovarianceForm)
+{
+	// Eq. (5.9) given Lambda = R^-1 (a local map's information matrix) must
+	// be the update of eq. (3.15) with R, to round-off; Lambda is badly
+	// scaled on purpose, like the authors' Victoria Park maps (sigmas from
+	// millimetres to metres).
+	Small a, b;
+	Eigen::MatrixXd J(3, 5);
+	J << 1, 0, -1, 0, 0.2, 0, 1, 0, -1, 0.1, 0.5, 0.5, 0, 0, 1;
+	Eigen::Matrix3d R;
+	R << 4e-6, 1e-7, 0, 1e-7, 0.05, 0.002, 0, 0.002, 2.0;
+	const Eigen::Vector3d innovation(0.1, -0.2, 0.05);
+	const Eigen::Matrix3d Lambda = R.inverse();  // 3x3, for the reference only
+	a.info.addMeasurement({a.p2, a.pose}, J, R, innovation);
+	const UpdateTerm term = b.info.addInformationMeasurement({b.p2, b.pose}, J, Lambda, innovation);
+	const Eigen::MatrixXd Ia = a.info.matrix().toDense(), Ib = b.info.matrix().toDense();
+	EXPECT_LT((Ia - Ib).norm(), 1e-9 * Ia.norm());
+	EXPECT_LT((a.info.vector() - b.info.vector()).norm(), 1e-9 * a.info.vector().norm());
+	EXPECT_LT((term.C * term.C.transpose() - J.transpose() * Lambda * J).norm(), 1e-9 * Ia.norm());
+	EXPECT_THROW(b.info.addInformationMeasurement({b.p2, b.pose}, J, -Lambda, innovation), NumericalError);
+}
+
 TEST(InformationForm, PriorAddsInformationAndMean)
 {
 	Small s;

@@ -39,29 +39,57 @@ void InformationForm::checkVars(const std::vector<VarId>& vars, int columns) con
 		throw std::invalid_argument("InformationForm: Jacobian columns do not match the variables' dimensions");
 }
 
-UpdateTerm InformationForm::addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
-										   const Eigen::MatrixXd& R, const Eigen::VectorXd& innovation)
+void InformationForm::checkMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+									   const Eigen::MatrixXd& S, const Eigen::VectorXd& innovation) const
 {
 	checkVars(vars, static_cast<int>(J.cols()));
-	if (R.rows() != J.rows() || R.cols() != J.rows() || innovation.size() != J.rows())
-		throw std::invalid_argument("InformationForm::addMeasurement: J, R and innovation sizes differ");
-	if (!J.allFinite() || !R.allFinite() || !innovation.allFinite())
+	if (S.rows() != J.rows() || S.cols() != J.rows() || innovation.size() != J.rows())
+		throw std::invalid_argument("InformationForm: measurement J, covariance/information and innovation sizes differ");
+	if (!J.allFinite() || !S.allFinite() || !innovation.allFinite())
 		throw NumericalError("measurement update: non-finite Jacobian, covariance or innovation");
-	const Eigen::LLT<Eigen::MatrixXd> llt(R);
-	if (llt.info() != Eigen::Success) throw NumericalError("measurement update: covariance R is not positive definite");
+}
 
-	// With R = L L^T: J^T R^-1 J = C C^T for C = (L^-1 J)^T, and
-	// J^T R^-1 (z - h + J x^) = C L^-1 (z - h + J x^)   (eq. 3.15).
-	Eigen::VectorXd x_lin(J.cols());
+Eigen::VectorXd InformationForm::linearisationPoint(const std::vector<VarId>& vars, Eigen::Index size) const
+{
+	Eigen::VectorXd x_lin(size);
 	int k = 0;
 	for (VarId v : vars)
 	{
 		x_lin.segment(k, dim(v)) = x_.segment(offset(v), dim(v));
 		k += dim(v);
 	}
+	return x_lin;
+}
+
+UpdateTerm InformationForm::addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+										   const Eigen::MatrixXd& R, const Eigen::VectorXd& innovation)
+{
+	checkMeasurement(vars, J, R, innovation);
+	const Eigen::LLT<Eigen::MatrixXd> llt(R);
+	if (llt.info() != Eigen::Success) throw NumericalError("measurement update: covariance R is not positive definite");
+
+	// With R = L L^T: J^T R^-1 J = C C^T for C = (L^-1 J)^T, and
+	// J^T R^-1 (z - h + J x^) = C L^-1 (z - h + J x^)   (eq. 3.15).
+	const Eigen::VectorXd x_lin = linearisationPoint(vars, J.cols());
 	const Eigen::MatrixXd W = llt.matrixL().solve(J);
 	const Eigen::VectorXd w = llt.matrixL().solve(innovation + J * x_lin);
 	return applyWhitened(vars, W.transpose(), w);
+}
+
+UpdateTerm InformationForm::addInformationMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+													  const Eigen::MatrixXd& information,
+													  const Eigen::VectorXd& innovation)
+{
+	checkMeasurement(vars, J, information, innovation);
+	const Eigen::LLT<Eigen::MatrixXd> llt(information);
+	if (llt.info() != Eigen::Success)
+		throw NumericalError("measurement update: information matrix is not positive definite");
+
+	// With Lambda = L L^T: J^T Lambda J = C C^T for C = J^T L, and
+	// J^T Lambda (z - h + J x^) = C L^T (z - h + J x^)   (eq. 5.9).
+	const Eigen::VectorXd x_lin = linearisationPoint(vars, J.cols());
+	const Eigen::MatrixXd L = llt.matrixL();
+	return applyWhitened(vars, J.transpose() * L, L.transpose() * (innovation + J * x_lin));
 }
 
 UpdateTerm InformationForm::addPrior(VarId v, const Eigen::VectorXd& mean, const Eigen::MatrixXd& information)

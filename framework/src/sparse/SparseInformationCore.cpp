@@ -68,6 +68,16 @@ UpdateTerm SparseInformationCore::addMeasurement(const std::vector<VarId>& vars,
 	return term;
 }
 
+UpdateTerm SparseInformationCore::addInformationMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+															const Eigen::MatrixXd& information,
+															const Eigen::VectorXd& innovation)
+{
+	ScopedTimer t(counters_.update_time_s);
+	UpdateTerm term = info_.addInformationMeasurement(vars, J, information, innovation);
+	noteUpdate(term);
+	return term;
+}
+
 void SparseInformationCore::withdraw(const UpdateTerm& term)
 {
 	ScopedTimer t(counters_.update_time_s);

@@ -41,6 +41,14 @@ class InformationForm
 	UpdateTerm addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R,
 							  const Eigen::VectorXd& innovation);
 
+	/// The same update with the measurement's information matrix Lambda =
+	/// R^-1 given instead of R (eq. 5.9 with a local map's information
+	/// matrix, as the authors' files hold it): whitened by Lambda's Cholesky
+	/// factor, so Lambda is never inverted. Throws NumericalError if Lambda
+	/// is not positive definite or an input is not finite.
+	UpdateTerm addInformationMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+										 const Eigen::MatrixXd& information, const Eigen::VectorXd& innovation);
+
 	/// Absolute information on one variable: a prior N(mean, information^-1)
 	/// (J = identity, R^-1 = information in eq. 3.15), e.g. the map anchor.
 	UpdateTerm addPrior(VarId v, const Eigen::VectorXd& mean, const Eigen::MatrixXd& information);
@@ -75,6 +83,9 @@ class InformationForm
 
    private:
 	void checkVars(const std::vector<VarId>& vars, int columns) const;
+	void checkMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J, const Eigen::MatrixXd& S,
+						  const Eigen::VectorXd& innovation) const;
+	Eigen::VectorXd linearisationPoint(const std::vector<VarId>& vars, Eigen::Index size) const;
 	UpdateTerm applyWhitened(const std::vector<VarId>& vars, Eigen::MatrixXd C, const Eigen::VectorXd& rhs);
 
 	BlockSparseMatrix I_;

@@ -43,6 +43,10 @@ class SparseInformationCore
 	/// Returns the update as applied, for a later withdraw().
 	UpdateTerm addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R,
 							  const Eigen::VectorXd& innovation);
+	/// EIF update with the measurement's information matrix instead of its
+	/// covariance (eq. 5.9 with a local map's information, never inverted).
+	UpdateTerm addInformationMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+										 const Eigen::MatrixXd& information, const Eigen::VectorXd& innovation);
 	/// Takes back an update returned by addMeasurement() (book Sec. 3.4.1:
 	/// D-SLAM withdraws the last map update when the next scan is not
 	/// admissible). The next recovery factors afresh.
