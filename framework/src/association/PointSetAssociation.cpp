@@ -102,6 +102,44 @@ std::vector<int> mrptHypothesis(
 	}
 	return candidate_of;
 }
+/// MRPT 2.5's JCBB does not rank hypotheses with the same number of pairs
+/// by distance (its bound omits the pair being tried), so a farther point
+/// can keep a candidate a closer one is compatible with; between clustered
+/// features (trees a metre apart) that is a wrong association. Moves that
+/// keep the number of pairs and lower the summed exact individual distance
+/// are made until none is left: a pair takes a closer free candidate, a
+/// candidate goes to a closer unmatched point, or two pairs swap candidates.
+void improveByExchange(const PointSets& s, double gate, std::vector<int>& candidate_of)
+{
+	const auto M = static_cast<Eigen::Index>(candidate_of.size()), N = s.candidates.rows();
+	Eigen::MatrixXd d2(M, N);
+	for (Eigen::Index i = 0; i < M; ++i)
+		for (Eigen::Index c = 0; c < N; ++c) d2(i, c) = pairDistance2(s, i, c);
+	std::vector<int> owner(N, -1);
+	for (Eigen::Index i = 0; i < M; ++i)
+		if (candidate_of[i] >= 0) owner[candidate_of[i]] = static_cast<int>(i);
+	auto assign = [&](int i, int c) {
+		if (candidate_of[i] >= 0) owner[candidate_of[i]] = -1;
+		candidate_of[i] = c;
+		if (c >= 0) owner[c] = i;
+	};
+	for (bool moved = true; moved;)
+	{
+		moved = false;
+		for (int i = 0; i < M; ++i)
+			for (int c = 0; c < N; ++c)
+			{
+				const int cur = candidate_of[i], j = owner[c];
+				if (c == cur || d2(i, c) > gate) continue;
+				if (j < 0 && cur >= 0 && d2(i, c) < d2(i, cur))
+					assign(i, c), moved = true;	 // a closer free candidate
+				else if (j >= 0 && cur < 0 && d2(i, c) < d2(j, c))
+					assign(j, -1), assign(i, c), moved = true;	// a closer unmatched point
+				else if (j >= 0 && cur >= 0 && d2(j, cur) <= gate && d2(i, c) + d2(j, cur) < d2(i, cur) + d2(j, c))
+					assign(j, -1), assign(i, c), assign(j, cur), moved = true;	// two pairs swap
+			}
+	}
+}
 }  // namespace
 
 PointAssociation associatePointSets(
@@ -119,6 +157,7 @@ PointAssociation associatePointSets(
 
 	out.candidate_of = mrptHypothesis(sets, method, gate_quantile, out.jcbb_nodes);
 	const double individual_gate = chi2Quantile(gate_quantile, 2);
+	improveByExchange(sets, individual_gate, out.candidate_of);
 	for (Eigen::Index i = 0; i < M; ++i)
 		if (out.candidate_of[i] >= 0 && pairDistance2(sets, i, out.candidate_of[i]) > individual_gate)
 			out.candidate_of[i] = -1, ++out.pairs_dropped;

@@ -21,6 +21,9 @@ void EkfAssociationParams::declare(ParamBinder& b)
 		   Bounds::nonNegative());
 	b.real("candidate_margin_deg", candidate_margin_deg, "bearing margin for association candidates [deg]",
 		   Bounds::closed(0, 180));
+	b.real("min_range_m", min_range_m,
+		   "measurements of features closer than this are not used (their bearing is not linearisable) [m]",
+		   Bounds::nonNegative());
 }
 
 }  // namespace esif

@@ -25,11 +25,39 @@ StepReport LandmarkEkf::processStep(const StepInput& step)
 {
 	if (step.odometry) core_.predict(*step.odometry);
 	if (!step.scan) return {};
+	if (params_.min_range_m > 0) return processUsableMeasurements(step);
 
 	std::vector<EkfSlamCore::Match> matches;
 	StepReport report = associateScan(step, matches);
 	core_.update(matches, toPose2(step.scan->sensor_on_robot));
 	addNewLandmarks(*step.scan, report);
+	return report;
+}
+
+StepReport LandmarkEkf::processUsableMeasurements(const StepInput& step)
+{
+	// The scan without the measurements closer than min_range_m, which are
+	// reported as rejected in their places.
+	Scan kept{step.scan->sensor_on_robot, step.scan->max_range_m, step.scan->fov_rad, {}};
+	std::vector<bool> used;
+	for (const auto& m : step.scan->measurements)
+	{
+		used.push_back(m.range_m >= params_.min_range_m);
+		if (used.back()) kept.measurements.push_back(m);
+	}
+	StepInput usable;
+	usable.index = step.index;
+	usable.time_s = step.time_s;
+	usable.scan = std::move(kept);
+	std::vector<EkfSlamCore::Match> matches;
+	StepReport partial = associateScan(usable, matches);
+	core_.update(matches, toPose2(usable.scan->sensor_on_robot));
+	addNewLandmarks(*usable.scan, partial);
+
+	StepReport report;
+	std::size_t next = 0;
+	for (std::size_t i = 0; i < used.size(); ++i)
+		report.associations.push_back(used[i] ? partial.associations[next++] : Association{Association::Kind::Rejected, -1});
 	return report;
 }
 

@@ -3,10 +3,30 @@
 #include <esif/localmap/PreviousMapMatcher.h>
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <map>
 
 namespace esif
 {
+namespace
+{
+/// Whether LandmarkEkf associates `scan` by its landmark IDs (a new feature
+/// then keeps its measured ID) rather than by distance (it then numbers the
+/// feature itself, whether or not the measurement carries an ID): the rule
+/// of LandmarkEkf::associateScan.
+bool associatedByIds(const EkfAssociationParams& params, const Scan& scan)
+{
+	switch (params.association)
+	{
+		case EkfAssociation::KnownIds: return true;
+		case EkfAssociation::Auto:
+			return std::all_of(scan.measurements.begin(), scan.measurements.end(),
+							   [](const RangeBearing& m) { return m.id.has_value(); });
+		default: return false;
+	}
+}
+}  // namespace
+
 LocalMapBuilder::LocalMapBuilder(const LocalMapBuilderParams& params)
 	: params_(params), ekf_(params.association, kFirstOwnId)
 {
@@ -32,10 +52,11 @@ StepReport LocalMapBuilder::processStep(const StepInput& step)
 		report = ekf_.processStep(step);
 		if (step.odometry) travelled_m_ += std::hypot(step.odometry->delta.x, step.odometry->delta.y);
 	}
-	if (step.scan)
-		for (std::size_t i = 0; i < report.associations.size(); ++i)
-			if (report.associations[i].kind == Association::Kind::New && !step.scan->measurements[i].id)
-				own_ids_.insert(report.associations[i].id);
+	// Features the filter numbered itself: every new one of a scan associated
+	// by distance, even when the log's IDs are present (association = nn|jcbb).
+	if (step.scan && !associatedByIds(params_.association, *step.scan))
+		for (const auto& a : report.associations)
+			if (a.kind == Association::Kind::New) own_ids_.insert(a.id);
 	next_own_id_ = std::max(next_own_id_, ekf_.nextOwnId());
 	reports_.push_back(report);
 	++steps_;
@@ -104,12 +125,20 @@ std::vector<std::optional<std::size_t>> LocalMapBuilder::matchOwnFeaturesToPrevi
 
 namespace
 {
-/// Information matrix of a local map's covariance, after the authors'
-/// stabilisation of near-zero robot variances.
-Eigen::MatrixXd informationOf(Eigen::MatrixXd P, std::size_t map_index)
+/// The authors' stabilisation of near-zero robot variances, applied to the
+/// covariance itself so that the map's covariance and information describe
+/// one Gaussian (and the covariance of a map in which the robot did not
+/// move, whose robot block is zero, is positive definite).
+Eigen::MatrixXd stabilised(Eigen::MatrixXd P)
 {
 	for (int r = 0; r < 3; ++r)
 		if (P(r, r) < LocalMapBuilder::kMinRobotVariance) P(r, r) += LocalMapBuilder::kMinRobotVariance;
+	return P;
+}
+
+/// Information matrix of a (stabilised) local-map covariance.
+Eigen::MatrixXd informationOf(const Eigen::MatrixXd& P, std::size_t map_index)
+{
 	const Eigen::LLT<Eigen::MatrixXd> llt(P);
 	if (llt.info() != Eigen::Success)
 		throw NumericalError("local map " + std::to_string(map_index) + ": covariance is not positive definite");
@@ -131,7 +160,7 @@ LocalMap LocalMapBuilder::closeOpenMap()
 	LocalMap map;
 	map.index = index_;
 	map.end_pose = ekf_.core().robot();
-	map.covariance = Eigen::MatrixXd(ekf_.core().covariance());
+	map.covariance = stabilised(ekf_.core().covariance());
 	map.information = informationOf(*map.covariance, index_);
 	map.link = link_;
 	map.first_step = first_step_;

@@ -12,8 +12,11 @@
 /// Mahalanobis metric). MRPT takes one covariance per prediction and none
 /// per observation, so each prediction is given its joint covariance plus
 /// the covariance of its nearest observation: exact for the individual test
-/// of the natural pair, approximate across observations. The hypothesis is
-/// then checked with the exact joint covariance (joint compatibility,
+/// of the natural pair, approximate across observations. Pairs are then
+/// exchanged while that lowers the summed exact individual distances at
+/// the same number of pairs (MRPT 2.5's JCBB does not rank equal-size
+/// hypotheses by distance). The hypothesis is finally checked with the
+/// exact joint covariance (joint compatibility,
 /// Neira & Tardos 2001); while it fails, the pair with the largest exact
 /// individual distance is dropped.
 

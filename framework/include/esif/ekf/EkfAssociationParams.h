@@ -1,7 +1,7 @@
 #pragma once
 /// \file EkfAssociationParams.h
-/// How an EKF SLAM filter associates the measurements of a scan with its
-/// landmarks: landmark IDs, MRPT nearest neighbour or MRPT JCBB, and the
+/// Which measurements of a scan an EKF SLAM filter uses and how it
+/// associates them with its landmarks: landmark IDs, MRPT nearest neighbour or MRPT JCBB, and the
 /// gates. Declared inside the section of whoever runs the filter ([ekf] for
 /// the EKF plugin, a joining plugin's section for its local-map builder), with
 /// the same keys everywhere.
@@ -28,6 +28,12 @@ struct EkfAssociationParams
 	double new_landmark_chi2_quantile = 0.9999;
 	double candidate_margin_m = 2.0;  ///< candidates: predicted range <= max range + this [m]
 	double candidate_margin_deg = 10.0;	 ///< ... and bearing within half the field of view + this [deg]
+	/// Measurements of features closer than this are not used [m]. The
+	/// bearing of a feature within a few robot-position sigmas is far from
+	/// linear in the pose (its Jacobian grows as 1/range), so one EKF update
+	/// with it can turn the heading; a local map built with such updates is
+	/// inconsistent, and the error stays frozen in it. 0 = use every one.
+	double min_range_m = 0;
 
 	void declare(ParamBinder& b);
 };

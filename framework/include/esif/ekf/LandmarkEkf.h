@@ -48,6 +48,7 @@ class LandmarkEkf
 	Estimate estimate() const;
 
    private:
+	StepReport processUsableMeasurements(const StepInput& step);
 	StepReport associateScan(const StepInput& step, std::vector<EkfSlamCore::Match>& matches);
 	StepReport associateByIds(const StepInput& step, std::vector<EkfSlamCore::Match>& matches) const;
 	StepReport associateByDistance(const Scan& scan, std::vector<EkfSlamCore::Match>& matches);

@@ -46,6 +46,11 @@ struct LocalMap
 	/// Its covariance, when the map was built here (EKF form); files hold
 	/// the information only.
 	std::optional<Eigen::MatrixXd> covariance;
+	/// Whether equal feature IDs mean one feature across maps (the input's
+	/// landmark IDs, as in the authors' files). False when the IDs are only
+	/// labels: features the builder numbered itself, or IDs the host hid.
+	/// A joining filter must then associate the features itself.
+	bool ids_identify_features = true;
 	/// Odometry from pose k-1 to this map's start pose, with its covariance
 	/// (eq. 5.4). nullopt: the start pose is pose k-1 itself.
 	std::optional<OdometryIncrement> link;

@@ -56,8 +56,9 @@ class LocalMapBuilder
 	std::size_t openMapCommonFeatures() const;
 
 	/// The authors' stabilisation (their StabNoise): a robot variance below
-	/// this is raised by it before the covariance is inverted, so a map in
-	/// which the robot did not move still has an information matrix.
+	/// this is raised by it, so a map in which the robot did not move still
+	/// has an information matrix. The closed map's covariance is the
+	/// stabilised one: information = covariance^-1 for every map.
 	static constexpr double kMinRobotVariance = 1e-6;
 
    private:
