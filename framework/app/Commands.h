@@ -13,5 +13,6 @@ int simulateCommand(int argc, char** argv);
 int pluginsCommand(int argc, char** argv);
 int importCommand(int argc, char** argv);
 int benchCommand(int argc, char** argv);
+int localMapsCommand(int argc, char** argv);
 
 }  // namespace esif::app

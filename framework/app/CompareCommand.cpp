@@ -10,7 +10,9 @@
 #include <esif/io/AtomicFile.h>
 #include <esif/io/RunOutputReader.h>
 #include <esif/io/StatsJson.h>
+#include <esif/run/LocalMapRunPipeline.h>
 #include <esif/run/RunOrder.h>
+#include <esif/run/RunSetup.h>
 
 #include <filesystem>
 #include <fstream>
@@ -145,10 +147,27 @@ void warnAboutUnrelatedIds(
 /// Shared settings of every `esif run` child.
 struct ChildSettings
 {
-	std::string rawlog;
+	std::string input_option;  ///< "--rawlog" or "--local-maps"
+	std::string input;	///< the rawlog or the folder of local maps
 	std::optional<std::string> ground_truth;
+	std::optional<std::string> reference_result;
 	std::optional<std::string> plugin_dir;
 };
+
+/// On local-map input every config must name a joining plugin: checked in
+/// this process before any run, so the error is one line and nothing is
+/// written (a child's failure would come after the output folder exists).
+void requireJoiners(const std::vector<std::string>& configs, const std::optional<std::string>& plugin_dir)
+{
+	PluginLoader loader(plugin_dir ? std::vector<std::string>{*plugin_dir} : std::vector<std::string>{});
+	loader.loadAll();
+	for (const auto& c : configs)
+	{
+		const ConfigFile config = ConfigFile::load(c);
+		const HostParams host = loadHostParams(config);
+		requireLocalMapJoiner(*loader.create(host.plugin), config.origin(), host.plugin);
+	}
+}
 
 /// Runs one config as `esif run` into `dir`; `associations_dir` is the run
 /// folder of the config its associations_from names, if any.
@@ -156,9 +175,10 @@ Stats runConfig(
 	const std::string& config, const std::string& dir, const std::optional<std::string>& associations_dir,
 	const ChildSettings& settings)
 {
-	std::vector<std::string> args = {"esif", "run", "--quiet", "--config", config, "--rawlog", settings.rawlog,
-									 "--out", dir};
+	std::vector<std::string> args = {"esif", "run", "--quiet", "--config", config, settings.input_option,
+									 settings.input, "--out", dir};
 	if (settings.ground_truth) args.insert(args.end(), {"--ground-truth", *settings.ground_truth});
+	if (settings.reference_result) args.insert(args.end(), {"--reference-result", *settings.reference_result});
 	if (settings.plugin_dir) args.insert(args.end(), {"--plugin-dir", *settings.plugin_dir});
 	if (associations_dir) args.insert(args.end(), {"--associations-from", *associations_dir});
 	std::cerr << "esif compare: running " << config
@@ -187,10 +207,22 @@ std::string addReferenceColumns(
 
 int compareCommand(int argc, char** argv)
 {
-	TCLAP::CmdLine cmd("Runs several configs on one rawlog, each in its own process, and tabulates them.", ' ',
+	TCLAP::CmdLine cmd("Runs several configs on one rawlog (or folder of local maps), each in its own process, and "
+					   "tabulates them.",
+					   ' ',
 					   ESIF_VERSION);
 	TCLAP::ValueArg<std::string> configs("c", "configs", "comma-separated INI files", true, "", "A.ini,B.ini,...", cmd);
-	TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "MRPT rawlog (gz or plain)", true, "", "FILE", cmd);
+	TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "MRPT rawlog (gz or plain); or give --local-maps", false, "",
+										"FILE", cmd);
+	TCLAP::ValueArg<std::string> local_maps(
+		"", "local-maps",
+		"folder of local maps (localmap_k.txt, ground truth beside them) instead of --rawlog; every config must "
+		"name a local-map joining plugin",
+		false, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> reference_result(
+		"", "reference-result",
+		"with --local-maps: a joined result (feature.txt, pose.txt) every run is measured against (refres_* keys)",
+		false, "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> ground_truth("g", "ground-truth", "ground-truth prefix; default: beside the rawlog",
 											  false, "", "PREFIX", cmd);
 	TCLAP::ValueArg<std::string> out("o", "out", "output folder (one subfolder per config)", true, "", "DIR", cmd);
@@ -206,6 +238,14 @@ int compareCommand(int argc, char** argv)
 		"optimization baseline (the full-SLAM run), if any",
 		false, "", "LABEL", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
+	if (rawlog.isSet() == local_maps.isSet())
+		throw ConfigError("esif compare: give exactly one of --rawlog FILE and --local-maps DIR (see --help)");
+	if (local_maps.isSet() && ground_truth.isSet())
+		throw ConfigError("esif compare: --ground-truth applies to --rawlog input, not to --local-maps");
+	if (rawlog.isSet() && reference_result.isSet())
+		throw ConfigError("esif compare: --reference-result applies to --local-maps input, not to --rawlog");
+	const std::optional<std::string> plugin_folder =
+		plugin_dir.isSet() ? std::optional<std::string>(plugin_dir.getValue()) : std::nullopt;
 
 	const auto config_list = splitCommas(configs.getValue());
 	if (config_list.empty()) throw ConfigError("esif compare: --configs: no config file given");
@@ -223,11 +263,15 @@ int compareCommand(int argc, char** argv)
 	const auto sources = associationSources(planned);
 	const auto order = runOrder(planned, sources);
 	if (ref) warnAboutUnrelatedIds(planned, sources, *ref);
+	if (local_maps.isSet()) requireJoiners(config_list, plugin_folder);
 	ensureDirectory(out.getValue());
 
+	const std::string input = rawlog.isSet() ? rawlog.getValue() : local_maps.getValue();
 	const ChildSettings settings{
-		rawlog.getValue(), ground_truth.isSet() ? std::optional<std::string>(ground_truth.getValue()) : std::nullopt,
-		plugin_dir.isSet() ? std::optional<std::string>(plugin_dir.getValue()) : std::nullopt};
+		rawlog.isSet() ? "--rawlog" : "--local-maps", input,
+		ground_truth.isSet() ? std::optional<std::string>(ground_truth.getValue()) : std::nullopt,
+		reference_result.isSet() ? std::optional<std::string>(reference_result.getValue()) : std::nullopt,
+		plugin_folder};
 	std::vector<Stats> runs(config_list.size());  // in the configs' order, whatever the run order
 	for (const auto i : order)
 		runs[i] = runConfig(
@@ -254,10 +298,14 @@ int compareCommand(int argc, char** argv)
 			runs, dirs, *baseline.index, "the optimization baseline '" + labelOf(runs[*baseline.index]) + "'");
 	}
 
+	if (reference_result.isSet())
+		note += "refres_*: difference from the reference result " + reference_result.getValue() +
+				" (landmarks by the files' feature IDs, end poses by map k, headings modulo 2 pi)\n";
+
 	const std::string text = comparisonText(runs) + note + "\n" + bookTable51Text(runs);
 	writeTextAtomically((fs::path(out.getValue()) / "comparison.csv").string(), comparisonCsv(runs));
 	writeTextAtomically((fs::path(out.getValue()) / "comparison.md").string(),
-						"# esif compare on " + rawlog.getValue() + "\n\n" + comparisonMarkdown(runs) +
+						"# esif compare on " + input + "\n\n" + comparisonMarkdown(runs) +
 							(note.empty() ? "" : "\n" + note) + "\n" + bookTable51Markdown(runs));
 	std::cout << text;
 	return 0;

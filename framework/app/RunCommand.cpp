@@ -1,20 +1,69 @@
 #include "CommandLine.h"
 #include "Commands.h"
 
+#include <esif/core/Errors.h>
 #include <esif/io/StatsJson.h>
+#include <esif/run/LocalMapRunPipeline.h>
 #include <esif/run/RunPipeline.h>
 
 #include <iostream>
 
 namespace esif::app
 {
+namespace
+{
+/// The input options that make sense together: one of --rawlog and
+/// --local-maps, and the options of the other kind of input left out.
+void checkInputOptions(
+	const TCLAP::ValueArg<std::string>& rawlog, const TCLAP::ValueArg<std::string>& local_maps,
+	const std::vector<const TCLAP::ValueArg<std::string>*>& rawlog_only,
+	const TCLAP::ValueArg<std::string>& reference_result)
+{
+	if (rawlog.isSet() == local_maps.isSet())
+		throw ConfigError("esif run: give exactly one of --rawlog FILE and --local-maps DIR (see --help)");
+	if (local_maps.isSet())
+		for (const auto* arg : rawlog_only)
+			if (arg->isSet())
+				throw ConfigError("esif run: --" + arg->getName() + " applies to --rawlog input, not to --local-maps");
+	if (rawlog.isSet() && reference_result.isSet())
+		throw ConfigError("esif run: --reference-result applies to --local-maps input, not to --rawlog");
+}
+
+void printSummary(const Stats& stats, const std::string& input, const std::string& out_dir, bool local_maps)
+{
+	std::cout << "esif run: " << statText(*stats.get("label")) << " on " << input << " -> " << out_dir << "\n";
+	std::vector<std::string> keys = {"steps", "landmarks", "wall_s", "step_us_p50", "step_us_p99", "state_dim",
+									 "da_wrong", "landmark_rmse_m", "ate_rmse_m", "landmark_consistent_fraction"};
+	if (local_maps)
+		keys = {"local_maps", "landmarks", "wall_s", "join_us_p50", "join_us_max", "state_dim", "da_wrong",
+				"landmark_rmse_m", "ate_rmse_m", "landmark_consistent_fraction", "refres_landmark_rms_m",
+				"refres_pose_rms_m"};
+	for (const auto& key : keys)
+		if (!local_maps || stats.get(key)) std::cout << "  " << key << " = " << statText(stats.get(key).value_or(nullptr)) << "\n";
+}
+}  // namespace
+
 int runCommand(int argc, char** argv)
 {
-	TCLAP::CmdLine cmd("Replays a rawlog through the plugin named in the config and writes maps and stats.", ' ',
-					   ESIF_VERSION);
+	TCLAP::CmdLine cmd("Replays a rawlog, or a folder of local maps, through the plugin named in the config and "
+					   "writes maps and stats.",
+					   ' ', ESIF_VERSION);
 	TCLAP::ValueArg<std::string> config("c", "config", "INI file: [esif] plugin = ClassName, plus the plugin's section",
 										true, "", "FILE", cmd);
-	TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "MRPT rawlog (gz or plain)", true, "", "FILE", cmd);
+	TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "MRPT rawlog (gz or plain); or give --local-maps", false, "",
+										"FILE", cmd);
+	TCLAP::ValueArg<std::string> local_maps(
+		"", "local-maps",
+		"folder of local maps (localmap_1.txt ..., the authors' format; ground truth beside them) for a local-map "
+		"joining plugin, instead of --rawlog. Outputs as for a rawlog, with the maps' end poses as the trajectory "
+		"(time = map index k) and localmap_times.png",
+		false, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> reference_result(
+		"", "reference-result",
+		"with --local-maps: a joined result (feature.txt, pose.txt, e.g. the authors' Linear SLAM output) to "
+		"measure the run against: refres_landmark_rms_m, refres_landmark_max_m, refres_landmarks_matched, "
+		"refres_pose_rms_m, refres_pose_max_m, refres_heading_rms_deg (modulo 2 pi), refres_poses_matched",
+		false, "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> ground_truth(
 		"g", "ground-truth",
 		"ground-truth prefix P (P_ground_truth.txt, P_ground_truth_robot_path.txt); default: beside the rawlog",
@@ -29,7 +78,21 @@ int runCommand(int argc, char** argv)
 		false, "", "DIR", cmd);
 	TCLAP::SwitchArg quiet("q", "quiet", "no progress bar and no summary", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
+	checkInputOptions(rawlog, local_maps, {&ground_truth, &associations_from}, reference_result);
 
+	PluginLoader loader(plugin_dir.isSet() ? std::vector<std::string>{plugin_dir.getValue()} : std::vector<std::string>{});
+	if (local_maps.isSet())
+	{
+		LocalMapRunRequest request;
+		request.config_path = config.getValue();
+		request.local_maps_dir = local_maps.getValue();
+		request.out_dir = out.getValue();
+		if (reference_result.isSet()) request.reference_result_dir = reference_result.getValue();
+		request.progress_bar = !quiet.getValue();
+		const Stats stats = runLocalMapPipeline(request, loader);
+		if (!quiet.getValue()) printSummary(stats, request.local_maps_dir, request.out_dir, true);
+		return 0;
+	}
 	RunRequest request;
 	request.config_path = config.getValue();
 	request.rawlog_path = rawlog.getValue();
@@ -37,16 +100,8 @@ int runCommand(int argc, char** argv)
 	request.out_dir = out.getValue();
 	request.progress_bar = !quiet.getValue();
 	if (associations_from.isSet()) request.associations_from = associations_from.getValue();
-	PluginLoader loader(plugin_dir.isSet() ? std::vector<std::string>{plugin_dir.getValue()} : std::vector<std::string>{});
 	const Stats stats = runPipeline(request, loader);
-	if (!quiet.getValue())
-	{
-		std::cout << "esif run: " << statText(*stats.get("label")) << " on " << request.rawlog_path << " -> "
-				  << request.out_dir << "\n";
-		for (const char* key : {"steps", "landmarks", "wall_s", "step_us_p50", "step_us_p99", "state_dim", "da_wrong",
-								"landmark_rmse_m", "ate_rmse_m", "landmark_consistent_fraction"})
-			std::cout << "  " << key << " = " << statText(stats.get(key).value_or(nullptr)) << "\n";
-	}
+	if (!quiet.getValue()) printSummary(stats, request.rawlog_path, request.out_dir, false);
 	return 0;
 }
 

@@ -25,6 +25,7 @@ const Subcommand kSubcommands[] = {
 	{"simulate", esif::app::simulateCommand, "generate a rawlog and ground truth from a scenario INI"},
 	{"import", esif::app::importCommand, "convert a dataset (victoria-park) into an MRPT rawlog"},
 	{"plugins", esif::app::pluginsCommand, "list the plugins found and their parameters"},
+	{"localmaps", esif::app::localMapsCommand, "build local maps from a rawlog, or summarise a folder of them"},
 	{"bench", esif::app::benchCommand, "benchmarks (sparse: recovery methods of the sparse core)"},
 };
 

@@ -244,6 +244,34 @@ TEST(FigureWriter, StepTimeOutliersAreClippedSoTheBulkFillsThePlot)
 	EXPECT_GT(blue_top, blue * 9 / 10);
 }
 
+TEST(FigureWriter, LocalMapTimesShowBothLinesInBothPanels)
+{
+	TempDir dir;
+	// Fusion time grows with the map index, association is half of it; the
+	// state dimension grows too, so the per-dimension panel stays flatter.
+	std::vector<esif::LocalMapFusionCost> costs;
+	for (std::size_t k = 1; k <= 200; ++k)
+		costs.push_back({k, 1e-4 * static_cast<double>(k), 0.5e-4 * static_cast<double>(k), 3 + 10 * k});
+	esif::writeLocalMapTimesImage(costs, dir.file("lm.png"), 800);
+	const auto img = load(dir.file("lm.png"));
+	ASSERT_EQ(img.getWidth(), 800u);
+	ASSERT_EQ(img.getHeight(), 600u);
+	// Red (with association) and blue (without) in the upper and the lower panel.
+	int red_top = 0, red_bottom = 0, blue_top = 0, blue_bottom = 0;
+	for (int y = 0; y < 600; ++y)
+		for (int x = 0; x < 800; ++x)
+		{
+			(y < 300 ? red_top : red_bottom) += isRed(img, x, y);
+			(y < 300 ? blue_top : blue_bottom) += isBlue(img, x, y);
+		}
+	EXPECT_GT(red_top, 300);
+	EXPECT_GT(red_bottom, 300);
+	EXPECT_GT(blue_top, 300);
+	EXPECT_GT(blue_bottom, 300);
+	EXPECT_THROW(esif::writeLocalMapTimesImage(costs, dir.file("bad.png"), 100), esif::ConfigError);
+	EXPECT_FALSE(fs::exists(dir.file("bad.png")));
+}
+
 TEST(FigureWriter, InvalidArgumentsAreRefusedBeforeWriting)
 {
 	TempDir dir;

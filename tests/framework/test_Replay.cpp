@@ -1,6 +1,7 @@
-// The replay loop with a fake plugin: every step's report is kept, and a
+// The replay loop with a fake plugin: every step's report is kept, a
 // smoother's trajectory replaces the online poses (keyframes included) only
-// when it has one pose per step.
+// when it has one pose per step, and a joining filter's final reports
+// replace the online ones and are audited afresh.
 
 #include <FakePlugin.h>
 #include <FakeRawlog.h>
@@ -90,6 +91,77 @@ TEST(Replay, SmoothedTrajectoryOfWrongLengthNamesThePlugin)
 		EXPECT_NE(what.find("plugin esif::test::FakePlugin"), std::string::npos) << what;
 		EXPECT_NE(what.find("smoothed trajectory of 3 poses for 4 steps"), std::string::npos) << what;
 	}
+}
+
+/// The final reports of a joining filter for fourSteps(): landmark 7 became
+/// global landmark 70 (its two sightings), 8 became 80; the rejected
+/// measurement stays rejected.
+std::vector<esif::StepReport> finalReportsOfFourSteps()
+{
+	return {{{{Association::Kind::New, 70}, {Association::Kind::Rejected, -1}}},
+			{{{Association::Kind::Matched, 70}}},
+			{},
+			{{{Association::Kind::New, 80}}}};
+}
+
+TEST(Replay, FinalReportsReplaceTheOnlineOnesAndAreAuditedAgain)
+{
+	FakePlugin plugin;
+	plugin.final_reports = finalReportsOfFourSteps();
+	const auto result = esif::replay(plugin, fourSteps(), kQuiet);
+	ASSERT_EQ(result.reports.size(), 4u);
+	EXPECT_EQ(result.reports[0].associations[0].id, 70);
+	EXPECT_EQ(result.reports[1].associations[0].kind, Association::Kind::Matched);
+	EXPECT_EQ(result.reports[1].associations[0].id, 70);
+	EXPECT_EQ(result.reports[3].associations[0].id, 80);
+	// The audit maps the final IDs to the rawlog's, with nothing wrong.
+	const auto to_true = result.audit.filterToTrue();
+	ASSERT_EQ(to_true.size(), 2u);
+	EXPECT_EQ(to_true.at(70), 7);
+	EXPECT_EQ(to_true.at(80), 8);
+	EXPECT_EQ(result.audit.newCount(), 2u);
+	EXPECT_EQ(result.audit.matchedCount(), 1u);
+	EXPECT_EQ(result.audit.rejectedCount(), 1u);
+	EXPECT_EQ(result.audit.wrongCount(), 0u);
+	// Landmark counts stay those of the online reports (7 new at step 0, 8 at step 3).
+	EXPECT_EQ(result.landmark_counts, (std::vector<std::size_t>{1, 1, 1, 2}));
+}
+
+TEST(Replay, FinalReportsThatMergeTwoLandmarksAreScoredWrong)
+{
+	FakePlugin plugin;
+	auto reports = finalReportsOfFourSteps();
+	reports[3].associations[0] = {Association::Kind::Matched, 70};  // 8 fused into 7's landmark
+	plugin.final_reports = reports;
+	const auto result = esif::replay(plugin, fourSteps(), kQuiet);
+	EXPECT_EQ(result.audit.filterToTrue().size(), 1u);
+	EXPECT_EQ(result.audit.wrongCount(), 1u);
+	EXPECT_EQ(result.audit.matchedCount(), 2u);
+}
+
+TEST(Replay, FinalReportsOfWrongShapeNameThePlugin)
+{
+	const auto expectLogicError = [](std::vector<esif::StepReport> reports, const std::string& expected) {
+		FakePlugin plugin;
+		plugin.final_reports = std::move(reports);
+		try
+		{
+			esif::replay(plugin, fourSteps(), kQuiet);
+			FAIL() << "expected std::logic_error";
+		}
+		catch (const std::logic_error& e)
+		{
+			const std::string what = e.what();
+			EXPECT_NE(what.find("plugin esif::test::FakePlugin"), std::string::npos) << what;
+			EXPECT_NE(what.find(expected), std::string::npos) << what;
+		}
+	};
+	auto short_list = finalReportsOfFourSteps();
+	short_list.pop_back();
+	expectLogicError(short_list, "3 final reports for 4 steps");
+	auto short_step = finalReportsOfFourSteps();
+	short_step[0].associations.pop_back();
+	expectLogicError(short_step, "final report of 1 associations for 2 measurements at step 0");
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 /// \file FakePlugin.h
 /// A minimal FilterPlugin for host tests that need no real estimator: it
 /// dead-reckons the odometry, matches measurements by their IDs (rejecting
-/// those without), and can pose as a smoother or as a plugin that needs IDs.
+/// those without), and can pose as a smoother, as a plugin that needs IDs,
+/// or as a map-joining filter that settles its reports after finish().
 
 #include <esif/plugin/FilterPlugin.h>
 
@@ -19,6 +20,8 @@ class FakePlugin : public FilterPlugin
    public:
 	/// Returned by smoothedTrajectory() (none: a plain filter).
 	std::optional<std::vector<PoseEstimate>> smoothed;
+	/// Returned by finalReports() after finish() (none: reports are final online).
+	std::optional<std::vector<StepReport>> final_reports;
 	bool needs_ids = false;	 ///< returned by needsLandmarkIds()
 	bool finished = false;	///< set by finish()
 
@@ -35,6 +38,10 @@ class FakePlugin : public FilterPlugin
 	{
 		// Like a real smoother: nothing before finish().
 		return finished ? smoothed : std::nullopt;
+	}
+	std::optional<std::vector<StepReport>> finalReports() const override
+	{
+		return finished ? final_reports : std::nullopt;
 	}
 
    private:

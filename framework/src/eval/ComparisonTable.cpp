@@ -1,5 +1,6 @@
 #include <esif/eval/BaselineComparison.h>
 #include <esif/eval/ComparisonTable.h>
+#include <esif/eval/ReferenceResultDifference.h>
 #include <esif/eval/RunDifference.h>
 
 #include <algorithm>
@@ -36,12 +37,21 @@ std::string cell(const Stats& s, const std::string& key)
 
 std::string label(const Stats& s) { return s.get("label") ? statText(*s.get("label")) : "?"; }
 
-/// comparisonKeys(), then the ratios to the optimization baseline and the
-/// difference-from-reference keys when a run has them.
+/// What map-joining runs add: maps fused and the time per fusion.
+const std::vector<std::string>& localMapJoinKeys()
+{
+	static const std::vector<std::string> keys = {"local_maps", "join_us_mean", "join_us_max"};
+	return keys;
+}
+
+/// comparisonKeys(), then the map-joining figures, the ratios to the
+/// optimization baseline, the difference-from-reference keys and the
+/// difference from a reference result (--reference-result) when a run has them.
 std::vector<std::string> tableKeys(const std::vector<Stats>& runs)
 {
 	std::vector<std::string> keys = comparisonKeys();
-	for (const auto* optional_keys : {&baselineRatioKeys(), &runDifferenceKeys()})
+	for (const auto* optional_keys :
+		 {&localMapJoinKeys(), &baselineRatioKeys(), &runDifferenceKeys(), &referenceResultKeys()})
 		for (const auto& k : *optional_keys)
 			if (std::any_of(runs.begin(), runs.end(), [&](const Stats& s) { return s.get(k).has_value(); }))
 				keys.push_back(k);

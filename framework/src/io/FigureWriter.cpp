@@ -1,5 +1,6 @@
 /// \file FigureWriter.cpp
-/// info_matrix.png (book Fig. 3.12-3.13) and step_times.png (Fig. 3.20).
+/// info_matrix.png (book Fig. 3.12-3.13), step_times.png (Fig. 3.20) and
+/// localmap_times.png (Fig. 5.7-5.8).
 
 #include <esif/io/FigureWriter.h>
 
@@ -317,6 +318,146 @@ class StepTimesPainter
 	Font sub_font_ = kFontTiny;
 };
 
+// --- localmap_times.png ------------------------------------------------------
+
+/// One line of a panel: its points (map index, value) and how it is drawn.
+struct Series
+{
+	std::string label;
+	TColor color;
+	std::vector<StepPoint> points;	///< landmarks = map index k, ms = value
+};
+
+/// The two series of a panel of localmap_times.png: the whole fusion and
+/// the fusion without data association, each divided by `divide(cost)`.
+template <class Divisor>
+std::vector<Series> fusionSeries(const std::vector<LocalMapFusionCost>& costs, Divisor divide)
+{
+	std::vector<Series> out{{"with association", map_palette::kLandmarkColor, {}},
+							{"without association", map_palette::kPathColor, {}}};
+	for (const auto& c : costs)
+	{
+		const double d = divide(c);
+		const double k = static_cast<double>(c.map);
+		if (!(d > 0) || !std::isfinite(c.total_s)) continue;
+		out[0].points.push_back({k, 1000.0 * c.total_s / d});
+		out[1].points.push_back({k, 1000.0 * std::max(0.0, c.total_s - c.association_s) / d});
+	}
+	return out;
+}
+
+/// Draws localmap_times.png: two panels one above the other, each a line
+/// chart of its series against the map index with a legend in the corner.
+class LocalMapTimesPainter
+{
+   public:
+	LocalMapTimesPainter(const std::vector<LocalMapFusionCost>& costs, int width_px)
+		: costs_(costs), w_(width_px), h_(width_px * 3 / 4), fonts_(w_), img_(blankImage(w_, h_))
+	{
+		for (const auto& c : costs_) k_max_ = std::max(k_max_, static_cast<double>(c.map));
+	}
+
+	mrpt::img::CImage paint()
+	{
+		const int pad = 8;
+		const std::string title = "time to fuse each local map (" + std::to_string(costs_.size()) + " maps)";
+		centredText(img_, w_ / 2, pad, title, fittingFont(title, w_ - 2 * pad, {fonts_.title, kFontSmall, kFontTiny}),
+					kTextColor);
+		const int top = 2 * pad + fonts_.title.h, bottom = h_ - (fonts_.body.h + 2 * pad);
+		const int middle = (top + bottom) / 2;
+		drawPanel(top, middle, "fusion time [ms]", fusionSeries(costs_, [](const LocalMapFusionCost&) { return 1.0; }));
+		drawPanel(middle, bottom, "fusion time / state dimension [ms]",
+				  fusionSeries(costs_, [](const LocalMapFusionCost& c) { return static_cast<double>(c.state_dim); }));
+		centredText(img_, w_ / 2, h_ - fonts_.body.h - pad, "local map k", fonts_.body, kTextColor);
+		return img_;
+	}
+
+   private:
+	/// One panel in the band [y_top, y_bottom): y label above the plot,
+	/// ticks on both axes, the series as lines with a legend top-left.
+	void drawPanel(int y_top, int y_bottom, const std::string& y_label, const std::vector<Series>& series)
+	{
+		const int pad = 8;
+		double y_max = 0;
+		for (const auto& s : series)
+			for (const auto& p : s.points) y_max = std::max(y_max, p.ms);
+		Axes axes;
+		const double x_step = map_geometry::niceStep(k_max_, 8);
+		axes.x_top = std::ceil(k_max_ / x_step) * x_step;
+		axes.y_top = y_max > 0 ? 1.05 * y_max : 1.0;
+		const std::vector<double> x_ticks = niceTicks(axes.x_top, 8), y_ticks = niceTicks(axes.y_top, 4);
+		int label_w = 0;
+		for (double t : y_ticks) label_w = std::max(label_w, textWidth(tickLabel(t), fonts_.label));
+		axes.x0 = pad + label_w + 8;
+		axes.x1 = w_ - 3 * pad;
+		axes.y0 = y_top + fonts_.label.h + 2 * pad;
+		axes.y1 = y_bottom - (fonts_.label.h + 2 * pad);
+		drawTicks(axes, x_ticks, y_ticks);
+		// Last series first, so the first (the whole fusion) shows where they coincide.
+		for (auto s = series.rbegin(); s != series.rend(); ++s) drawSeries(axes, *s);
+		img_.line(axes.x0, axes.y0, axes.x0, axes.y1, kInk, 1);
+		img_.line(axes.x0, axes.y1, axes.x1, axes.y1, kInk, 1);
+		text(img_, pad, y_top + pad / 2, y_label, fonts_.label, kTextColor);
+		drawLegend(axes.x1, y_top + pad / 2, series);
+	}
+
+	void drawTicks(const Axes& axes, const std::vector<double>& x_ticks, const std::vector<double>& y_ticks)
+	{
+		const Font& f = fonts_.label;
+		for (double t : x_ticks)
+		{
+			const int x = axes.px(t);
+			img_.line(x, axes.y0, x, axes.y1, kGridColor, 1);
+			img_.line(x, axes.y1, x, axes.y1 + 5, kInk, 1);
+			centredText(img_, x, axes.y1 + 7, tickLabel(t), f, kTextColor);
+		}
+		for (double t : y_ticks)
+		{
+			const int y = axes.py(t);
+			img_.line(axes.x0, y, axes.x1, y, kGridColor, 1);
+			img_.line(axes.x0 - 5, y, axes.x0, y, kInk, 1);
+			const std::string s = tickLabel(t);
+			text(img_, axes.x0 - 8 - textWidth(s, f), y - f.h / 2, s, f, kTextColor);
+		}
+	}
+
+	void drawSeries(const Axes& axes, const Series& s)
+	{
+		const unsigned thick = w_ >= 600 ? 2 : 1;
+		for (std::size_t i = 0; i < s.points.size(); ++i)
+		{
+			const int x = axes.px(s.points[i].landmarks), y = axes.py(s.points[i].ms);
+			if (i > 0)
+				img_.line(axes.px(s.points[i - 1].landmarks), axes.py(s.points[i - 1].ms), x, y, s.color, thick);
+			else
+				img_.filledRectangle(x - 1, y - 1, x + 1, y + 1, s.color);
+		}
+	}
+
+	/// The legend on one line above the plot, ending at `right`: a short
+	/// line in each series' colour before its label.
+	void drawLegend(int right, int y, const std::vector<Series>& series)
+	{
+		const Font& f = fonts_.label;
+		constexpr int kGlyph = 24, kGap = 6, kSpacing = 18;
+		int width = 0;
+		for (const auto& s : series) width += kGlyph + kGap + textWidth(s.label, f) + kSpacing;
+		int x = right - width + kSpacing;
+		for (const auto& s : series)
+		{
+			img_.line(x, y + f.h / 2, x + kGlyph, y + f.h / 2, s.color, 2);
+			text(img_, x + kGlyph + kGap, y, s.label, f, kTextColor);
+			x += kGlyph + kGap + textWidth(s.label, f) + kSpacing;
+		}
+	}
+
+	const std::vector<LocalMapFusionCost>& costs_;
+	const int w_, h_;
+	const Fonts fonts_;
+	mrpt::img::CImage img_;
+	double k_max_ = 1;
+};
+
 }  // namespace
 
 std::vector<MatrixPanel> informationPatternPanels(const InformationPattern& p, int size_px)
@@ -347,6 +488,12 @@ void writeStepTimesImage(
 	validateSize("image_size_px", width_px);
 	const std::vector<StepPoint> pts = finitePoints(step_us, landmark_counts);
 	savePngAtomically(StepTimesPainter(pts, width_px).paint(), path);
+}
+
+void writeLocalMapTimesImage(const std::vector<LocalMapFusionCost>& costs, const std::string& path, int width_px)
+{
+	validateSize("image_size_px", width_px);
+	savePngAtomically(LocalMapTimesPainter(costs, width_px).paint(), path);
 }
 
 }  // namespace esif

@@ -37,6 +37,27 @@ void applySmoothedTrajectory(const std::vector<PoseEstimate>& smoothed, RunRecor
 	for (std::size_t k = 0; k < smoothed.size(); ++k) record.trajectory[k].pose = smoothed[k];
 	for (auto& keyframe : record.keyframes) keyframe.pose = smoothed[keyframe.step];
 }
+
+/// Puts a joining filter's settled reports in place of the online ones and
+/// audits them afresh; each must answer the same measurements as its
+/// online counterpart. Landmark counts stay online (they time the steps).
+void applyFinalReports(std::vector<StepReport> final_reports, const Rawlog& log, ReplayResult& out)
+{
+	const std::string& plugin = out.record.plugin;
+	if (final_reports.size() != out.reports.size())
+		throw std::logic_error(
+			"plugin " + plugin + " returned " + std::to_string(final_reports.size()) + " final reports for " +
+			std::to_string(out.reports.size()) + " steps");
+	for (std::size_t k = 0; k < final_reports.size(); ++k)
+		if (final_reports[k].associations.size() != out.reports[k].associations.size())
+			throw std::logic_error(
+				"plugin " + plugin + " returned a final report of " +
+				std::to_string(final_reports[k].associations.size()) + " associations for " +
+				std::to_string(out.reports[k].associations.size()) + " measurements at step " + std::to_string(k));
+	out.reports = std::move(final_reports);
+	out.audit = AssociationAudit();
+	for (std::size_t k = 0; k < out.reports.size(); ++k) out.audit.record(out.reports[k], log.true_ids[k]);
+}
 }  // namespace
 
 ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions& options)
@@ -90,7 +111,9 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 	out.wall_s = microsecondsSince(t_start) * 1e-6;
 	progress.finish();
 	if (const auto smoothed = plugin.smoothedTrajectory()) applySmoothedTrajectory(*smoothed, out.record);
+	if (auto final_reports = plugin.finalReports()) applyFinalReports(std::move(*final_reports), log, out);
 	out.record.final_estimate = plugin.estimate();
+	if (const auto* joiner = dynamic_cast<const LocalMapJoiner*>(&plugin)) out.fusion_costs = joiner->fusionCosts();
 	return out;
 }
 

@@ -12,9 +12,10 @@
 namespace esif
 {
 /// The keys shown in the terminal and Markdown tables, in order; the tables
-/// add baselineRatioKeys() (base_*, BaselineComparison.h) and
-/// runDifferenceKeys() (ref_*, RunDifference.h) after them when a run has
-/// those keys.
+/// add local_maps, join_us_mean and join_us_max (map-joining runs),
+/// baselineRatioKeys() (base_*, BaselineComparison.h), runDifferenceKeys()
+/// (ref_*, RunDifference.h) and referenceResultKeys() (refres_*,
+/// ReferenceResultDifference.h) after them when a run has those keys.
 const std::vector<std::string>& comparisonKeys();
 
 std::string comparisonText(const std::vector<Stats>& runs);

@@ -3,10 +3,12 @@
 /// Figures of a run's cost drawn by the host, whatever the plugin:
 /// info_matrix.png (the book's Fig. 3.12-3.13: where the information matrix
 /// and its Cholesky factor are non-zero) and step_times.png (Fig. 3.20:
-/// processing time of each step against the number of landmarks mapped).
-/// Each is written atomically.
+/// processing time of each step against the number of landmarks mapped),
+/// and for the map-joining filters localmap_times.png (Fig. 5.7-5.8: the
+/// time to fuse each local map). Each is written atomically.
 
 #include <esif/core/InformationPattern.h>
+#include <esif/plugin/LocalMapJoiner.h>
 
 #include <cstddef>
 #include <string>
@@ -57,5 +59,16 @@ void writeInformationPatternImage(const InformationPattern& p, const std::string
 void writeStepTimesImage(
 	const std::vector<double>& step_us, const std::vector<std::size_t>& landmark_counts, const std::string& path,
 	int width_px);
+
+/// Writes a PNG, width_px wide and 3/4 of that high, with two panels
+/// against the map index k (book Fig. 5.7-5.8): the time to fuse each map
+/// [ms], and that time divided by the global state dimension after the
+/// fusion; each with two lines, the whole fusion ("with association") and
+/// the fusion minus its data association ("without association"). Maps with
+/// a non-finite time or a zero state dimension are left out of the panel
+/// that cannot show them. Throws ConfigError for width_px outside [200,
+/// 16384] before writing, and InputError naming `path` when it cannot be
+/// written.
+void writeLocalMapTimesImage(const std::vector<LocalMapFusionCost>& costs, const std::string& path, int width_px);
 
 }  // namespace esif

@@ -48,6 +48,13 @@ class LocalMapJoiner
 	/// its marginal covariance where known (after finish(): every one).
 	virtual std::vector<PoseEstimate> endPoses() const = 0;
 
+	/// What the fusion of map k did with each of its features, in the map's
+	/// feature order: New (started global landmark `id`), Matched (fused
+	/// into global landmark `id`) or Rejected (left out). Empty before map k
+	/// is fused. The host writes these to associations.txt (as "step" k,
+	/// "measurement" i) and scores them against the files' feature IDs.
+	virtual StepReport mapReport(std::size_t k) const = 0;
+
 	/// Cost of every fusion so far, in order.
 	virtual std::vector<LocalMapFusionCost> fusionCosts() const = 0;
 };

@@ -26,6 +26,7 @@ struct RunRequest
 /// Runs the whole pipeline and writes every output into request.out_dir:
 /// map.simplemap, landmarks.gz, landmarks.txt, trajectory.tum, scene.3Dscene,
 /// map.png, step_times.png, info_matrix.png (information-form plugins),
+/// localmap_times.png (map-joining plugins that report fusion costs),
 /// associations.txt (the plugin's decision for every measurement, see
 /// AssociationFile.h), stats.json and params.ini (the effective parameters).
 /// Returns the stats. Warnings (e.g. a truncated rawlog) go to stderr.

@@ -1,0 +1,132 @@
+#include <esif/core/Errors.h>
+#include <esif/eval/LocalMapEvaluation.h>
+#include <esif/eval/ReferenceResultDifference.h>
+#include <esif/io/AssociationFile.h>
+#include <esif/io/AtomicFile.h>
+#include <esif/io/FigureWriter.h>
+#include <esif/io/MapWriter.h>
+#include <esif/localmap/LocalMapFiles.h>
+#include <esif/run/LocalMapReplay.h>
+#include <esif/run/LocalMapRunPipeline.h>
+#include <esif/run/RunSetup.h>
+
+#include <chrono>
+#include <filesystem>
+
+namespace esif
+{
+namespace
+{
+/// What the run was given, read before any output is written.
+struct LocalMapInput
+{
+	LocalMapFolder folder;
+	std::optional<ReferenceResult> reference;
+	std::size_t steps = 0;	///< the maps' steps (0 when read from files)
+	std::size_t feature_entries = 0;
+};
+
+LocalMapInput readInput(const LocalMapRunRequest& request)
+{
+	LocalMapInput in;
+	in.folder = readLocalMapFolder(request.local_maps_dir);
+	if (request.reference_result_dir) in.reference = readReferenceResult(*request.reference_result_dir);
+	for (const auto& map : in.folder.maps)
+	{
+		in.steps += map.steps;
+		in.feature_entries += map.features.size();
+	}
+	return in;
+}
+
+/// The host settings that only apply to rawlogs are refused rather than ignored.
+void rejectRawlogOnlyKeys(const ConfigFile& cfg, const HostParams& host)
+{
+	if (!host.associations_from.empty())
+		throw ConfigError(cfg.section(kHostSection)
+							  .describeKey("associations_from", "applies to rawlog input only, not to --local-maps"));
+}
+
+Stats collectStats(
+	const HostParams& host, const LocalMapRunRequest& request, const LocalMapInput& in,
+	const LocalMapReplayResult& result, const FilterPlugin& plugin, const std::optional<Accuracy>& accuracy,
+	const std::optional<ReferenceResultDifference>& difference, double total_wall_s)
+{
+	Stats s;
+	const auto cost = plugin.costFigures();
+	s.set("plugin", StatValue(host.plugin));
+	s.set("formulation", StatValue(std::string(formulationName(plugin.formulation()))));
+	s.set("label", StatValue(host.label));
+	s.set("config", StatValue(request.config_path));
+	s.set("local_map_folder", StatValue(request.local_maps_dir));
+	s.set("local_maps", StatValue(static_cast<long long>(in.folder.maps.size())));
+	s.set("steps", StatValue(static_cast<long long>(in.steps)));
+	s.set("measurements", StatValue(static_cast<long long>(in.feature_entries)));
+	s.set("landmarks", StatValue(static_cast<long long>(result.record.final_estimate.landmarks.size())));
+	s.set("wall_s", StatValue(result.wall_s));
+	s.set("total_wall_s", StatValue(total_wall_s));
+	setLocalMapJoinStats(s, in.folder.maps.size(), result.join_us, result.fusion_costs);
+	s.set("finish_us", StatValue(result.finish_us));
+	s.set("peak_rss_mb", StatValue(peakRssMb()));
+	setCostStats(s, cost);
+	setAssociationStats(s, result.audit);
+	setAccuracyStats(s, accuracy);
+	if (difference) setReferenceResultStats(s, *difference);
+	setPluginCounters(s, cost);
+	return s;
+}
+
+void writeOutputs(
+	const HostParams& host, const LocalMapRunRequest& request, const FilterPlugin& plugin,
+	const LocalMapReplayResult& result)
+{
+	MapWriterOptions map_options;
+	map_options.image_size_px = host.image_size_px;
+	writeMapOutputs(result.record, request.out_dir, map_options);
+	const auto dir = std::filesystem::path(request.out_dir);
+	if (const auto pattern = plugin.informationPattern())
+		writeInformationPatternImage(*pattern, (dir / "info_matrix.png").string(), host.image_size_px);
+	writeLocalMapTimesImage(result.fusion_costs, (dir / "localmap_times.png").string(), host.image_size_px);
+	writeTextAtomically((dir / "params.ini").string(), effectiveParamsIni(host, plugin));
+	writeAssociationFile(
+		(dir / kAssociationFileName).string(), result.reports, host.plugin, request.local_maps_dir);
+}
+}  // namespace
+
+LocalMapJoiner& requireLocalMapJoiner(FilterPlugin& plugin, const std::string& config, const std::string& name)
+{
+	if (auto* joiner = asLocalMapJoiner(plugin)) return *joiner;
+	throw ConfigError(
+		config + ": plugin " + name + " cannot join local maps (--local-maps needs a local-map joining plugin)");
+}
+
+Stats runLocalMapPipeline(const LocalMapRunRequest& request, PluginLoader& loader)
+{
+	const auto t0 = std::chrono::steady_clock::now();
+	const ConfigFile cfg = ConfigFile::load(request.config_path);
+	const HostParams host = loadHostParams(cfg);
+	rejectRawlogOnlyKeys(cfg, host);
+	auto plugin = createConfiguredPlugin(cfg, host, loader);
+	requireLocalMapJoiner(*plugin, cfg.origin(), host.plugin);
+	const LocalMapInput in = readInput(request);
+	ensureDirectory(request.out_dir);
+
+	LocalMapReplayResult result = replayLocalMaps(
+		*plugin, in.folder.maps, request.local_maps_dir, {host.hide_landmark_ids, request.progress_bar});
+	result.record.truth = localMapGroundTruth(in.folder);
+	const auto filter_to_file = result.audit.filterToTrue();
+	const auto accuracy =
+		evaluateLocalMapRun(in.folder, result.record.trajectory, result.record.final_estimate, filter_to_file);
+	std::optional<ReferenceResultDifference> difference;
+	if (in.reference)
+		difference = referenceResultDifference(
+			result.record.final_estimate, result.record.trajectory, filter_to_file, *in.reference);
+
+	writeOutputs(host, request, *plugin, result);
+	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	Stats stats = collectStats(host, request, in, result, *plugin, accuracy, difference, total_wall_s);
+	writeTextAtomically((std::filesystem::path(request.out_dir) / "stats.json").string(), stats.toJson());
+	return stats;
+}
+
+}  // namespace esif
