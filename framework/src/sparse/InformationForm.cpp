@@ -88,8 +88,36 @@ UpdateTerm InformationForm::addInformationMeasurement(const std::vector<VarId>& 
 	// With Lambda = L L^T: J^T Lambda J = C C^T for C = J^T L, and
 	// J^T Lambda (z - h + J x^) = C L^T (z - h + J x^)   (eq. 5.9).
 	const Eigen::VectorXd x_lin = linearisationPoint(vars, J.cols());
-	const Eigen::MatrixXd L = llt.matrixL();
-	return applyWhitened(vars, J.transpose() * L, L.transpose() * (innovation + J * x_lin));
+	UpdateTerm term{vars, J.transpose() * llt.matrixL(), J.transpose() * (information * (innovation + J * x_lin))};
+	// I += J^T Lambda J formed directly rather than as C C^T: where Lambda
+	// does not correlate two variables (a zero block, e.g. the independent
+	// features of the authors' maps) their block stays exactly zero and is
+	// not stored, so non-zeros are counted as the book counts them (Table
+	// 5.1: numerical non-zeros). C is kept for the incremental factor.
+	const Eigen::MatrixXd H = J.transpose() * (information * J);
+	const std::vector<int> start = starts(vars);
+	for (std::size_t b = 0; b < vars.size(); ++b)
+		for (std::size_t a = b; a < vars.size(); ++a)
+		{
+			const auto block = H.block(start[a], start[b], dim(vars[a]), dim(vars[b]));
+			if (a == b || !block.isZero(0)) I_.addBlock(vars[a].value, vars[b].value, block);
+		}
+	addToVector(vars, start, term.delta_i);
+	return term;
+}
+
+std::vector<int> InformationForm::starts(const std::vector<VarId>& vars) const
+{
+	std::vector<int> start(vars.size());
+	for (std::size_t a = 0, k = 0; a < vars.size(); k += dim(vars[a]), ++a) start[a] = static_cast<int>(k);
+	return start;
+}
+
+void InformationForm::addToVector(const std::vector<VarId>& vars, const std::vector<int>& start,
+								  const Eigen::VectorXd& delta_i)
+{
+	for (std::size_t a = 0; a < vars.size(); ++a)
+		i_.segment(offset(vars[a]), dim(vars[a])) += delta_i.segment(start[a], dim(vars[a]));
 }
 
 UpdateTerm InformationForm::addPrior(VarId v, const Eigen::VectorXd& mean, const Eigen::MatrixXd& information)
@@ -107,8 +135,7 @@ UpdateTerm InformationForm::addPrior(VarId v, const Eigen::VectorXd& mean, const
 
 UpdateTerm InformationForm::applyWhitened(const std::vector<VarId>& vars, Eigen::MatrixXd C, const Eigen::VectorXd& w)
 {
-	std::vector<int> start(vars.size());
-	for (std::size_t a = 0, k = 0; a < vars.size(); k += dim(vars[a]), ++a) start[a] = static_cast<int>(k);
+	const std::vector<int> start = starts(vars);
 	// Only the blocks of the touched variables change: C_a C_b^T for each pair.
 	for (std::size_t b = 0; b < vars.size(); ++b)
 	{
@@ -119,8 +146,7 @@ UpdateTerm InformationForm::applyWhitened(const std::vector<VarId>& vars, Eigen:
 	}
 	UpdateTerm term{vars, std::move(C), Eigen::VectorXd()};
 	term.delta_i = term.C * w;
-	for (std::size_t a = 0; a < vars.size(); ++a)
-		i_.segment(offset(vars[a]), dim(vars[a])) += term.delta_i.segment(start[a], dim(vars[a]));
+	addToVector(vars, start, term.delta_i);
 	return term;
 }
 

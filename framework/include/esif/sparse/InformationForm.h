@@ -86,6 +86,9 @@ class InformationForm
 	void checkMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J, const Eigen::MatrixXd& S,
 						  const Eigen::VectorXd& innovation) const;
 	Eigen::VectorXd linearisationPoint(const std::vector<VarId>& vars, Eigen::Index size) const;
+	/// Offset of each of `vars` in a stacked vector over them.
+	std::vector<int> starts(const std::vector<VarId>& vars) const;
+	void addToVector(const std::vector<VarId>& vars, const std::vector<int>& start, const Eigen::VectorXd& delta_i);
 	UpdateTerm applyWhitened(const std::vector<VarId>& vars, Eigen::MatrixXd C, const Eigen::VectorXd& rhs);
 
 	BlockSparseMatrix I_;
