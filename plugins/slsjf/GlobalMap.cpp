@@ -1,0 +1,188 @@
+#include "GlobalMap.h"
+
+#include <esif/core/Errors.h>
+#include <esif/models/LocalMapObservation.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace esif::slsjf
+{
+GlobalMap::GlobalMap(const SparseRecoveryParams& params)
+	: params_(params), core_(std::make_unique<SparseInformationCore>(params))
+{
+}
+
+Pose2 GlobalMap::startEstimate(const std::optional<VarId>& start) const
+{
+	return start ? pose(*start) : Pose2::Zero();
+}
+
+std::optional<VarId> GlobalMap::featureVar(LandmarkId id) const
+{
+	const auto it = var_of_id_.find(id);
+	if (it == var_of_id_.end()) return std::nullopt;
+	return it->second;
+}
+
+std::optional<VarId> GlobalMap::startPose(const LocalMap& map)
+{
+	const std::optional<VarId> previous_end = fused_.empty() ? std::nullopt : std::optional<VarId>(fused_.back().end);
+	if (!map.link) return previous_end;
+	// Eq. (5.4)-(5.6): X_(k+1)s = f(X_ke, u) + w, initialised at f(X_ke^, u).
+	const Pose2 u = toPose2(map.link->delta);
+	const VarId start = core_->addPose(compose(startEstimate(previous_end), u));
+	++poses_;
+	links_.push_back({previous_end, start, u, map.link->cov});
+	addLinkTerm(*core_, links_.back());
+	return start;
+}
+
+VarId GlobalMap::addFeature(LandmarkId proposed, const Eigen::Vector2d& initial, LandmarkId& id)
+{
+	id = proposed >= 0 && !var_of_id_.count(proposed) ? proposed : next_free_id_;
+	while (var_of_id_.count(id)) ++id;
+	const VarId v = core_->addPoint(initial);
+	var_of_id_[id] = v;
+	id_of_var_[v.value] = id;
+	feature_vars_.push_back(v);
+	next_free_id_ = std::max(next_free_id_, id + 1);
+	return v;
+}
+
+void GlobalMap::fuse(const LocalMap& map, std::optional<VarId> start, StepReport& decisions, const MapExtent& extent)
+{
+	std::vector<bool> keep(map.features.size());
+	for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = decisions.associations[i].kind != Association::Kind::Rejected;
+
+	FusedMap fused{map.index, start, VarId{}, {}, keepFeatures(map, keep), extent};
+	const Pose2 s = startEstimate(start);
+	// Eq. (5.7): new features and the end pose from the start pose; these
+	// are only linearisation points, the map's information is fused below.
+	fused.end = core_->addPose(compose(s, map.end_pose));
+	++poses_;
+	for (const std::size_t i : fused.observation.kept)
+	{
+		auto& a = decisions.associations[i];
+		if (a.kind == Association::Kind::New)
+			fused.features.push_back(addFeature(a.id, pointFromFrame(s, map.features[i].position).value, a.id));
+		else if (const auto v = featureVar(a.id))
+			fused.features.push_back(*v);
+		else
+			throw std::logic_error("SLSJF: local map " + std::to_string(map.index) + " matched unknown feature " +
+								   std::to_string(a.id));
+	}
+	addMapTerm(*core_, fused);
+	fused_.push_back(std::move(fused));
+	core_->setReferencePoint(pose(fused_.back().end).head<2>());
+	core_->recoverState();	// eq. (5.14)
+}
+
+void GlobalMap::addLinkTerm(SparseInformationCore& core, const LinkTerm& link)
+{
+	// F = X_s - f(X_e, u) = 0 + w (eq. 5.5): innovation -F(x^), Jacobian [-df/dX_e, I].
+	const Pose2 e = link.from ? Pose2(core.estimate(*link.from)) : Pose2::Zero();
+	const Pose2 s = core.estimate(link.to);
+	Eigen::Vector3d innovation = compose(e, link.u) - s;
+	innovation(2) = wrapAngle(innovation(2));
+	if (!link.from)
+	{
+		core.addMeasurement({link.to}, Eigen::Matrix3d::Identity(), link.Q, innovation);
+		return;
+	}
+	Eigen::MatrixXd J(3, 6);
+	J << -composeJacobians(e, link.u).d_a, Eigen::Matrix3d::Identity();
+	core.addMeasurement({*link.from, link.to}, J, link.Q, innovation);
+}
+
+void GlobalMap::addMapTerm(SparseInformationCore& core, const FusedMap& map)
+{
+	std::vector<Eigen::Vector2d> features;
+	for (const VarId v : map.features) features.push_back(core.estimate(v));
+	const Pose2 s = map.start ? Pose2(core.estimate(*map.start)) : Pose2::Zero();
+	const LocalMapPrediction h = predictLocalMap(s, core.estimate(map.end), features);  // eq. (5.8)
+	Eigen::VectorXd innovation = map.observation.z - h.h;
+	innovation(2) = wrapAngle(innovation(2));
+
+	std::vector<VarId> vars;
+	if (map.start) vars.push_back(*map.start);
+	vars.push_back(map.end);
+	vars.insert(vars.end(), map.features.begin(), map.features.end());
+	Eigen::MatrixXd J(h.h.size(), (map.start ? 3 : 0) + h.d_state.cols());
+	if (map.start)
+		J << h.d_start, h.d_state;
+	else
+		J = h.d_state;
+	core.addInformationMeasurement(vars, J, map.observation.information, innovation);  // eq. (5.9)
+}
+
+std::unique_ptr<SparseInformationCore> GlobalMap::rebuiltCore() const
+{
+	auto fresh = std::make_unique<SparseInformationCore>(params_);
+	const InformationForm& info = core_->information();
+	for (int v = 0; v < info.variableCount(); ++v)
+	{
+		const Eigen::VectorXd x = core_->estimate(VarId{v});
+		if (info.kind(VarId{v}) == VarKind::Pose2)
+			fresh->addPose(x);
+		else
+			fresh->addPoint(x);
+	}
+	for (const auto& link : links_) addLinkTerm(*fresh, link);
+	for (const auto& map : fused_) addMapTerm(*fresh, map);
+	if (!fused_.empty()) fresh->setReferencePoint(pose(fused_.back().end).head<2>());
+	return fresh;
+}
+
+namespace
+{
+/// Largest change between two states: metres for positions, radians
+/// (wrapped) for headings.
+double largestChange(const InformationForm& info, const Eigen::VectorXd& before, const Eigen::VectorXd& after)
+{
+	double change = 0;
+	for (int v = 0; v < info.variableCount(); ++v)
+	{
+		const int o = info.offset(VarId{v});
+		change = std::max(change, (after.segment<2>(o) - before.segment<2>(o)).cwiseAbs().maxCoeff());
+		if (info.kind(VarId{v}) == VarKind::Pose2) change = std::max(change, std::abs(wrapAngle(after(o + 2) - before(o + 2))));
+	}
+	return change;
+}
+
+void accumulate(SparseCounters& total, const SparseCounters& part)
+{
+	total.full_reorders += part.full_reorders;
+	total.partial_refactorisations += part.partial_refactorisations;
+	total.pcg_solves += part.pcg_solves;
+	total.pcg_iterations_total += part.pcg_iterations_total;
+	total.pcg_iterations_max = std::max(total.pcg_iterations_max, part.pcg_iterations_max);
+	total.update_time_s += part.update_time_s;
+	total.factor_time_s += part.factor_time_s;
+	total.recovery_time_s += part.recovery_time_s;
+}
+}  // namespace
+
+int GlobalMap::relinearise(int max_iterations, double tolerance)
+{
+	for (int iteration = 1; iteration <= max_iterations; ++iteration)
+	{
+		const Eigen::VectorXd before = core_->state();
+		auto fresh = rebuiltCore();
+		fresh->recoverState();
+		const double change = largestChange(fresh->information(), before, fresh->state());
+		accumulate(retired_, core_->counters());
+		core_ = std::move(fresh);
+		if (change <= tolerance) return iteration;
+	}
+	return max_iterations;
+}
+
+SparseCounters GlobalMap::counters() const
+{
+	SparseCounters total = core_->counters();
+	accumulate(total, retired_);
+	return total;
+}
+
+}  // namespace esif::slsjf

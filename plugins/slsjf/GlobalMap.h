@@ -1,0 +1,117 @@
+#pragma once
+/// \file GlobalMap.h
+/// The SLSJF global map (book eq. 5.3): every feature and every local map's
+/// end pose (and a start pose of its own for a map linked by odometry) as
+/// variables of the sparse information core, and Algorithm 5.1's steps 1,
+/// 3, 4 and 5 on it. The first map's start pose is the global origin, a
+/// constant; with start(k+1) = end(k) the two are one variable, so the state
+/// holds one pose per map (Table 5.1: 400 poses, dimension 2952).
+///
+/// It keeps every fused map's virtual observation (and every link), so the
+/// whole problem can be relinearised at the current estimate: Gauss-Newton
+/// on the local-map formulation, which the authors' I-SLSJF does.
+
+#include "VirtualObservation.h"
+
+#include <esif/core/Estimate.h>
+#include <esif/localmap/LocalMap.h>
+#include <esif/sparse/SparseInformationCore.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace esif::slsjf
+{
+/// What the overlap test of Sec. 5.4.1.1 needs of a fused map.
+struct MapExtent
+{
+	double radius_m = 0;  ///< farthest reach of the map's features from its origin, with sigmas [m]
+	double start_uncertainty_m = 0;	 ///< sigmas of the start position when the map was fused [m]
+};
+
+/// One fused local map as the global map keeps it.
+struct FusedMap
+{
+	std::size_t index = 0;	///< k
+	std::optional<VarId> start;	 ///< nullopt: the global origin
+	VarId end;
+	std::vector<VarId> features;  ///< the global variable of each kept local feature, in z's order
+	VirtualObservation observation;
+	MapExtent extent;
+};
+
+/// The odometry link of eq. (5.4)-(5.6) between two poses.
+struct LinkTerm
+{
+	std::optional<VarId> from;	///< nullopt: the global origin
+	VarId to;
+	Pose2 u;
+	Eigen::Matrix3d Q;
+};
+
+class GlobalMap
+{
+   public:
+	explicit GlobalMap(const SparseRecoveryParams& params);
+
+	/// Step 1 of Algorithm 5.1: the start pose of `map`. Map 1 starts at the
+	/// origin (nullopt); a later map at the previous end pose; a map with a
+	/// link at a new pose f(X_ke, u) fused with the link's information
+	/// (eq. 5.4-5.6; the innovation is zero at that initial value).
+	std::optional<VarId> startPose(const LocalMap& map);
+
+	/// Steps 3-5: new features and the end pose initialised from the start
+	/// pose (eq. 5.7), the map fused as one virtual observation (eq. 5.8-5.9,
+	/// information-form update with the map's own information matrix), the
+	/// state recovered (eq. 5.14). `decisions` holds one association per
+	/// local feature: Matched (global id), New (proposed id: kept unless
+	/// taken, then the next free one, written back) or Rejected (left out).
+	void fuse(const LocalMap& map, std::optional<VarId> start, StepReport& decisions, const MapExtent& extent);
+
+	/// Relinearises every fused map and link at the current estimate and
+	/// solves again (Gauss-Newton), until no estimate moves more than
+	/// `tolerance` or `max_iterations` are done; returns the iterations.
+	int relinearise(int max_iterations, double tolerance);
+
+	Pose2 pose(VarId v) const { return core_->estimate(v); }
+	Eigen::Vector2d point(VarId v) const { return core_->estimate(v); }
+	/// Start pose estimate of a map (origin for nullopt).
+	Pose2 startEstimate(const std::optional<VarId>& start) const;
+	std::optional<VarId> featureVar(LandmarkId id) const;
+	LandmarkId featureId(VarId v) const { return id_of_var_.at(v.value); }
+	/// Feature variables in order of creation.
+	const std::vector<VarId>& featureVars() const { return feature_vars_; }
+	const std::vector<FusedMap>& fusedMaps() const { return fused_; }
+	std::size_t poseCount() const { return poses_; }
+
+	/// Joint covariance of `vars` (covariance columns, eq. 3.25).
+	Eigen::MatrixXd covariance(const std::vector<VarId>& vars) { return core_->covariance(vars); }
+	/// Every variable's marginal covariance (sparse inverse), in VarId order.
+	std::vector<Eigen::MatrixXd> marginals() { return core_->marginalCovariances(); }
+
+	SparseInformationCore& core() { return *core_; }
+	const SparseInformationCore& core() const { return *core_; }
+	/// Counters of the current core plus those of the cores relinearisation replaced.
+	SparseCounters counters() const;
+
+   private:
+	VarId addFeature(LandmarkId proposed, const Eigen::Vector2d& initial, LandmarkId& id);
+	static void addLinkTerm(SparseInformationCore& core, const LinkTerm& link);
+	static void addMapTerm(SparseInformationCore& core, const FusedMap& map);
+	std::unique_ptr<SparseInformationCore> rebuiltCore() const;
+
+	SparseRecoveryParams params_;
+	std::unique_ptr<SparseInformationCore> core_;
+	std::vector<FusedMap> fused_;
+	std::vector<LinkTerm> links_;
+	std::map<LandmarkId, VarId> var_of_id_;
+	std::map<int, LandmarkId> id_of_var_;
+	std::vector<VarId> feature_vars_;
+	std::size_t poses_ = 0;
+	LandmarkId next_free_id_ = 1;
+	SparseCounters retired_;  // counters of cores replaced by relinearisation
+};
+
+}  // namespace esif::slsjf

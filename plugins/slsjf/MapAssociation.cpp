@@ -1,0 +1,126 @@
+#include "MapAssociation.h"
+
+#include <esif/association/Chi2.h>
+#include <esif/association/PointSetAssociation.h>
+#include <esif/models/LocalMapObservation.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <set>
+
+namespace esif::slsjf
+{
+namespace
+{
+double largestSigma(const Eigen::Matrix2d& cov)
+{
+	return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov, Eigen::EigenvaluesOnly).eigenvalues()(1)));
+}
+
+/// Sec. 5.4.1.1: features of the fused maps that can overlap the new one,
+/// still within reach of its origin.
+std::vector<VarId> overlapCandidates(
+	const GlobalMap& global, const Eigen::Vector2d& origin, const MapExtent& extent, double margin_m,
+	std::size_t& maps_selected)
+{
+	std::set<int> chosen;
+	for (const auto& fused : global.fusedMaps())
+	{
+		const Eigen::Vector2d o = global.startEstimate(fused.start).head<2>();
+		const double reach = fused.extent.radius_m + extent.radius_m + fused.extent.start_uncertainty_m +
+			extent.start_uncertainty_m + margin_m;
+		if ((o - origin).norm() >= reach) continue;
+		++maps_selected;
+		for (const VarId v : fused.features)
+			if ((global.point(v) - origin).norm() < extent.radius_m + extent.start_uncertainty_m + margin_m)
+				chosen.insert(v.value);
+	}
+	std::vector<VarId> out;
+	for (const int v : chosen) out.push_back(VarId{v});
+	return out;
+}
+
+/// The candidates in the new map's frame, with their covariance from the
+/// joint covariance of [start pose; candidates] (start-pose correlation included).
+void candidatesInLocalFrame(
+	GlobalMap& global, VarId start, const std::vector<VarId>& candidates, PointSets& sets)
+{
+	std::vector<VarId> vars = {start};
+	vars.insert(vars.end(), candidates.begin(), candidates.end());
+	const Eigen::MatrixXd P = global.covariance(vars);
+	const Pose2 s = global.pose(start);
+	const auto N = static_cast<Eigen::Index>(candidates.size());
+	Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * N, 3 + 2 * N);
+	sets.candidates.resize(N, 2);
+	for (Eigen::Index c = 0; c < N; ++c)
+	{
+		const PointInFrame y = pointInFrame(s, global.point(candidates[c]));
+		sets.candidates.row(c) = y.value.transpose();
+		J.block<2, 3>(2 * c, 0) = y.d_frame;
+		J.block<2, 2>(2 * c, 3 + 2 * c) = y.d_point;
+	}
+	sets.candidates_cov = J * P * J.transpose();
+}
+}  // namespace
+
+double mapRadius(const LocalMap& map, const Eigen::MatrixXd& local_cov, double sigmas)
+{
+	double radius = map.end_pose.head<2>().norm() + sigmas * largestSigma(local_cov.topLeftCorner<2, 2>());
+	for (std::size_t i = 0; i < map.features.size(); ++i)
+	{
+		const auto r = static_cast<Eigen::Index>(3 + 2 * i);
+		radius = std::max(radius, map.features[i].position.norm() + sigmas * largestSigma(local_cov.block<2, 2>(r, r)));
+	}
+	return radius;
+}
+
+MapAssociationOutcome associateByIds(const LocalMap& map, const GlobalMap& global)
+{
+	MapAssociationOutcome out;
+	for (const auto& f : map.features)
+		out.decisions.associations.push_back(
+			{global.featureVar(f.id) ? Association::Kind::Matched : Association::Kind::New, f.id});
+	return out;
+}
+
+MapAssociationOutcome associateGeometrically(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, std::optional<VarId> start, GlobalMap& global,
+	const SlsjfParams& params)
+{
+	MapAssociationOutcome out;
+	out.extent.radius_m = mapRadius(map, local_cov, params.overlap_sigmas);
+	for (const auto& f : map.features) out.decisions.associations.push_back({Association::Kind::New, f.id});
+	if (!start || map.features.empty()) return out;
+
+	out.extent.start_uncertainty_m =
+		params.overlap_sigmas * largestSigma(global.covariance({*start}).topLeftCorner<2, 2>());
+	const auto candidates = overlapCandidates(
+		global, global.pose(*start).head<2>(), out.extent, params.overlap_margin_m, out.maps_selected);
+	out.candidates = candidates.size();
+	if (candidates.empty()) return out;
+
+	PointSets sets;
+	const auto M = static_cast<Eigen::Index>(map.features.size());
+	sets.observed.resize(M, 2);
+	for (Eigen::Index i = 0; i < M; ++i) sets.observed.row(i) = map.features[i].position.transpose();
+	sets.observed_cov = local_cov.bottomRightCorner(2 * M, 2 * M);
+	candidatesInLocalFrame(global, *start, candidates, sets);
+
+	const auto method = params.association == GlobalAssociation::NearestNeighbor ? AssociationMethod::NearestNeighbor
+																				  : AssociationMethod::Jcbb;
+	const auto result = associatePointSets(sets, method, params.gate_chi2_quantile, params.joint_chi2_quantile);
+	out.pairs_dropped = result.pairs_dropped;
+	out.jcbb_nodes = result.jcbb_nodes;
+	const double new_gate = chi2Quantile(params.new_feature_chi2_quantile, 2);
+	for (Eigen::Index i = 0; i < M; ++i)
+	{
+		auto& a = out.decisions.associations[i];
+		if (const int c = result.candidate_of[i]; c >= 0)
+			a = {Association::Kind::Matched, global.featureId(candidates[c])};
+		else if (result.min_distance2[i] <= new_gate)
+			a = {Association::Kind::Rejected, -1};
+	}
+	return out;
+}
+
+}  // namespace esif::slsjf

@@ -1,0 +1,50 @@
+#pragma once
+/// \file MapAssociation.h
+/// Data association of a local map with the global map (book Sec. 5.4.1):
+/// select the earlier local maps that can overlap the new one (their radii,
+/// the start poses' uncertainty and a margin, Sec. 5.4.1.1), recover the
+/// joint covariance of their features and of the new map's start pose only
+/// (eq. 3.25), move those features into the new map's frame with the full
+/// first-order covariance (which includes the start-pose/candidate
+/// correlation that eq. 5.13 leaves out), and associate them with the local
+/// features (PointSetAssociation: MRPT JCBB or NN, exact joint test). An
+/// unmatched local feature is new when it is far from every candidate, and
+/// left out as ambiguous otherwise (the authors' "poor observation").
+
+#include "GlobalMap.h"
+#include "SlsjfParams.h"
+
+#include <esif/localmap/LocalMap.h>
+
+#include <Eigen/Core>
+#include <optional>
+
+namespace esif::slsjf
+{
+struct MapAssociationOutcome
+{
+	/// One per local feature: Matched (global id), New (proposed id = the
+	/// local id) or Rejected.
+	StepReport decisions;
+	MapExtent extent;  ///< for the overlap tests of later maps
+	std::size_t maps_selected = 0;
+	std::size_t candidates = 0;
+	std::size_t pairs_dropped = 0;	///< MRPT pairs the exact joint test removed
+	std::size_t jcbb_nodes = 0;
+};
+
+/// Extent of a local map: the farthest of its end position and features
+/// from its origin, each plus `sigmas` standard deviations (square root of
+/// the largest eigenvalue of its 2x2 covariance block).
+double mapRadius(const LocalMap& map, const Eigen::MatrixXd& local_cov, double sigmas);
+
+/// Equal IDs are one feature: Matched when the global map has the ID, else New.
+MapAssociationOutcome associateByIds(const LocalMap& map, const GlobalMap& global);
+
+/// Sec. 5.4.1 as above. `local_cov` is the local state's covariance,
+/// `start` the map's start pose variable (from GlobalMap::startPose).
+MapAssociationOutcome associateGeometrically(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, std::optional<VarId> start, GlobalMap& global,
+	const SlsjfParams& params);
+
+}  // namespace esif::slsjf

@@ -1,0 +1,254 @@
+#include "Slsjf.h"
+
+#include "VirtualObservation.h"
+
+#include <esif/core/Errors.h>
+
+#include <chrono>
+#include <set>
+
+IMPLEMENTS_MRPT_OBJECT(Slsjf, FilterPlugin, esif)
+
+namespace esif
+{
+using namespace slsjf;
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// x (+) r with first-order covariance; the two are independent.
+PoseEstimate composeIndependent(const Pose2& x, const Eigen::Matrix3d& Px, const Pose2& r, const Eigen::Matrix3d& Pr)
+{
+	const auto J = composeJacobians(x, r);
+	Eigen::Matrix3d P = J.d_a * Px * J.d_a.transpose() + J.d_b * Pr * J.d_b.transpose();
+	return {toTPose2D(compose(x, r)), 0.5 * (P + P.transpose())};
+}
+}  // namespace
+
+void Slsjf::configure(const ConfigSection& section)
+{
+	loadParams(params_, section);
+	builder_ = std::make_unique<LocalMapBuilder>(params_.builder);
+	global_ = std::make_unique<GlobalMap>(params_.recovery);
+}
+
+void Slsjf::requireConfigured() const
+{
+	if (!global_) throw std::logic_error("Slsjf: used before configure()");
+}
+
+StepReport Slsjf::processStep(const StepInput& step)
+{
+	requireConfigured();
+	if (step.scan)
+		for (const auto& m : step.scan->measurements) saw_measurement_without_id_ |= !m.id.has_value();
+	StepReport report = builder_->processStep(step);
+	if (auto map = builder_->takeClosedMap()) fuse(*map);
+	return report;
+}
+
+void Slsjf::joinLocalMap(const LocalMap& map)
+{
+	requireConfigured();
+	if (map.index != records_.size() + 1)
+		throw InputError("SLSJF: local map " + std::to_string(map.index) + " given after " +
+						 std::to_string(records_.size()) + " maps (maps must come in order from 1)");
+	fuse(map);
+}
+
+void Slsjf::finish()
+{
+	requireConfigured();
+	if (auto map = builder_->finish()) fuse(*map);
+	if (params_.smoothing != Smoothing::None && !records_.empty()) smooth();
+	marginals();
+}
+
+bool Slsjf::useIds(const LocalMap& map) const
+{
+	switch (params_.association)
+	{
+		case GlobalAssociation::KnownIds: return true;
+		case GlobalAssociation::Auto: return map.ids_identify_features && !saw_measurement_without_id_;
+		default: return false;
+	}
+}
+
+MapAssociationOutcome Slsjf::associate(const LocalMap& map, std::optional<VarId> start)
+{
+	if (useIds(map)) return associateByIds(map, *global_);
+	return associateGeometrically(map, localCovariance(map), start, *global_, params_);
+}
+
+void Slsjf::fuse(const LocalMap& map)
+{
+	const auto t0 = Clock::now();
+	const std::optional<VarId> start = global_->startPose(map);	 // Algorithm 5.1, step 1
+	const auto t_association = Clock::now();
+	MapAssociationOutcome outcome = associate(map, start);	// step 2
+	const double association_s = secondsSince(t_association);
+	global_->fuse(map, start, outcome.decisions, outcome.extent);  // steps 3-5
+	last_end_cov_ = global_->covariance({global_->fusedMaps().back().end});
+	marginals_.reset();
+
+	MapRecord record{map.first_step, map.step_reports, {}, outcome.decisions};
+	for (const auto& f : map.features) record.local_ids.push_back(f.id);
+	for (const auto& a : outcome.decisions.associations) tally_.features_rejected += a.kind == Association::Kind::Rejected;
+	records_.push_back(std::move(record));
+	tally_.association_s += association_s;
+	tally_.pairs_dropped += outcome.pairs_dropped;
+	tally_.jcbb_nodes += outcome.jcbb_nodes;
+	tally_.candidates += outcome.candidates;
+	tally_.maps_selected += outcome.maps_selected;
+
+	if (params_.smoothing == Smoothing::EveryKMaps &&
+		records_.size() % static_cast<std::size_t>(params_.smoothing_every_maps) == 0)
+		smooth();
+	costs_.push_back({map.index, secondsSince(t0), association_s, static_cast<std::size_t>(global_->core().stateDim())});
+}
+
+void Slsjf::smooth()
+{
+	const auto t0 = Clock::now();
+	tally_.smoothing_iterations += global_->relinearise(params_.smoothing_max_iterations, params_.smoothing_tolerance);
+	++tally_.smoothing_runs;
+	last_end_cov_ = global_->covariance({global_->fusedMaps().back().end});
+	marginals_.reset();
+	tally_.smoothing_s += secondsSince(t0);
+}
+
+const std::vector<Eigen::MatrixXd>& Slsjf::marginals() const
+{
+	if (!marginals_) marginals_ = global_->core().stateDim() > 0 ? global_->marginals() : std::vector<Eigen::MatrixXd>{};
+	return *marginals_;
+}
+
+PoseEstimate Slsjf::openMapStart() const
+{
+	if (records_.empty()) return {};
+	const Pose2 end = global_->pose(global_->fusedMaps().back().end);
+	if (const auto& link = builder_->openMapLink())
+		return composeIndependent(end, last_end_cov_, toPose2(link->delta), link->cov);
+	return {toTPose2D(end), last_end_cov_};
+}
+
+PoseEstimate Slsjf::robotPose() const
+{
+	requireConfigured();
+	// The global pose of the open map's start composed with the robot pose
+	// in the open map: two independent estimates.
+	const PoseEstimate start = openMapStart();
+	const PoseEstimate local = builder_->openMap().robotPose();
+	return composeIndependent(toPose2(start.mean), start.cov, toPose2(local.mean), local.cov);
+}
+
+Estimate Slsjf::estimate() const
+{
+	requireConfigured();
+	Estimate e;
+	e.robot = robotPose();
+	const auto& P = marginals();
+	std::set<LandmarkId> global_ids;
+	for (const VarId v : global_->featureVars())
+	{
+		e.landmarks.push_back({global_->featureId(v), global_->point(v), P[v.value]});
+		global_ids.insert(global_->featureId(v));
+	}
+	// Features of the open map not yet in the global map, placed through the open map's start pose.
+	const PoseEstimate start = openMapStart();
+	const Pose2 s = toPose2(start.mean);
+	const auto& open = builder_->openMap();
+	for (std::size_t i = 0; i < open.ids().size(); ++i)
+	{
+		if (global_ids.count(open.ids()[i])) continue;
+		const Eigen::Vector2d p = open.core().landmark(i);
+		const auto J = composeJacobians(s, Pose2(p.x(), p.y(), 0));
+		const Eigen::Matrix2d cov = (J.d_a * start.cov * J.d_a.transpose()).topLeftCorner<2, 2>() +
+			J.d_b.topLeftCorner<2, 2>() * open.core().landmarkCov(i) * J.d_b.topLeftCorner<2, 2>().transpose();
+		e.landmarks.push_back({open.ids()[i], transformPoint(s, p), 0.5 * (cov + cov.transpose())});
+	}
+	return e;
+}
+
+std::vector<PoseEstimate> Slsjf::endPoses() const
+{
+	requireConfigured();
+	const auto& P = marginals();
+	std::vector<PoseEstimate> out;
+	for (const auto& fused : global_->fusedMaps())
+	{
+		Pose2 x = global_->pose(fused.end);
+		x(2) = wrapAngle(x(2));
+		out.push_back({toTPose2D(x), P[fused.end.value]});
+	}
+	return out;
+}
+
+StepReport Slsjf::mapReport(std::size_t k) const
+{
+	if (k == 0 || k > records_.size()) return {};
+	return records_[k - 1].decisions;
+}
+
+std::optional<std::vector<StepReport>> Slsjf::finalReports() const
+{
+	if (records_.empty() || records_.front().step_reports.empty()) return std::nullopt;
+	std::vector<StepReport> out;
+	std::set<LandmarkId> started;
+	for (const auto& record : records_)
+	{
+		std::map<LandmarkId, const Association*> global_of;
+		for (std::size_t i = 0; i < record.local_ids.size(); ++i)
+			global_of[record.local_ids[i]] = &record.decisions.associations[i];
+		for (StepReport report : record.step_reports)
+		{
+			for (auto& a : report.associations)
+			{
+				if (a.kind == Association::Kind::Rejected) continue;
+				const auto it = global_of.find(a.id);
+				if (it == global_of.end() || it->second->kind == Association::Kind::Rejected)
+				{
+					a = {Association::Kind::Rejected, -1};
+					continue;
+				}
+				a.id = it->second->id;
+				a.kind = started.insert(a.id).second ? Association::Kind::New : Association::Kind::Matched;
+			}
+			out.push_back(std::move(report));
+		}
+	}
+	return out;
+}
+
+std::optional<InformationPattern> Slsjf::informationPattern() const
+{
+	requireConfigured();
+	return global_->core().pattern();
+}
+
+CostFigures Slsjf::costFigures() const
+{
+	requireConfigured();
+	CostFigures c;
+	const SparseCounters sparse = global_->counters();
+	c.state_dim = static_cast<std::size_t>(global_->core().stateDim());
+	c.poses_in_state = global_->poseCount();
+	c.info_nnz = sparse.information_nnz;
+	c.counters = sparse.list();
+	c.counters.emplace_back("local_maps_fused", static_cast<double>(records_.size()));
+	c.counters.emplace_back("association_s", tally_.association_s);
+	c.counters.emplace_back("association_candidates", static_cast<double>(tally_.candidates));
+	c.counters.emplace_back("association_maps_selected", static_cast<double>(tally_.maps_selected));
+	c.counters.emplace_back("association_pairs_dropped", static_cast<double>(tally_.pairs_dropped));
+	c.counters.emplace_back("features_rejected", static_cast<double>(tally_.features_rejected));
+	c.counters.emplace_back("jcbb_nodes", static_cast<double>(tally_.jcbb_nodes));
+	c.counters.emplace_back("smoothing_runs", static_cast<double>(tally_.smoothing_runs));
+	c.counters.emplace_back("smoothing_iterations", static_cast<double>(tally_.smoothing_iterations));
+	c.counters.emplace_back("smoothing_s", tally_.smoothing_s);
+	return c;
+}
+
+}  // namespace esif

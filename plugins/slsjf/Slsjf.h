@@ -1,0 +1,91 @@
+#pragma once
+/// \file Slsjf.h
+/// SLSJF, the Sparse Local Submap Joining Filter (book Ch. 5): local EKF
+/// maps, each a virtual observation of its features and end pose from its
+/// start pose (eq. 5.8), fused one by one into a global map that keeps
+/// every feature and every map's end pose (eq. 5.3) with an exactly sparse
+/// information matrix (Sec. 5.3) and, apart from linearisation, no loss of
+/// information (Sec. 5.7.2). Algorithm 5.1 per map: start pose (5.4-5.6),
+/// data association (5.4.1), new features and end pose (5.7), update
+/// (5.8-5.9), state recovery (5.14, incremental Cholesky). Optional
+/// relinearisation of all fused maps (`smoothing`, after the authors'
+/// I-SLSJF) reaches the optimum of the local-map formulation.
+///
+/// On a rawlog it builds its local maps with the framework's
+/// LocalMapBuilder; on `esif run --local-maps` it fuses the maps it is given.
+
+#include "GlobalMap.h"
+#include "MapAssociation.h"
+#include "SlsjfParams.h"
+
+#include <esif/localmap/LocalMapBuilder.h>
+#include <esif/plugin/FilterPlugin.h>
+#include <esif/plugin/LocalMapJoiner.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace esif
+{
+class Slsjf : public FilterPlugin, public LocalMapJoiner
+{
+	DEFINE_MRPT_OBJECT(Slsjf, esif)
+
+   public:
+	std::string sectionName() const override { return "slsjf"; }
+	void configure(const ConfigSection& section) override;
+	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
+	StepReport processStep(const StepInput& step) override;
+	void finish() override;
+	PoseEstimate robotPose() const override;
+	Estimate estimate() const override;
+	CostFigures costFigures() const override;
+	Formulation formulation() const override { return Formulation::Slsjf; }
+	std::optional<std::vector<StepReport>> finalReports() const override;
+	std::optional<InformationPattern> informationPattern() const override;
+
+	LocalMapBuilderParams localMapBuilderParams() const override { return params_.builder; }
+	void joinLocalMap(const LocalMap& map) override;
+	std::vector<PoseEstimate> endPoses() const override;
+	StepReport mapReport(std::size_t k) const override;
+	std::vector<LocalMapFusionCost> fusionCosts() const override { return costs_; }
+
+   private:
+	/// What the fusion of one map decided, for reports and the robot pose.
+	struct MapRecord
+	{
+		std::size_t first_step = 0;
+		std::vector<StepReport> step_reports;  ///< by the local map's feature IDs
+		std::vector<LandmarkId> local_ids;	///< the map's feature IDs, in order
+		StepReport decisions;  ///< one per feature: global id or rejected
+	};
+
+	void requireConfigured() const;
+	void fuse(const LocalMap& map);
+	bool useIds(const LocalMap& map) const;
+	slsjf::MapAssociationOutcome associate(const LocalMap& map, std::optional<VarId> start);
+	void smooth();
+	PoseEstimate openMapStart() const;
+	const std::vector<Eigen::MatrixXd>& marginals() const;
+
+	slsjf::SlsjfParams params_;
+	std::unique_ptr<LocalMapBuilder> builder_;
+	// Behind const estimate()/robotPose(): recovery and marginal caches.
+	std::unique_ptr<slsjf::GlobalMap> global_;
+	std::vector<MapRecord> records_;
+	std::vector<LocalMapFusionCost> costs_;
+	bool saw_measurement_without_id_ = false;
+	Eigen::Matrix3d last_end_cov_ = Eigen::Matrix3d::Zero();  // of the last fused map's end pose
+	mutable std::optional<std::vector<Eigen::MatrixXd>> marginals_;	 // cleared by every change
+
+	struct Tally
+	{
+		std::size_t features_rejected = 0, pairs_dropped = 0, jcbb_nodes = 0, candidates = 0, maps_selected = 0,
+					smoothing_runs = 0, smoothing_iterations = 0;
+		double association_s = 0, smoothing_s = 0;
+	} tally_;
+};
+
+}  // namespace esif

@@ -1,0 +1,48 @@
+#include "SlsjfParams.h"
+
+namespace esif::slsjf
+{
+void SlsjfParams::declare(ParamBinder& b)
+{
+	b.enumeration<GlobalAssociation>(
+		"association", association,
+		{{"auto", GlobalAssociation::Auto},
+		 {"known_ids", GlobalAssociation::KnownIds},
+		 {"jcbb", GlobalAssociation::Jcbb},
+		 {"nn", GlobalAssociation::NearestNeighbor}},
+		"global association of local features: equal IDs, or MRPT JCBB / NN on the overlapping maps' features "
+		"(Sec. 5.4.1); auto = IDs when the input has them, else jcbb");
+	b.real("gate_chi2_quantile", gate_chi2_quantile, "individual-compatibility gate of a local/global pair",
+		   Bounds::openUnit());
+	b.real("joint_chi2_quantile", joint_chi2_quantile, "joint-compatibility gate of all pairs of a map",
+		   Bounds::openUnit());
+	b.real("new_feature_chi2_quantile", new_feature_chi2_quantile,
+		   "confidence beyond which an unmatched local feature is new, not ambiguous (then left out)",
+		   Bounds::openUnit());
+	b.real("overlap_margin_m", overlap_margin_m, "slack of the overlap test between local maps [m]",
+		   Bounds::nonNegative());
+	b.real("overlap_sigmas", overlap_sigmas, "sigmas added to map radii and start-pose uncertainty in the overlap test",
+		   Bounds::nonNegative());
+	b.enumeration<Smoothing>(
+		"smoothing", smoothing,
+		{{"none", Smoothing::None}, {"final", Smoothing::Final}, {"every_k_maps", Smoothing::EveryKMaps}},
+		"relinearise every fused map at the current estimate (iterated SLSJF): never, after the last map, or "
+		"every smoothing_every_maps maps");
+	b.integer("smoothing_every_maps", smoothing_every_maps, "K of smoothing = every_k_maps", Bounds::atLeast(1));
+	b.integer("smoothing_max_iterations", smoothing_max_iterations, "Gauss-Newton iterations per relinearisation",
+			  Bounds::atLeast(1));
+	b.real("smoothing_tolerance", smoothing_tolerance,
+		   "relinearisation stops when no estimate moves more than this [m or rad]", Bounds::positive());
+	builder.declare(b);
+	recovery.declare(b);
+}
+
+SparseRecoveryParams SlsjfParams::defaultRecovery()
+{
+	SparseRecoveryParams r;
+	r.reordering = Reordering::Camd;
+	r.n0 = 1000;
+	return r;
+}
+
+}  // namespace esif::slsjf
