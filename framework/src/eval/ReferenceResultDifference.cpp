@@ -1,4 +1,5 @@
 #include <esif/eval/ReferenceResultDifference.h>
+#include <esif/eval/DifferenceSpread.h>
 #include <esif/models/Se2.h>
 
 #include <algorithm>
@@ -8,33 +9,11 @@ namespace esif
 {
 namespace
 {
-/// RMS and maximum of non-negative differences added one at a time.
-class Spread
-{
-   public:
-	void add(double d)
-	{
-		sum_sq_ += d * d;
-		max_ = std::max(max_, d);
-		++count_;
-	}
-	std::size_t count() const { return count_; }
-	std::optional<double> rms() const
-	{
-		return count_ ? std::optional<double>(std::sqrt(sum_sq_ / static_cast<double>(count_))) : std::nullopt;
-	}
-	std::optional<double> max() const { return count_ ? std::optional<double>(max_) : std::nullopt; }
-
-   private:
-	double sum_sq_ = 0, max_ = 0;
-	std::size_t count_ = 0;
-};
-
 void compareLandmarks(
 	const Estimate& estimate, const std::map<LandmarkId, LandmarkId>& filter_to_file, const ReferenceResult& reference,
 	ReferenceResultDifference& out)
 {
-	Spread position;
+	DifferenceSpread position;
 	for (const auto& lm : estimate.landmarks)
 	{
 		const auto file_id = filter_to_file.find(lm.id);
@@ -51,7 +30,7 @@ void compareLandmarks(
 void comparePoses(
 	const std::vector<TrajectoryPoint>& end_poses, const ReferenceResult& reference, ReferenceResultDifference& out)
 {
-	Spread position, heading;
+	DifferenceSpread position, heading;
 	for (const auto& p : end_poses)
 	{
 		const auto ref = reference.end_poses.find(p.step);

@@ -1,4 +1,5 @@
 #include <esif/eval/RunDifference.h>
+#include <esif/eval/DifferenceSpread.h>
 #include <esif/models/Se2.h>
 
 #include <Eigen/Core>
@@ -11,29 +12,6 @@ namespace esif
 {
 namespace
 {
-/// RMS and maximum of a set of non-negative differences, added one at a time.
-class DifferenceStats
-{
-   public:
-	void add(double d)
-	{
-		sum_sq_ += d * d;
-		max_ = std::max(max_, d);
-		++count_;
-	}
-	std::size_t count() const { return count_; }
-	std::optional<double> rms() const
-	{
-		return count_ ? std::optional<double>(std::sqrt(sum_sq_ / static_cast<double>(count_))) : std::nullopt;
-	}
-	std::optional<double> max() const { return count_ ? std::optional<double>(max_) : std::nullopt; }
-
-   private:
-	double sum_sq_ = 0;
-	double max_ = 0;
-	std::size_t count_ = 0;
-};
-
 bool isFinite(const mrpt::math::TPose2D& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.phi); }
 
 /// Pairs the poses of equal timestamps (both trajectories have strictly
@@ -41,7 +19,7 @@ bool isFinite(const mrpt::math::TPose2D& p) { return std::isfinite(p.x) && std::
 void compareTrajectories(
 	const std::vector<TimedPose2D>& run, const std::vector<TimedPose2D>& reference, RunDifference& out)
 {
-	DifferenceStats position, heading;
+	DifferenceSpread position, heading;
 	for (std::size_t i = 0, j = 0; i < run.size() && j < reference.size();)
 	{
 		if (run[i].time_s < reference[j].time_s) ++i;
@@ -66,7 +44,7 @@ void compareLandmarks(
 {
 	std::unordered_map<LandmarkId, Eigen::Vector2d> in_run;
 	for (const auto& lm : run) in_run.emplace(lm.id, lm.mean);
-	DifferenceStats position;
+	DifferenceSpread position;
 	for (const auto& ref : reference)
 	{
 		const auto it = in_run.find(ref.id);

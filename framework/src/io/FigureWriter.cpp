@@ -137,6 +137,27 @@ struct Fonts
 	}
 };
 
+/// Grid lines, tick marks and tick labels of both axes.
+void drawGridAndTicks(mrpt::img::CImage& img, const Axes& axes, const std::vector<double>& x_ticks,
+					  const std::vector<double>& y_ticks, const Font& f)
+{
+	for (double t : x_ticks)
+	{
+		const int x = axes.px(t);
+		img.line(x, axes.y0, x, axes.y1, kGridColor, 1);
+		img.line(x, axes.y1, x, axes.y1 + 5, kInk, 1);
+		centredText(img, x, axes.y1 + 8, tickLabel(t), f, kTextColor);
+	}
+	for (double t : y_ticks)
+	{
+		const int y = axes.py(t);
+		img.line(axes.x0, y, axes.x1, y, kGridColor, 1);
+		img.line(axes.x0 - 5, y, axes.x0, y, kInk, 1);
+		const std::string s = tickLabel(t);
+		text(img, axes.x0 - 8 - textWidth(s, f), y - f.h / 2, s, f, kTextColor);
+	}
+}
+
 std::vector<StepPoint> finitePoints(const std::vector<double>& step_us, const std::vector<std::size_t>& counts)
 {
 	std::vector<StepPoint> pts;
@@ -197,7 +218,7 @@ class StepTimesPainter
 
 	mrpt::img::CImage paint()
 	{
-		drawGridAndTicks();
+		drawGridAndTicks(img_, axes_, x_ticks_, y_ticks_, fonts_.label);
 		drawPoints();
 		drawMedians();
 		drawAxes();
@@ -220,26 +241,6 @@ class StepTimesPainter
 		axes_.x1 = w_ - 3 * pad;
 		axes_.y0 = fonts_.title.h + static_cast<int>(subtitle_.size()) * (sub_font_.h + pad / 2) + fonts_.label.h + 4 * pad;
 		axes_.y1 = h_ - (fonts_.label.h + fonts_.body.h + 4 * pad);
-	}
-
-	void drawGridAndTicks()
-	{
-		const Font& f = fonts_.label;
-		for (double t : x_ticks_)
-		{
-			const int x = axes_.px(t);
-			img_.line(x, axes_.y0, x, axes_.y1, kGridColor, 1);
-			img_.line(x, axes_.y1, x, axes_.y1 + 5, kInk, 1);
-			centredText(img_, x, axes_.y1 + 8, tickLabel(t), f, kTextColor);
-		}
-		for (double t : y_ticks_)
-		{
-			const int y = axes_.py(t);
-			img_.line(axes_.x0, y, axes_.x1, y, kGridColor, 1);
-			img_.line(axes_.x0 - 5, y, axes_.x0, y, kInk, 1);
-			const std::string s = tickLabel(t);
-			text(img_, axes_.x0 - 8 - textWidth(s, f), y - f.h / 2, s, f, kTextColor);
-		}
 	}
 
 	void drawPoints()
@@ -392,33 +393,13 @@ class LocalMapTimesPainter
 		axes.x1 = w_ - 3 * pad;
 		axes.y0 = y_top + fonts_.label.h + 2 * pad;
 		axes.y1 = y_bottom - (fonts_.label.h + 2 * pad);
-		drawTicks(axes, x_ticks, y_ticks);
+		drawGridAndTicks(img_, axes, x_ticks, y_ticks, fonts_.label);
 		// Last series first, so the first (the whole fusion) shows where they coincide.
 		for (auto s = series.rbegin(); s != series.rend(); ++s) drawSeries(axes, *s);
 		img_.line(axes.x0, axes.y0, axes.x0, axes.y1, kInk, 1);
 		img_.line(axes.x0, axes.y1, axes.x1, axes.y1, kInk, 1);
 		text(img_, pad, y_top + pad / 2, y_label, fonts_.label, kTextColor);
 		drawLegend(axes.x1, y_top + pad / 2, series);
-	}
-
-	void drawTicks(const Axes& axes, const std::vector<double>& x_ticks, const std::vector<double>& y_ticks)
-	{
-		const Font& f = fonts_.label;
-		for (double t : x_ticks)
-		{
-			const int x = axes.px(t);
-			img_.line(x, axes.y0, x, axes.y1, kGridColor, 1);
-			img_.line(x, axes.y1, x, axes.y1 + 5, kInk, 1);
-			centredText(img_, x, axes.y1 + 7, tickLabel(t), f, kTextColor);
-		}
-		for (double t : y_ticks)
-		{
-			const int y = axes.py(t);
-			img_.line(axes.x0, y, axes.x1, y, kGridColor, 1);
-			img_.line(axes.x0 - 5, y, axes.x0, y, kInk, 1);
-			const std::string s = tickLabel(t);
-			text(img_, axes.x0 - 8 - textWidth(s, f), y - f.h / 2, s, f, kTextColor);
-		}
 	}
 
 	void drawSeries(const Axes& axes, const Series& s)
