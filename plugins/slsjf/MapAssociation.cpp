@@ -17,12 +17,20 @@ double largestSigma(const Eigen::Matrix2d& cov)
 	return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov, Eigen::EigenvaluesOnly).eigenvalues()(1)));
 }
 
-/// Sec. 5.4.1.1: features of the fused maps that can overlap the new one,
-/// still within reach of its origin.
+/// Sec. 5.4.1.1: features of the fused maps that can overlap the new one
+/// and lie, by the estimates, within `slack_m` of one of the new map's
+/// features moved into the global frame (the authors' MaxDistance test,
+/// with a slack from the start pose's uncertainty instead of a constant).
 std::vector<VarId> overlapCandidates(
-	const GlobalMap& global, const Eigen::Vector2d& origin, const MapExtent& extent, double margin_m,
-	std::size_t& maps_selected)
+	const GlobalMap& global, const Pose2& start, const std::vector<Eigen::Vector2d>& local_features,
+	const MapExtent& extent, double margin_m, double slack_m, std::size_t& maps_selected)
 {
+	const Eigen::Vector2d origin = start.head<2>();
+	std::vector<Eigen::Vector2d> placed;
+	for (const auto& p : local_features) placed.push_back(transformPoint(start, p));
+	const auto nearSomeLocalFeature = [&](const Eigen::Vector2d& x) {
+		return std::any_of(placed.begin(), placed.end(), [&](const Eigen::Vector2d& p) { return (p - x).norm() < slack_m; });
+	};
 	std::set<int> chosen;
 	for (const auto& fused : global.fusedMaps())
 	{
@@ -32,8 +40,7 @@ std::vector<VarId> overlapCandidates(
 		if ((o - origin).norm() >= reach) continue;
 		++maps_selected;
 		for (const VarId v : fused.features)
-			if ((global.point(v) - origin).norm() < extent.radius_m + extent.start_uncertainty_m + margin_m)
-				chosen.insert(v.value);
+			if (!chosen.count(v.value) && nearSomeLocalFeature(global.point(v))) chosen.insert(v.value);
 	}
 	std::vector<VarId> out;
 	for (const int v : chosen) out.push_back(VarId{v});
@@ -92,10 +99,16 @@ MapAssociationOutcome associateGeometrically(
 	for (const auto& f : map.features) out.decisions.associations.push_back({Association::Kind::New, f.id});
 	if (!start || map.features.empty()) return out;
 
-	out.extent.start_uncertainty_m =
-		params.overlap_sigmas * largestSigma(global.covariance({*start}).topLeftCorner<2, 2>());
+	const Eigen::Matrix3d start_cov = global.covariance({*start});
+	out.extent.start_uncertainty_m = params.overlap_sigmas * largestSigma(start_cov.topLeftCorner<2, 2>());
+	// A local feature moves with the start position and, at the map's
+	// radius, with its heading: both uncertainties, plus the margin.
+	const double slack_m = out.extent.start_uncertainty_m +
+		params.overlap_sigmas * std::sqrt(start_cov(2, 2)) * out.extent.radius_m + params.overlap_margin_m;
+	std::vector<Eigen::Vector2d> local_features;
+	for (const auto& f : map.features) local_features.push_back(f.position);
 	const auto candidates = overlapCandidates(
-		global, global.pose(*start).head<2>(), out.extent, params.overlap_margin_m, out.maps_selected);
+		global, global.pose(*start), local_features, out.extent, params.overlap_margin_m, slack_m, out.maps_selected);
 	out.candidates = candidates.size();
 	if (candidates.empty()) return out;
 

@@ -2,7 +2,9 @@
 /// \file MapAssociation.h
 /// Data association of a local map with the global map (book Sec. 5.4.1):
 /// select the earlier local maps that can overlap the new one (their radii,
-/// the start poses' uncertainty and a margin, Sec. 5.4.1.1), recover the
+/// the start poses' uncertainty and a margin, Sec. 5.4.1.1) and of their
+/// features those near one of the new map's (by the estimates, within the
+/// start pose's position and heading uncertainty plus the margin), recover the
 /// joint covariance of their features and of the new map's start pose only
 /// (eq. 3.25), move those features into the new map's frame with the full
 /// first-order covariance (which includes the start-pose/candidate
