@@ -46,7 +46,13 @@ StepReport Slsjf::processStep(const StepInput& step)
 	if (step.scan)
 		for (const auto& m : step.scan->measurements) saw_measurement_without_id_ |= !m.id.has_value();
 	StepReport report = builder_->processStep(step);
-	if (auto map = builder_->takeClosedMap()) fuse(*map);
+	if (auto map = builder_->takeClosedMap())
+	{
+		local_poses_.push_back({toTPose2D(map->end_pose), map->covariance->topLeftCorner<3, 3>()});
+		fuse(*map);
+	}
+	else
+		local_poses_.push_back(builder_->openMap().robotPose());
 	return report;
 }
 
@@ -219,6 +225,29 @@ std::optional<std::vector<StepReport>> Slsjf::finalReports() const
 			}
 			out.push_back(std::move(report));
 		}
+	}
+	return out;
+}
+
+std::optional<std::vector<PoseEstimate>> Slsjf::smoothedTrajectory() const
+{
+	if (params_.smoothing == Smoothing::None || local_poses_.empty()) return std::nullopt;
+	const auto& P = marginals();
+	std::vector<PoseEstimate> out;
+	out.reserve(local_poses_.size());
+	for (std::size_t k = 0; k < records_.size(); ++k)
+	{
+		const auto& start = global_->fusedMaps()[k].start;
+		const Pose2 s = global_->startEstimate(start);
+		const Eigen::Matrix3d Ps = start ? Eigen::Matrix3d(P[start->value]) : Eigen::Matrix3d::Zero();
+		const std::size_t first = records_[k].first_step, last = first + records_[k].step_reports.size() - 1;
+		for (std::size_t i = first; i < last && i < local_poses_.size(); ++i)
+			out.push_back(composeIndependent(s, Ps, toPose2(local_poses_[i].mean), local_poses_[i].cov));
+		// The map's last step is its end pose, a variable of the global state.
+		const VarId end = global_->fusedMaps()[k].end;
+		Pose2 e = global_->pose(end);
+		e(2) = wrapAngle(e(2));
+		out.push_back({toTPose2D(e), P[end.value]});
 	}
 	return out;
 }

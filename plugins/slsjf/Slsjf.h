@@ -44,6 +44,10 @@ class Slsjf : public FilterPlugin, public LocalMapJoiner
 	CostFigures costFigures() const override;
 	Formulation formulation() const override { return Formulation::Slsjf; }
 	std::optional<std::vector<StepReport>> finalReports() const override;
+	/// With smoothing, every step's pose re-estimated with all data: its map's
+	/// start pose from the final global state composed with the robot pose
+	/// in that map (first-order covariance). Plain SLSJF keeps its online poses.
+	std::optional<std::vector<PoseEstimate>> smoothedTrajectory() const override;
 	std::optional<InformationPattern> informationPattern() const override;
 
 	LocalMapBuilderParams localMapBuilderParams() const override { return params_.builder; }
@@ -75,6 +79,9 @@ class Slsjf : public FilterPlugin, public LocalMapJoiner
 	// Behind const estimate()/robotPose(): recovery and marginal caches.
 	std::unique_ptr<slsjf::GlobalMap> global_;
 	std::vector<MapRecord> records_;
+	/// Each step's robot pose in its local map's frame (the end pose for the
+	/// step that closed a map), for smoothedTrajectory().
+	std::vector<PoseEstimate> local_poses_;
 	std::vector<LocalMapFusionCost> costs_;
 	bool saw_measurement_without_id_ = false;
 	Eigen::Matrix3d last_end_cov_ = Eigen::Matrix3d::Zero();  // of the last fused map's end pose

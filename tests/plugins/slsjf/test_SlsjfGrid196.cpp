@@ -106,6 +106,11 @@ TEST(SlsjfGrid196, AsAccurateAsTheOptimumOnTheSameMeasurementsAndConsistent)
 	// Relinearised, SLSJF is the optimum of the local-map formulation: its raw
 	// error is the full-SLAM optimum's within the 1.2x (measured 1.17x).
 	EXPECT_LE(*smoothed.accuracy.landmark_rmse_m, 1.2 * *optimum.accuracy.landmark_rmse_m);
+	// Relinearised, every step's pose is re-estimated from its map's final
+	// start pose (smoothedTrajectory): better than the online poses, and
+	// consistent (pose NEES below its 95% bound at 95% of the steps).
+	EXPECT_LT(*smoothed.accuracy.ate_rmse_m, *plain.accuracy.ate_rmse_m);
+	EXPECT_GE(*smoothed.accuracy.pose_consistent_fraction, 0.95);
 	EXPECT_EQ(plain.result.audit.wrongCount(), 0u);
 }
 
