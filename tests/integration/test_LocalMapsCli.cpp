@@ -57,6 +57,10 @@ class LocalMapsCli : public ::testing::Test
 		std::ofstream(dir_->file("hidden.ini"))
 			<< esif::test::joinerConfig("label = hidden\nhide_landmark_ids = true\n");
 		std::ofstream(dir_->file("ekf.ini")) << "[esif]\nplugin = EkfSlam\n";
+		esif::LocalMapFolder tiny;
+		tiny.maps.push_back(esif::test::makeLocalMap(1, esif::Pose2(2, 0, 0.1), {{1, 1, 1}, {2, 3, -1}}));
+		tiny.maps.push_back(esif::test::makeLocalMap(2, esif::Pose2(2, 0.5, 0), {{2, 1, -1}, {3, 2, 2}}));
+		esif::writeLocalMapFolder(tiny, tinyMaps());
 	}
 	static void TearDownTestSuite() { dir_.reset(); }
 
@@ -70,10 +74,13 @@ class LocalMapsCli : public ::testing::Test
 					   quoted(dir_->file(out)) + " " + esif::test::testPluginDirOption() + " " + extra);
 	}
 
-	static void requireSim5()
-	{
-		if (!fs::exists(kSim5 + "/localmap_1.txt")) GTEST_SKIP() << kSim5 << " not present";
-	}
+	/// GTEST_SKIP() only leaves the function it is called in, so each test
+	/// that needs the third-party set checks this itself.
+	static bool sim5Present() { return fs::exists(kSim5 + "/localmap_1.txt"); }
+
+	/// A folder of two hand-made maps, for the tests that do not depend on
+	/// the maps' content (they run without ../shared/data).
+	static std::string tinyMaps() { return dir_->file("tiny_maps"); }
 
 	static std::unique_ptr<TempDir> dir_;
 };
@@ -166,7 +173,7 @@ TEST_F(LocalMapsCli, InfoOnVictoriaParkReportsTheMapSharingOneFeature)
 
 TEST_F(LocalMapsCli, RunOnSim5GivesFiniteRmseAndEveryOutput)
 {
-	requireSim5();
+	if (!sim5Present()) GTEST_SKIP() << kSim5 << " not present";
 	const auto r = runOnMaps("joiner.ini", kSim5, "sim5_run");
 	ASSERT_EQ(r.exit_code, 0) << r.out;
 	const std::string out = dir_->file("sim5_run");
@@ -203,7 +210,7 @@ TEST_F(LocalMapsCli, RunOnSim5GivesFiniteRmseAndEveryOutput)
 
 TEST_F(LocalMapsCli, ReferenceResultOfItsOwnOutputGivesZeroAndAShiftGivesTheShift)
 {
-	requireSim5();
+	if (!sim5Present()) GTEST_SKIP() << kSim5 << " not present";
 	ASSERT_EQ(runOnMaps("joiner.ini", kSim5, "sim5_own").exit_code, 0);
 	const auto own = esif::readRunOutputs(dir_->file("sim5_own"));
 	// The run's own result as a reference, and the same moved by (0.6, -0.8)
@@ -236,7 +243,7 @@ TEST_F(LocalMapsCli, ReferenceResultOfItsOwnOutputGivesZeroAndAShiftGivesTheShif
 
 TEST_F(LocalMapsCli, HiddenIdsAreRenumberedForThePluginYetScoredAgainstTheFilesIds)
 {
-	requireSim5();
+	if (!sim5Present()) GTEST_SKIP() << kSim5 << " not present";
 	const auto r = runOnMaps("hidden.ini", kSim5, "sim5_hidden");
 	ASSERT_EQ(r.exit_code, 0) << r.out;
 	const auto folder = esif::readLocalMapFolder(kSim5);
@@ -258,13 +265,12 @@ TEST_F(LocalMapsCli, HiddenIdsAreRenumberedForThePluginYetScoredAgainstTheFilesI
 
 TEST_F(LocalMapsCli, PluginThatCannotJoinIsOneLineAndWritesNothing)
 {
-	requireSim5();
 	const std::string out = dir_->file("ekf_out");
-	expectOneErrorLine(runOnMaps("ekf.ini", kSim5, "ekf_out"),
+	expectOneErrorLine(runOnMaps("ekf.ini", tinyMaps(), "ekf_out"),
 					   "ekf.ini: plugin EkfSlam cannot join local maps (--local-maps needs a local-map joining plugin)");
 	EXPECT_FALSE(fs::exists(out));
 	expectOneErrorLine(runEsif("compare --configs " + config("joiner.ini") + "," + config("ekf.ini") +
-							   " --local-maps " + quoted(kSim5) + " --out " + quoted(out) + " " +
+							   " --local-maps " + quoted(tinyMaps()) + " --out " + quoted(out) + " " +
 							   esif::test::testPluginDirOption()),
 					   "ekf.ini: plugin EkfSlam cannot join local maps");
 	EXPECT_FALSE(fs::exists(out));
@@ -278,15 +284,15 @@ TEST_F(LocalMapsCli, RawlogAndLocalMapsTogetherOrNeitherIsAnError)
 {
 	const std::string out = dir_->file("both_out");
 	const std::string base = "run -q --config " + config("joiner.ini") + " --out " + quoted(out) + " ";
-	expectOneErrorLine(runEsif(base + "--rawlog " + quoted(kGrid196) + " --local-maps " + quoted(kSim5)),
+	expectOneErrorLine(runEsif(base + "--rawlog " + quoted(kGrid196) + " --local-maps " + quoted(tinyMaps())),
 					   "give exactly one of --rawlog FILE and --local-maps DIR");
 	expectOneErrorLine(runEsif(base), "give exactly one of --rawlog FILE and --local-maps DIR");
-	expectOneErrorLine(runEsif(base + "--rawlog " + quoted(kGrid196) + " --reference-result " + quoted(kSim5)),
+	expectOneErrorLine(runEsif(base + "--rawlog " + quoted(kGrid196) + " --reference-result " + quoted(tinyMaps())),
 					   "--reference-result applies to --local-maps input");
-	expectOneErrorLine(runEsif(base + "--local-maps " + quoted(kSim5) + " --ground-truth x"),
+	expectOneErrorLine(runEsif(base + "--local-maps " + quoted(tinyMaps()) + " --ground-truth x"),
 					   "--ground-truth applies to --rawlog input");
 	expectOneErrorLine(runEsif("compare --configs " + config("joiner.ini") + " --out " + quoted(out) + " --rawlog " +
-							   quoted(kGrid196) + " --local-maps " + quoted(kSim5)),
+							   quoted(kGrid196) + " --local-maps " + quoted(tinyMaps())),
 					   "give exactly one of --rawlog FILE and --local-maps DIR");
 	EXPECT_FALSE(fs::exists(out));
 	expectOneErrorLine(runEsif("localmaps frobnicate"), "unknown action 'frobnicate'");
@@ -296,7 +302,7 @@ TEST_F(LocalMapsCli, RawlogAndLocalMapsTogetherOrNeitherIsAnError)
 
 TEST_F(LocalMapsCli, CompareOnLocalMapsShowsTheReferenceResultColumns)
 {
-	requireSim5();
+	if (!sim5Present()) GTEST_SKIP() << kSim5 << " not present";
 	// sim5's own truth as a reference result: feature.txt only.
 	const std::string ref = dir_->file("sim5_truth_ref");
 	fs::create_directories(ref);
