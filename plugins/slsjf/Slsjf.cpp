@@ -3,6 +3,7 @@
 #include "VirtualObservation.h"
 
 #include <esif/core/Errors.h>
+#include <esif/localmap/SettledReports.h>
 
 #include <chrono>
 #include <set>
@@ -86,7 +87,7 @@ bool Slsjf::useIds(const LocalMap& map) const
 MapAssociationOutcome Slsjf::associate(const LocalMap& map, std::optional<VarId> start)
 {
 	if (useIds(map)) return associateByIds(map, *global_);
-	return associateGeometrically(map, localCovariance(map), start, *global_, params_);
+	return associateGeometrically(map, map.covarianceMatrix(), start, *global_, params_);
 }
 
 void Slsjf::fuse(const LocalMap& map)
@@ -205,27 +206,7 @@ std::optional<std::vector<StepReport>> Slsjf::finalReports() const
 	std::vector<StepReport> out;
 	std::set<LandmarkId> started;
 	for (const auto& record : records_)
-	{
-		std::map<LandmarkId, const Association*> global_of;
-		for (std::size_t i = 0; i < record.local_ids.size(); ++i)
-			global_of[record.local_ids[i]] = &record.decisions.associations[i];
-		for (StepReport report : record.step_reports)
-		{
-			for (auto& a : report.associations)
-			{
-				if (a.kind == Association::Kind::Rejected) continue;
-				const auto it = global_of.find(a.id);
-				if (it == global_of.end() || it->second->kind == Association::Kind::Rejected)
-				{
-					a = {Association::Kind::Rejected, -1};
-					continue;
-				}
-				a.id = it->second->id;
-				a.kind = started.insert(a.id).second ? Association::Kind::New : Association::Kind::Matched;
-			}
-			out.push_back(std::move(report));
-		}
-	}
+		appendSettledReports(record.step_reports, record.local_ids, record.decisions, started, out);
 	return out;
 }
 

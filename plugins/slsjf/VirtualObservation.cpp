@@ -34,14 +34,4 @@ VirtualObservation keepFeatures(const LocalMap& map, const std::vector<bool>& ke
 	return out;
 }
 
-Eigen::MatrixXd localCovariance(const LocalMap& map)
-{
-	if (map.covariance) return *map.covariance;
-	const Eigen::LLT<Eigen::MatrixXd> llt(map.information);
-	if (llt.info() != Eigen::Success)
-		throw NumericalError("local map " + std::to_string(map.index) + ": information matrix is not positive definite");
-	Eigen::MatrixXd P = llt.solve(Eigen::MatrixXd::Identity(map.information.rows(), map.information.cols()));
-	return 0.5 * (P + P.transpose());
-}
-
 }  // namespace esif::slsjf

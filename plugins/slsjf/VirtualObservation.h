@@ -26,9 +26,4 @@ struct VirtualObservation
 /// block cannot be eliminated (not positive definite).
 VirtualObservation keepFeatures(const LocalMap& map, const std::vector<bool>& keep);
 
-/// Covariance of the local state: the map's own when it has one (built
-/// here), else its information inverted by Cholesky (a local map is small:
-/// at most a few hundred scalars).
-Eigen::MatrixXd localCovariance(const LocalMap& map);
-
 }  // namespace esif::slsjf

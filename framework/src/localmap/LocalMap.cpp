@@ -14,6 +14,16 @@ Eigen::VectorXd LocalMap::state() const
 	return x;
 }
 
+Eigen::MatrixXd LocalMap::covarianceMatrix() const
+{
+	if (covariance) return *covariance;
+	const Eigen::LLT<Eigen::MatrixXd> llt(information);
+	if (llt.info() != Eigen::Success)
+		throw NumericalError("local map " + std::to_string(index) + ": information matrix is not positive definite");
+	Eigen::MatrixXd P = llt.solve(Eigen::MatrixXd::Identity(information.rows(), information.cols()));
+	return 0.5 * (P + P.transpose());
+}
+
 std::size_t LocalMap::featuresInEarlierMaps() const
 {
 	std::size_t n = 0;

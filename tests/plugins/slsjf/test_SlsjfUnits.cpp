@@ -96,7 +96,7 @@ TEST(SlsjfUnits, LeftOutFeaturesAreMarginalisedExactly)
 	const Eigen::MatrixXd expected = P(rows, rows);
 	EXPECT_LT((obs.information.inverse() - expected).norm(), 1e-10 * expected.norm());
 	EXPECT_EQ(obs.z(5), map.features[2].position.x());
-	EXPECT_LT((slsjf::localCovariance(map) - P).norm(), 1e-10 * P.norm());
+	EXPECT_LT((map.covarianceMatrix() - P).norm(), 1e-10 * P.norm());
 }
 
 /// A noise-free run of configs/sim/small.ini; the filters are told a small

@@ -73,6 +73,11 @@ struct LocalMap
 	std::size_t stateDim() const { return 3 + 2 * features.size(); }
 	/// The state vector [end pose; x1, y1, ...] the information matrix is about.
 	Eigen::VectorXd state() const;
+	/// The covariance of the state: the map's own when it has one (built
+	/// here), else its information inverted by Cholesky (a local map is
+	/// small: at most a few hundred scalars). Throws NumericalError naming
+	/// the map when the information is not positive definite.
+	Eigen::MatrixXd covarianceMatrix() const;
 	/// Features whose `in_earlier_maps` flag is set.
 	std::size_t featuresInEarlierMaps() const;
 
