@@ -34,7 +34,7 @@ void AdmissibleChain::add(const std::vector<IdentifiedMeasurement>& scan, const 
 		}
 }
 
-PointSet AdmissibleChain::features() const
+relative::PointSet AdmissibleChain::features() const
 {
 	const auto n = static_cast<Eigen::Index>(2 * ids_.size());
 	return {ekf_.state().tail(n), ekf_.covariance().bottomRightCorner(n, n)};

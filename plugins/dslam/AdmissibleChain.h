@@ -13,9 +13,9 @@
 /// frame itself, and the chain's feature estimates are absolute.
 
 #include "LocalSlam.h"
-#include "RelativeGeometry.h"
 
 #include <esif/ekf/EkfSlamCore.h>
+#include <esif/relative/RelativeGeometry.h>
 
 #include <unordered_map>
 #include <vector>
@@ -55,7 +55,7 @@ class AdmissibleChain
 	int scans() const { return scans_; }
 
 	/// The chain's features in the root frame with their joint covariance.
-	PointSet features() const;
+	relative::PointSet features() const;
 	/// The virtual observation from the current pose (the sensor at
 	/// `sensor_on_robot`).
 	VirtualObservation virtualObservation(const Pose2& sensor_on_robot) const;

@@ -12,12 +12,13 @@ IMPLEMENTS_MRPT_OBJECT(Dslam, FilterPlugin, esif)
 namespace esif
 {
 using namespace dslam;
+using namespace relative;
 
 void Dslam::configure(const ConfigSection& section)
 {
 	loadParams(params_, section);
-	map_ = std::make_unique<DslamMap>(params_.recovery);
-	association_ = std::make_unique<RelativeAssociation>(params_);
+	map_ = std::make_unique<FeatureMap>(params_.recovery);
+	association_ = std::make_unique<RelativeAssociation>(params_.association, params_.referenceRules());
 }
 
 StepReport Dslam::processStep(const StepInput& step)
@@ -52,8 +53,8 @@ StepReport Dslam::associateScan(const StepInput& step)
 {
 	const auto& ms = step.scan->measurements;
 	const bool all_have_ids = std::all_of(ms.begin(), ms.end(), [](const RangeBearing& m) { return m.id.has_value(); });
-	if (params_.association == dslam::AssociationMode::KnownIds ||
-		(params_.association == dslam::AssociationMode::Auto && all_have_ids))
+	if (params_.association.association == AssociationMode::KnownIds ||
+		(params_.association.association == AssociationMode::Auto && all_have_ids))
 		return associateByIds(step);
 	return association_->associate(*step.scan, local_.robot(), local_.robotCov(), *map_);
 }

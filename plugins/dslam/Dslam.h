@@ -15,12 +15,12 @@
 /// new features into the local SLAM (E); map update to Map(k+1); recovery.
 
 #include "AdmissibleChain.h"
-#include "DslamMap.h"
 #include "DslamParams.h"
 #include "LocalSlam.h"
-#include "RelativeAssociation.h"
 
 #include <esif/plugin/FilterPlugin.h>
+#include <esif/relative/FeatureMap.h>
+#include <esif/relative/RelativeAssociation.h>
 
 #include <memory>
 #include <optional>
@@ -48,7 +48,7 @@ class Dslam : public FilterPlugin
 	struct Observed
 	{
 		std::vector<dslam::IdentifiedMeasurement> all;	 ///< matched and new, scan order
-		dslam::PointSet points;							 ///< `all` in the robot frame (T1)
+		relative::PointSet points;						 ///< `all` in the robot frame (T1)
 		std::vector<int> mapped;						 ///< indices into `all` of features in Map(k)
 		std::optional<std::pair<int, int>> pair;		 ///< reference pair (indices into `all`)
 	};
@@ -61,17 +61,17 @@ class Dslam : public FilterPlugin
 	void fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor);
 	void updateMap(const Observed& obs, const Pose2& sensor);
 	void applyVirtualObservation(const Pose2& sensor);
-	dslam::MapUpdate updateFromPair(const std::vector<LandmarkId>& ids, const dslam::PointSet& points,
-									std::pair<int, int> pair);
+	relative::MapUpdate updateFromPair(const std::vector<LandmarkId>& ids, const relative::PointSet& points,
+									   std::pair<int, int> pair);
 
 	dslam::DslamParams params_;
-	std::unique_ptr<dslam::DslamMap> map_;	// mutable state behind a const
-											// estimate(): recovery caches
-	std::unique_ptr<dslam::RelativeAssociation> association_;
+	std::unique_ptr<relative::FeatureMap> map_;	 // mutable state behind a const
+												 // estimate(): recovery caches
+	std::unique_ptr<relative::RelativeAssociation> association_;
 	dslam::LocalSlam local_;
 	dslam::AdmissibleChain chain_;
-	std::optional<dslam::MapUpdate> pending_;  ///< last map update, withdrawn if the next scan is inadmissible
-	std::unordered_set<LandmarkId> started_;   ///< features reported New so far
+	std::optional<relative::MapUpdate> pending_;  ///< last map update, withdrawn if the next scan is inadmissible
+	std::unordered_set<LandmarkId> started_;	  ///< features reported New so far
 	LandmarkId next_own_id_ = 0;
 
 	struct Tally

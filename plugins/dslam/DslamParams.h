@@ -2,21 +2,13 @@
 /// \file DslamParams.h
 /// Parameters of the D-SLAM plugin, INI section [dslam].
 
-#include "ReferencePair.h"
-
 #include <esif/config/ParamBinder.h>
+#include <esif/relative/ReferencePair.h>
+#include <esif/relative/RelativeAssociationParams.h>
 #include <esif/sparse/SparseRecoveryParams.h>
 
 namespace esif::dslam
 {
-enum class AssociationMode
-{
-	Auto,			  ///< known_ids when every measurement carries an ID, else jcbb
-	KnownIds,		  ///< the rawlog's landmark IDs
-	NearestNeighbor,  ///< MRPT nearest neighbour hypotheses, verified by eq. (3.45)
-	Jcbb			  ///< MRPT JCBB hypotheses, verified by eq. (3.45)
-};
-
 enum class AdmissiblePolicy
 {
 	Combine,  ///< Sec. 3.4.1: virtual observations through a small EKF
@@ -38,20 +30,11 @@ enum class FusionScope
 
 struct DslamParams
 {
-	AssociationMode association = AssociationMode::Auto;  ///< auto | known_ids | nn | jcbb
-	/// Individual-compatibility gate of the hypotheses, from the pose
-	/// estimate with robot-map correlations taken as zero (Sec. 3.4.2).
-	double gate_chi2_quantile = 0.99;
-	/// Confidence alpha of the joint test on relative distances and angles,
-	/// eq. (3.45).
-	double relative_gate_chi2_quantile = 0.99;
-	/// An unmatched measurement starts a new feature only beyond this
-	/// chi-square quantile from every candidate; otherwise it is rejected.
-	double new_landmark_chi2_quantile = 0.9999;
-	double candidate_margin_m = 2.0;	 ///< candidates: predicted range <= max range + this [m]
-	double candidate_margin_deg = 10.0;	 ///< ... and bearing within half the field of view + this [deg]
+	/// Association mode, gates and candidate margins (Sec. 3.4.2), shared with
+	/// D-SLAM map joining. Declared first, so the [dslam] keys keep their order.
+	relative::RelativeAssociationParams association;
 
-	ReferencePolicy reference_pair = ReferencePolicy::Widest;	///< widest | first_mapped
+	relative::ReferencePolicy reference_pair = relative::ReferencePolicy::Widest;  ///< widest | first_mapped
 	double reference_min_separation_m = 0.5;  ///< reference features at least this far apart [m]
 	double reference_min_angle_deg = 5.0;	  ///< angle f1-robot-f2 within [this, 180 - this] [deg]
 
@@ -67,7 +50,7 @@ struct DslamParams
 	SparseRecoveryParams recovery;	///< recovery, reordering, n0, ... (Sec. 3.3)
 
 	void declare(ParamBinder& b);
-	ReferenceRules referenceRules() const;
+	relative::ReferenceRules referenceRules() const;
 };
 
 }  // namespace esif::dslam

@@ -1,5 +1,6 @@
-// Unit tests of the D-SLAM plugin's building blocks (book: Wang, Huang,
-// Dissanayake, "SLAM: Exactly Sparse Information Filters", Ch. 3):
+// Unit tests of D-SLAM's building blocks (book: Wang, Huang, Dissanayake,
+// "SLAM: Exactly Sparse Information Filters", Ch. 3), the plugin's own and
+// those in the framework's relative/ room (1, 2, 7):
 //   1. RelativeGeometry: T1 (eq. 3.4/3.7), T2 = H_map = G (eq. 3.8/3.13/3.40)
 //      and its Jacobian, z_rob (eq. 3.3/3.6) and its inverse (eq. 3.18), new
 //      feature placement (eq. 3.14);
@@ -9,21 +10,18 @@
 //      replacement;
 //   5. LocalSlam: dropping / re-initialising features, reordering;
 //   6. AdmissibleChain: the virtual observation (Sec. 3.4.1);
-//   7. DslamMap: anchor + relative update against a dense weighted least
+//   7. FeatureMap: anchor + relative update against a dense weighted least
 //      squares solution, and withdrawal of the last update.
 //
-// The reference values are computed here independently of the plugin: the
-// geometry by hand-written atan2/hypot helpers, Jacobians by central
-// differences (NumericJacobian.h) or written out by hand.
+// The reference values are computed here independently of the code under
+// test: the geometry by hand-written atan2/hypot helpers, Jacobians by
+// central differences (NumericJacobian.h) or written out by hand.
 
 #include "AdmissibleChain.h"
 #include "CovarianceIntersection.h"
-#include "DslamMap.h"
 #include "KidnappedRobot.h"
 #include "KidnappedTestCase.h"
 #include "LocalSlam.h"
-#include "ReferencePair.h"
-#include "RelativeGeometry.h"
 
 #include <cmath>
 #include <ostream>
@@ -32,6 +30,9 @@
 
 #include <NumericJacobian.h>
 #include <esif/core/Errors.h>
+#include <esif/relative/FeatureMap.h>
+#include <esif/relative/ReferencePair.h>
+#include <esif/relative/RelativeGeometry.h>
 #include <esif/sparse/PatternExport.h>
 
 #include <Eigen/Dense>
@@ -47,6 +48,7 @@ namespace
 {
 using namespace esif;
 using namespace esif::dslam;
+using namespace esif::relative;
 
 constexpr double kDeg = M_PI / 180;
 
@@ -805,7 +807,7 @@ TEST(DslamUnitsAdmissibleChain, RestartForgetsThePreviousChain)
 }
 
 // ===========================================================================
-// 7. DslamMap
+// 7. FeatureMap
 
 /// The map case: anchor f1 = (2, 1), f2 = (5, 2) (map frame, correlated
 /// covariance), then a scan from (1, -1, 0.3) that sees f1, f2 and the new
@@ -833,7 +835,7 @@ struct MapCase
 };
 
 /// Information matrix of the core as a dense matrix.
-Eigen::MatrixXd denseInformation(const DslamMap& map)
+Eigen::MatrixXd denseInformation(const FeatureMap& map)
 {
 	return Eigen::MatrixXd(toEigenSparse(map.core().information().matrix()));
 }
@@ -847,7 +849,7 @@ TEST_P(DslamUnitsMapRecovery, RelativeUpdateMatchesDenseLeastSquaresAndWithdraws
 	const MapCase c;
 	SparseRecoveryParams params;
 	params.recovery = GetParam();
-	DslamMap map(params);
+	FeatureMap map(params);
 
 	const MapUpdate a = map.updateAnchor(c.anchor_ids, c.anchor);
 	EXPECT_EQ(a.new_features, c.anchor_ids);
@@ -936,7 +938,7 @@ INSTANTIATE_TEST_SUITE_P(Recovery, DslamUnitsMapRecovery,
 TEST(DslamUnitsMap, RelativeUpdateNeedsSupportedReferencePair)
 {
 	const MapCase c;
-	DslamMap map(SparseRecoveryParams{});
+	FeatureMap map(SparseRecoveryParams{});
 	EXPECT_THROW(map.updateRelative(c.scan_ids, c.scan), std::logic_error);
 }
 

@@ -6,10 +6,10 @@
 #include "CovarianceIntersection.h"
 #include "KidnappedRobot.h"
 #include "KidnappedTestCase.h"
-#include "RelativeGeometry.h"
 
 #include <NumericJacobian.h>
 #include <esif/core/Errors.h>
+#include <esif/relative/RelativeGeometry.h>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -20,6 +20,7 @@ namespace
 {
 using namespace esif;
 using namespace esif::dslam;
+using namespace esif::relative;
 
 using esif::dslam::cases::kSigmaF;
 using esif::dslam::cases::kSigmaR;

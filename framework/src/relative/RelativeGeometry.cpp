@@ -1,8 +1,8 @@
-#include "RelativeGeometry.h"
+#include <esif/relative/RelativeGeometry.h>
 
 #include <cmath>
 
-namespace esif::dslam
+namespace esif::relative
 {
 namespace
 {
@@ -127,4 +127,4 @@ Eigen::Vector2d featureFromPair(const Eigen::Vector2d& f1, const Eigen::Vector2d
 	return f1 + d_1i * Eigen::Vector2d(std::cos(beta + a_i12), std::sin(beta + a_i12));
 }
 
-}  // namespace esif::dslam
+}  // namespace esif::relative

@@ -1,24 +1,25 @@
 #pragma once
-/// \file DslamMap.h
-/// D-SLAM mapping (book Sec. 3.1.3): the state is the feature positions only
-/// (eq. 3.10), estimated by an EIF on the sparse information core with no
-/// prediction step. Two kinds of update:
-/// - relative: z_map of a scan (or of a virtual observation), eq. (3.12)
-///   and (3.15); new features are first placed by eq. (3.14);
+/// \file FeatureMap.h
+/// The feature-only map EIF of D-SLAM (book Ch. 3, Sec. 3.1.3) and of the
+/// D-SLAM map-joining filter (Ch. 4): the state is the feature positions
+/// only (eq. 3.10), estimated by an EIF on the sparse information core with
+/// no prediction step. Two kinds of update:
+/// - relative: z_map of a scan (or of a virtual observation; in Ch. 4, of a
+///   local map), eq. (3.12) and (3.15); new features are first placed by
+///   eq. (3.14);
 /// - anchor: while no scan has yet been admissible, the features seen from
 ///   the initial pose (the map frame, known exactly) get a joint prior.
 /// The last update can be withdrawn (Sec. 3.4.1).
 
-#include "RelativeGeometry.h"
-
 #include <esif/core/Estimate.h>
+#include <esif/relative/RelativeGeometry.h>
 #include <esif/sparse/SparseInformationCore.h>
 
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
-namespace esif::dslam
+namespace esif::relative
 {
 /// An applied map update, kept so it can be withdrawn.
 struct MapUpdate
@@ -27,10 +28,10 @@ struct MapUpdate
 	std::vector<LandmarkId> new_features;  ///< features this update created
 };
 
-class DslamMap
+class FeatureMap
 {
    public:
-	explicit DslamMap(const SparseRecoveryParams& params);
+	explicit FeatureMap(const SparseRecoveryParams& params);
 
 	bool contains(LandmarkId id) const { return var_of_.count(id) > 0; }
 	/// Mapped and informed by an update still in force (not only by a
@@ -78,4 +79,4 @@ class DslamMap
 	std::unordered_set<LandmarkId> unsupported_;
 };
 
-}  // namespace esif::dslam
+}  // namespace esif::relative

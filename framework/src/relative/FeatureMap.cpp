@@ -1,14 +1,14 @@
-#include "DslamMap.h"
+#include <esif/relative/FeatureMap.h>
 
 #include <stdexcept>
 
-namespace esif::dslam
+namespace esif::relative
 {
-DslamMap::DslamMap(const SparseRecoveryParams& params) : core_(params) {}
+FeatureMap::FeatureMap(const SparseRecoveryParams& params) : core_(params) {}
 
-Eigen::Vector2d DslamMap::position(LandmarkId id) const { return core_.estimate(var_of_.at(id)); }
+Eigen::Vector2d FeatureMap::position(LandmarkId id) const { return core_.estimate(var_of_.at(id)); }
 
-VarId DslamMap::createFeature(LandmarkId id, const Eigen::Vector2d& position)
+VarId FeatureMap::createFeature(LandmarkId id, const Eigen::Vector2d& position)
 {
 	const VarId v = core_.addPoint(position);
 	var_of_.emplace(id, v);
@@ -16,7 +16,7 @@ VarId DslamMap::createFeature(LandmarkId id, const Eigen::Vector2d& position)
 	return v;
 }
 
-std::vector<VarId> DslamMap::variables(const std::vector<LandmarkId>& ids) const
+std::vector<VarId> FeatureMap::variables(const std::vector<LandmarkId>& ids) const
 {
 	std::vector<VarId> vars;
 	vars.reserve(ids.size());
@@ -24,19 +24,19 @@ std::vector<VarId> DslamMap::variables(const std::vector<LandmarkId>& ids) const
 	return vars;
 }
 
-Eigen::VectorXd DslamMap::stackedPositions(const std::vector<LandmarkId>& ids) const
+Eigen::VectorXd FeatureMap::stackedPositions(const std::vector<LandmarkId>& ids) const
 {
 	Eigen::VectorXd xy(2 * ids.size());
 	for (std::size_t i = 0; i < ids.size(); ++i) xy.segment<2>(2 * i) = position(ids[i]);
 	return xy;
 }
 
-void DslamMap::markSupported(const std::vector<LandmarkId>& ids)
+void FeatureMap::markSupported(const std::vector<LandmarkId>& ids)
 {
 	for (LandmarkId id : ids) unsupported_.erase(id);
 }
 
-MapUpdate DslamMap::updateRelative(const std::vector<LandmarkId>& ids, const PointSet& points)
+MapUpdate FeatureMap::updateRelative(const std::vector<LandmarkId>& ids, const PointSet& points)
 {
 	if (ids.size() < 2 || !supported(ids[0]) || !supported(ids[1]))
 		throw std::logic_error("D-SLAM map update: the reference pair must be mapped features");
@@ -60,7 +60,7 @@ MapUpdate DslamMap::updateRelative(const std::vector<LandmarkId>& ids, const Poi
 	return update;
 }
 
-MapUpdate DslamMap::updateAnchor(const std::vector<LandmarkId>& ids, const PointSet& points)
+MapUpdate FeatureMap::updateAnchor(const std::vector<LandmarkId>& ids, const PointSet& points)
 {
 	MapUpdate update;
 	for (std::size_t i = 0; i < ids.size(); ++i)
@@ -76,21 +76,21 @@ MapUpdate DslamMap::updateAnchor(const std::vector<LandmarkId>& ids, const Point
 	return update;
 }
 
-void DslamMap::withdraw(const MapUpdate& update)
+void FeatureMap::withdraw(const MapUpdate& update)
 {
 	core_.withdraw(update.term);
 	for (LandmarkId id : update.new_features) unsupported_.insert(id);
 }
 
-void DslamMap::recover(const Eigen::Vector2d& robot_xy)
+void FeatureMap::recover(const Eigen::Vector2d& robot_xy)
 {
 	core_.setReferencePoint(robot_xy);
 	core_.recoverState();
 }
 
-Eigen::MatrixXd DslamMap::covariance(const std::vector<LandmarkId>& ids) { return core_.covariance(variables(ids)); }
+Eigen::MatrixXd FeatureMap::covariance(const std::vector<LandmarkId>& ids) { return core_.covariance(variables(ids)); }
 
-std::vector<LandmarkEstimate> DslamMap::landmarks()
+std::vector<LandmarkEstimate> FeatureMap::landmarks()
 {
 	std::vector<LandmarkEstimate> out;
 	if (ids_.empty()) return out;
@@ -100,4 +100,4 @@ std::vector<LandmarkEstimate> DslamMap::landmarks()
 	return out;
 }
 
-}  // namespace esif::dslam
+}  // namespace esif::relative

@@ -2,7 +2,9 @@
 /// \file ReferencePair.h
 /// Choice of D-SLAM's two reference features f1, f2 among the previously
 /// mapped features of a scan (book Sec. 3.1.1.2: "the reference points can
-/// be any two features, which have been previously observed").
+/// be any two features, which have been previously observed"). Serves D-SLAM
+/// (Ch. 3) and D-SLAM map joining (Ch. 4), which recasts local maps relative
+/// to a pair chosen the same way.
 ///
 /// Why the choice matters: z_new is a one-to-one function of z_old for any
 /// pair, so in the linear approximation every pair carries the same map
@@ -18,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-namespace esif::dslam
+namespace esif::relative
 {
 enum class ReferencePolicy
 {
@@ -45,4 +47,4 @@ struct ReferenceCandidate
 std::optional<std::pair<int, int>> chooseReferencePair(const std::vector<ReferenceCandidate>& candidates,
 													   const ReferenceRules& rules);
 
-}  // namespace esif::dslam
+}  // namespace esif::relative

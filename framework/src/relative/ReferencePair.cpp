@@ -1,9 +1,9 @@
-#include "ReferencePair.h"
+#include <esif/relative/ReferencePair.h>
 
 #include <cmath>
 #include <limits>
 
-namespace esif::dslam
+namespace esif::relative
 {
 namespace
 {
@@ -47,4 +47,4 @@ std::optional<std::pair<int, int>> chooseReferencePair(const std::vector<Referen
 	return best;
 }
 
-}  // namespace esif::dslam
+}  // namespace esif::relative

@@ -1,16 +1,13 @@
-#include "RelativeAssociation.h"
-
-#include "ReferencePair.h"
-
 #include <esif/association/Chi2.h>
 #include <esif/association/DataAssociation.h>
 #include <esif/models/RangeBearingModel.h>
+#include <esif/relative/RelativeAssociation.h>
 
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
 
-namespace esif::dslam
+namespace esif::relative
 {
 namespace
 {
@@ -19,13 +16,15 @@ constexpr double kDeg = M_PI / 180.0;
 Eigen::Vector2d measurementOf(const RangeBearing& m) { return {m.range_m, m.bearing_rad}; }
 }  // namespace
 
-RelativeAssociation::RelativeAssociation(const DslamParams& params)
-	: params_(params), new_gate_(chi2Quantile(params.new_landmark_chi2_quantile, 2))
+RelativeAssociation::RelativeAssociation(const RelativeAssociationParams& params,
+										 const ReferenceRules& reference_rules)
+	: params_(params), reference_rules_(reference_rules),
+	  new_gate_(chi2Quantile(params.new_landmark_chi2_quantile, 2))
 {
 }
 
 std::vector<LandmarkId> RelativeAssociation::candidatesFor(const Scan& scan, const Pose2& robot,
-														   const DslamMap& map) const
+														   const FeatureMap& map) const
 {
 	const Pose2 sensor = toPose2(scan.sensor_on_robot);
 	const double max_range = scan.max_range_m > 0 ? scan.max_range_m + params_.candidate_margin_m : INFINITY;
@@ -43,7 +42,7 @@ std::vector<LandmarkId> RelativeAssociation::candidatesFor(const Scan& scan, con
 }
 
 StepReport RelativeAssociation::associate(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov,
-										  DslamMap& map)
+										  FeatureMap& map)
 {
 	const auto& ms = scan.measurements;
 	const Pose2 sensor = toPose2(scan.sensor_on_robot);
@@ -96,7 +95,7 @@ StepReport RelativeAssociation::associate(const Scan& scan, const Pose2& robot, 
 
 double RelativeAssociation::relativeTest(const std::vector<Match>& matches, const Scan& scan,
 										 const Eigen::MatrixXd& candidate_cov,
-										 const std::vector<LandmarkId>& candidates, const DslamMap& map) const
+										 const std::vector<LandmarkId>& candidates, const FeatureMap& map) const
 {
 	const int m = static_cast<int>(matches.size());
 	const Pose2 sensor = toPose2(scan.sensor_on_robot);
@@ -112,7 +111,7 @@ double RelativeAssociation::relativeTest(const std::vector<Match>& matches, cons
 	const PointSet seen = pointsInRobotFrame(z, Rz, sensor);
 	std::vector<ReferenceCandidate> refs(m);
 	for (int a = 0; a < m; ++a) refs[a] = {seen.point(a), map.mappedOrder(candidates[matches[a].candidate])};
-	ReferenceRules rules = params_.referenceRules();
+	const ReferenceRules& rules = reference_rules_;
 	auto pair = chooseReferencePair(refs, rules);
 	if (!pair) pair = chooseReferencePair(refs, {rules.policy, 0.0, 0.0});
 	if (!pair) return 0.0;	// coincident points: nothing to test
@@ -145,7 +144,7 @@ double RelativeAssociation::relativeTest(const std::vector<Match>& matches, cons
 }
 
 void RelativeAssociation::verify(std::vector<Match>& matches, const Scan& scan, const Eigen::MatrixXd& candidate_cov,
-								 const std::vector<LandmarkId>& candidates, const DslamMap& map)
+								 const std::vector<LandmarkId>& candidates, const FeatureMap& map)
 {
 	while (matches.size() >= 2 && relativeTest(matches, scan, candidate_cov, candidates, map) >= 1.0)
 	{
@@ -169,4 +168,4 @@ void RelativeAssociation::verify(std::vector<Match>& matches, const Scan& scan, 
 	}
 }
 
-}  // namespace esif::dslam
+}  // namespace esif::relative

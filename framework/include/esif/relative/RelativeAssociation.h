@@ -10,25 +10,29 @@
 ///    pose error cannot pass or fail. When the test fails, the match whose
 ///    removal best restores consistency is dropped, and the test repeated.
 /// Only the candidate features' covariance blocks are recovered from the map.
-
-#include "DslamMap.h"
-#include "DslamParams.h"
+/// Serves D-SLAM (Ch. 3) and D-SLAM map joining (Ch. 4), whose map is the
+/// same feature-only EIF.
 
 #include <esif/core/Estimate.h>
 #include <esif/core/StepInput.h>
+#include <esif/relative/FeatureMap.h>
+#include <esif/relative/ReferencePair.h>
+#include <esif/relative/RelativeAssociationParams.h>
 
 #include <cstddef>
 
-namespace esif::dslam
+namespace esif::relative
 {
 class RelativeAssociation
 {
    public:
-	explicit RelativeAssociation(const DslamParams& params);
+	/// `reference_rules` choose the pair the relative test measures angles
+	/// from (the map update's rules: the same linearisation on both sides).
+	RelativeAssociation(const RelativeAssociationParams& params, const ReferenceRules& reference_rules);
 
 	/// One decision per measurement of `scan`: Matched (with the map ID),
 	/// New (id -1: the caller names it) or Rejected.
-	StepReport associate(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov, DslamMap& map);
+	StepReport associate(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov, FeatureMap& map);
 
 	std::size_t jcbbNodes() const { return jcbb_nodes_; }
 	/// Matches dropped because the relative test, eq. (3.45), failed.
@@ -40,18 +44,19 @@ class RelativeAssociation
 		int measurement = 0;
 		int candidate = 0;
 	};
-	std::vector<LandmarkId> candidatesFor(const Scan& scan, const Pose2& robot, const DslamMap& map) const;
+	std::vector<LandmarkId> candidatesFor(const Scan& scan, const Pose2& robot, const FeatureMap& map) const;
 	/// Eq. (3.45) statistic D^2 / chi2(d, alpha) of a matched set (< 1 passes).
 	double relativeTest(const std::vector<Match>& matches, const Scan& scan, const Eigen::MatrixXd& candidate_cov,
-						const std::vector<LandmarkId>& candidates, const DslamMap& map) const;
+						const std::vector<LandmarkId>& candidates, const FeatureMap& map) const;
 	/// Drops matches until the relative test passes.
 	void verify(std::vector<Match>& matches, const Scan& scan, const Eigen::MatrixXd& candidate_cov,
-				const std::vector<LandmarkId>& candidates, const DslamMap& map);
+				const std::vector<LandmarkId>& candidates, const FeatureMap& map);
 
-	DslamParams params_;
+	RelativeAssociationParams params_;
+	ReferenceRules reference_rules_;
 	double new_gate_ = 0;
 	std::size_t jcbb_nodes_ = 0;
 	std::size_t dropped_ = 0;
 };
 
-}  // namespace esif::dslam
+}  // namespace esif::relative

@@ -1,7 +1,9 @@
 #pragma once
 /// \file RelativeGeometry.h
 /// D-SLAM's measurement recasting (book Sec. 3.1.1) as plain functions of
-/// point positions:
+/// point positions. In the framework because it serves both D-SLAM (Ch. 3),
+/// which recasts scans, and D-SLAM map joining (Ch. 4), which recasts local
+/// maps the same way:
 /// - T1, eq. (3.4)/(3.7): range-bearing measurements -> feature points in the
 ///   robot frame, with the Jacobian that carries their covariance over;
 /// - T2 = H_map = G, eq. (3.8)/(3.13)/(3.40): distances and angles among
@@ -22,7 +24,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace esif::dslam
+namespace esif::relative
 {
 /// Points stacked as [x1, y1, x2, y2, ...] with their joint covariance.
 struct PointSet
@@ -76,4 +78,4 @@ Pose2 robotFromPair(const Eigen::Vector2d& f1, const Eigen::Vector2d& f2, const 
 /// f1, f2 and its (d_1i, a_i12).
 Eigen::Vector2d featureFromPair(const Eigen::Vector2d& f1, const Eigen::Vector2d& f2, double d_1i, double a_i12);
 
-}  // namespace esif::dslam
+}  // namespace esif::relative
