@@ -80,19 +80,23 @@ void GlobalMap::fuse(const LocalMap& map, std::optional<VarId> start, StepReport
 
 void GlobalMap::addLinkTerm(SparseInformationCore& core, const LinkTerm& link)
 {
-	// F = X_s - f(X_e, u) = 0 + w (eq. 5.5): innovation -F(x^), Jacobian [-df/dX_e, I].
+	// F = X_s - f(X_e, u) = 0 + w (eq. 5.5): innovation -F(x^), Jacobian
+	// [-df/dX_e, I]. The odometry's covariance Q is the increment's, in X_e's
+	// frame (as every StepInput's): eq. 5.4's additive w has df/du Q df/du^T.
 	const Pose2 e = link.from ? Pose2(core.estimate(*link.from)) : Pose2::Zero();
 	const Pose2 s = core.estimate(link.to);
+	const ComposeJacobians df = composeJacobians(e, link.u);
+	const Eigen::Matrix3d W = df.d_b * link.Q * df.d_b.transpose();
 	Eigen::Vector3d innovation = compose(e, link.u) - s;
 	innovation(2) = wrapAngle(innovation(2));
 	if (!link.from)
 	{
-		core.addMeasurement({link.to}, Eigen::Matrix3d::Identity(), link.Q, innovation);
+		core.addMeasurement({link.to}, Eigen::Matrix3d::Identity(), W, innovation);
 		return;
 	}
 	Eigen::MatrixXd J(3, 6);
-	J << -composeJacobians(e, link.u).d_a, Eigen::Matrix3d::Identity();
-	core.addMeasurement({*link.from, link.to}, J, link.Q, innovation);
+	J << -df.d_a, Eigen::Matrix3d::Identity();
+	core.addMeasurement({*link.from, link.to}, J, 0.5 * (W + W.transpose()), innovation);
 }
 
 void GlobalMap::addMapTerm(SparseInformationCore& core, const FusedMap& map)
