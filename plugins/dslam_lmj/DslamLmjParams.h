@@ -1,0 +1,52 @@
+#pragma once
+/// \file DslamLmjParams.h
+/// Parameters of the D-SLAM local map joining plugin, INI section
+/// [dslam_lmj]: the upper-level data association (Sec. 4.4.2), the
+/// reference pair of each local map (Sec. 4.2.2), the local-map builder
+/// (with the two-common-features rule of Sec. 4.4.4) and the sparse recovery.
+
+#include <esif/config/ParamBinder.h>
+#include <esif/localmap/LocalMapBuilderParams.h>
+#include <esif/sparse/SparseRecoveryParams.h>
+
+namespace esif::lmj
+{
+/// How local features are associated with the global map.
+enum class UpperAssociation
+{
+	Auto,			  ///< known_ids when the features' IDs identify them, else jcbb
+	KnownIds,		  ///< equal IDs are one feature
+	Jcbb,			  ///< MRPT JCBB in the frame of two known common features (Sec. 4.4.2)
+	NearestNeighbor	  ///< MRPT nearest neighbour on the same candidates
+};
+
+struct DslamLmjParams
+{
+	UpperAssociation association = UpperAssociation::Auto;	///< auto | known_ids | jcbb | nn
+	double gate_chi2_quantile = 0.99;	///< individual compatibility of a local/global pair, 2 dof
+	double joint_chi2_quantile = 0.99;	///< exact joint compatibility of a map's pairs
+	/// An unmatched local feature is new only beyond this quantile from every
+	/// candidate; otherwise ambiguous and left out of the update.
+	double new_feature_chi2_quantile = 0.9999;
+	/// Region pruning (Sec. 4.4.2): candidates lie within the local map's
+	/// reach from f1 plus Delta = region_sigmas * sigma_max(f1 global) + this [m].
+	double region_margin_m = 2.0;
+	double region_sigmas = 3.0;	 ///< the k_sigma of Delta (the authors' SigmaMultiplier)
+	/// Reference pair (Sec. 4.2.2, eq. 4.7): the widest baseline among mapped
+	/// features at least this far apart [m] ...
+	double reference_min_separation_m = 1.0;
+	/// ... whose members have no other feature of the map this close [m]:
+	/// an angle alpha_i12 is undefined when d_1i -> 0.
+	double reference_min_clearance_m = 0.2;
+
+	LocalMapBuilderParams builder = defaultBuilder();  ///< local maps built from a rawlog
+	SparseRecoveryParams recovery = defaultRecovery();	///< recovery, reordering, n0 (Sec. 4.4.3, 3.3)
+
+	void declare(ParamBinder& b);
+	/// The builder closes a map only once it holds two features of the
+	/// previous map (Sec. 4.4.4).
+	static LocalMapBuilderParams defaultBuilder();
+	static SparseRecoveryParams defaultRecovery();
+};
+
+}  // namespace esif::lmj

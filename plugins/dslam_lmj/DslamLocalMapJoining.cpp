@@ -1,0 +1,489 @@
+#include "DslamLocalMapJoining.h"
+
+#include "PairFrame.h"
+#include "ReferenceChoice.h"
+
+#include <esif/core/Errors.h>
+#include <esif/localmap/LocalMapMerge.h>
+#include <esif/localmap/SettledReports.h>
+
+#include <algorithm>
+#include <chrono>
+#include <set>
+
+IMPLEMENTS_MRPT_OBJECT(DslamLocalMapJoining, FilterPlugin, esif)
+
+namespace esif
+{
+using namespace lmj;
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// x (+) r with first-order covariance; the two independent.
+PoseEstimate composeIndependent(const PoseEstimate& x, const PoseEstimate& r)
+{
+	const Pose2 a = toPose2(x.mean), b = toPose2(r.mean);
+	const auto J = composeJacobians(a, b);
+	const Eigen::Matrix3d P = J.d_a * x.cov * J.d_a.transpose() + J.d_b * r.cov * J.d_b.transpose();
+	return {toTPose2D(compose(a, b)), 0.5 * (P + P.transpose())};
+}
+
+/// Rows of the local state [robot; features] for the robot and features a, b.
+std::vector<Eigen::Index> robotAndPairRows(int a, int b)
+{
+	return {0, 1, 2, 3 + 2 * a, 4 + 2 * a, 3 + 2 * b, 4 + 2 * b};
+}
+
+std::vector<Eigen::Index> featureRows(const std::vector<int>& features)
+{
+	std::vector<Eigen::Index> rows;
+	for (const int i : features)
+	{
+		rows.push_back(2 * i);
+		rows.push_back(2 * i + 1);
+	}
+	return rows;
+}
+}  // namespace
+
+void DslamLocalMapJoining::configure(const ConfigSection& section)
+{
+	loadParams(params_, section);
+	builder_ = std::make_unique<LocalMapBuilder>(params_.builder);
+	global_ = std::make_unique<relative::FeatureMap>(params_.recovery);
+}
+
+void DslamLocalMapJoining::requireConfigured() const
+{
+	if (!global_) throw std::logic_error("DslamLocalMapJoining: used before configure()");
+}
+
+StepReport DslamLocalMapJoining::processStep(const StepInput& step)
+{
+	requireConfigured();
+	if (step.scan)
+		for (const auto& m : step.scan->measurements) saw_measurement_without_id_ |= !m.id.has_value();
+	StepReport report = builder_->processStep(step);
+	if (auto map = builder_->takeClosedMap()) accept(*map);
+	return report;
+}
+
+void DslamLocalMapJoining::joinLocalMap(const LocalMap& map)
+{
+	requireConfigured();
+	if (map.index != feature_ids_of_map_.size() + 1)
+		throw InputError("D-SLAM map joining: local map " + std::to_string(map.index) + " given after " +
+						 std::to_string(feature_ids_of_map_.size()) + " maps (maps must come in order from 1)");
+	if (!map.ids_identify_features && map.index > 1)
+		throw InputError("D-SLAM map joining: local map " + std::to_string(map.index) +
+						 ": its feature IDs are hidden, but the upper-level association needs two features of each "
+						 "map known to be in the global map (Sec. 4.4.2); join local-map files with their IDs");
+	accept(map);
+}
+
+bool DslamLocalMapJoining::useIds(const LocalMap& map) const
+{
+	switch (params_.association)
+	{
+		case UpperAssociation::KnownIds: return true;
+		case UpperAssociation::Auto: return map.ids_identify_features && !saw_measurement_without_id_;
+		default: return false;
+	}
+}
+
+void DslamLocalMapJoining::accept(const LocalMap& closed)
+{
+	std::vector<LandmarkId> ids;
+	for (const auto& f : closed.features) ids.push_back(f.id);
+	feature_ids_of_map_[closed.index] = ids;
+
+	LocalMap map = closed;
+	std::vector<std::size_t> originals = {closed.index};
+	AbsorbedEnds absorbed;
+	if (pending_)
+	{
+		// The first map had too few features: join it with this one, in its frame.
+		LocalMap earlier = *pending_;
+		earlier.index = closed.index - 1;
+		map = mergeConsecutiveLocalMaps(earlier, closed);
+		map.index = pending_->index;
+		originals = pending_maps_;
+		originals.push_back(closed.index);
+		absorbed = pending_absorbed_;
+		absorbed.emplace_back(pending_->end_pose, pending_->covarianceMatrix().topLeftCorner<3, 3>());
+		++tally_.maps_merged;
+		pending_.reset();
+	}
+	if (tryFuse(map, originals, absorbed, 0)) return;
+	// Sec. 4.4.4 fails: fewer than two of the map's features are in the
+	// global map. Join it with the map fused last, through their shared pose,
+	// and fuse the two anew (the previous map's features give the pair).
+	if (!fusions_.empty() && fusions_.back().f1 >= 0 && joinWithLastFusion(map, originals, absorbed)) return;
+	pending_ = map;
+	pending_maps_ = originals;
+	pending_absorbed_ = absorbed;
+}
+
+bool DslamLocalMapJoining::joinWithLastFusion(
+	const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed)
+{
+	Fusion last = std::move(fusions_.back());
+	fusions_.pop_back();
+	global_->withdraw(last.update);	 // its features stay, without its information, until fused again
+	if (last.anchor) anchored_ = false;
+	tally_.features_rejected -= last.rejected;
+	costs_.pop_back();
+	pair_cov_cache_.clear();
+
+	LocalMap earlier = last.map;
+	earlier.index = map.index - 1;
+	LocalMap joined = mergeConsecutiveLocalMaps(earlier, map);
+	joined.index = last.map.index;
+	AbsorbedEnds ends = last.absorbed;
+	ends.emplace_back(last.map.end_pose, last.map.covarianceMatrix().topLeftCorner<3, 3>());
+	const Eigen::Matrix3d earlier_end_cov = ends.back().second;
+	for (const auto& [pose, cov] : absorbed)
+	{
+		// End poses the later map absorbed are in its frame: carry them into the earlier one's.
+		const PoseEstimate moved = composeIndependent({toTPose2D(last.map.end_pose), earlier_end_cov}, {toTPose2D(pose), cov});
+		ends.emplace_back(toPose2(moved.mean), moved.cov);
+	}
+	std::vector<std::size_t> maps = last.maps;
+	maps.insert(maps.end(), originals.begin(), originals.end());
+	++tally_.maps_merged;
+	if (tryFuse(joined, maps, ends, last.seconds)) return true;
+	// Cannot happen with the earlier map's own common features; never lose
+	// them: the joined map waits for the next one.
+	pending_ = joined;
+	pending_maps_ = maps;
+	pending_absorbed_ = ends;
+	return true;
+}
+
+std::optional<UpperLevelOutcome> DslamLocalMapJoining::associate(const LocalMap& map, const Eigen::MatrixXd& feature_cov)
+{
+	if (useIds(map)) return associateByIds(map, *global_);
+	const auto known = knownGlobalIds(map, false, global_of_local_, *global_);
+	return associateInPairFrame(map, feature_cov, known, *global_, params_);
+}
+
+LandmarkId DslamLocalMapJoining::freshId(LandmarkId proposed, std::vector<LandmarkId>& taken_now)
+{
+	auto taken = [&](LandmarkId id) {
+		return global_->contains(id) || std::find(taken_now.begin(), taken_now.end(), id) != taken_now.end();
+	};
+	LandmarkId id = proposed >= 0 && !taken(proposed) ? proposed : next_free_id_;
+	while (taken(id)) ++id;
+	next_free_id_ = std::max(next_free_id_, id + 1);
+	taken_now.push_back(id);
+	return id;
+}
+
+bool DslamLocalMapJoining::tryFuse(
+	const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed, double seconds_before)
+{
+	const auto t0 = Clock::now();
+	const Eigen::MatrixXd P = map.covarianceMatrix();
+	const auto n = static_cast<int>(map.features.size());
+	const Eigen::MatrixXd P_ff = P.bottomRightCorner(2 * n, 2 * n);	 // the robot marginalised (eq. 4.12)
+	std::vector<Eigen::Vector2d> points;
+	for (const auto& f : map.features) points.push_back(f.position);
+
+	Fusion fusion;
+	fusion.maps = originals;
+	fusion.map = map;
+	fusion.absorbed = absorbed;
+	for (const auto& f : map.features) fusion.local_ids.push_back(f.id);
+	std::vector<int> order;	 // local features in update order: [f1, f2, others kept]
+	double association_s = 0;
+	if (!anchored_)
+	{
+		// The first map: its features, robot marginalised, are the global map
+		// (Sec. 4.3); the only absolute information it ever gets.
+		if (n < 2) return false;
+		const auto pair = chooseReferenceFeatures(points, [&] {
+			std::vector<int> all(n);
+			for (int i = 0; i < n; ++i) all[i] = i;
+			return all;
+		}(), params_.reference_min_separation_m, params_.reference_min_clearance_m);
+		if (!pair) return false;
+		std::vector<LandmarkId> taken, ids;
+		for (const auto& f : map.features)
+		{
+			// A feature of an anchor withdrawn to be joined keeps its global ID.
+			const auto known = global_of_local_.find(f.id);
+			ids.push_back(known != global_of_local_.end() && global_->contains(known->second) ? known->second
+																							  : freshId(f.id, taken));
+			fusion.decisions.associations.push_back({Association::Kind::New, ids.back()});
+		}
+		relative::PointSet all{map.state().tail(2 * n), P_ff};
+		fusion.update = global_->updateAnchor(ids, all);
+		fusion.anchor = anchored_ = true;
+		order = {pair->first, pair->second};
+	}
+	else
+	{
+		const auto t_association = Clock::now();
+		auto outcome = associate(map, P_ff);
+		association_s = secondsSince(t_association);
+		if (!outcome) return false;
+		// The reference pair among the kept features already mapped (eq. 4.9).
+		std::vector<int> mapped;
+		for (int i = 0; i < n; ++i)
+			if (const auto& a = outcome->decisions.associations[i];
+				a.kind == Association::Kind::Matched && global_->supported(a.id))
+				mapped.push_back(i);
+		const auto pair = chooseReferenceFeatures(
+			points, mapped, params_.reference_min_separation_m, params_.reference_min_clearance_m);
+		if (!pair) return false;
+		tally_.candidates += outcome->candidates;
+		tally_.pairs_dropped += outcome->pairs_dropped;
+		tally_.jcbb_nodes += outcome->jcbb_nodes;
+		fusion.decisions = outcome->decisions;
+		order = {pair->first, pair->second};
+		std::vector<LandmarkId> taken;
+		for (int i = 0; i < n; ++i)
+		{
+			auto& a = fusion.decisions.associations[i];
+			if (a.kind == Association::Kind::Rejected) continue;
+			if (a.kind == Association::Kind::New) a.id = freshId(a.id, taken);
+			if (i != pair->first && i != pair->second) order.push_back(i);
+		}
+		// Eq. 4.10-4.17: z_map of the kept features about (f1, f2), R_map =
+		// J P_ff J^T, new features by eq. 4.16, the EIF update.
+		std::vector<LandmarkId> ids;
+		relative::PointSet kept{Eigen::VectorXd(2 * order.size()), P_ff(featureRows(order), featureRows(order))};
+		for (std::size_t j = 0; j < order.size(); ++j)
+		{
+			ids.push_back(fusion.decisions.associations[order[j]].id);
+			kept.xy.segment<2>(2 * j) = points[order[j]];
+		}
+		fusion.update = global_->updateRelative(ids, kept);
+	}
+	global_->recover(global_->position(fusion.decisions.associations[order[0]].id));
+
+	for (int i = 0; i < n; ++i)
+	{
+		const auto& a = fusion.decisions.associations[i];
+		if (a.kind == Association::Kind::Rejected)
+			++fusion.rejected;
+		else
+			global_of_local_[map.features[i].id] = a.id;
+	}
+	// Sec. 4.4.1: every original map's end pose through the pair (f1, f2).
+	fusion.f1_local = points[order[0]];
+	fusion.f2_local = points[order[1]];
+	fusion.f1 = fusion.decisions.associations[order[0]].id;
+	fusion.f2 = fusion.decisions.associations[order[1]].id;
+	pair_cov_cache_.clear();
+	recordEnds(fusion, originals, P(robotAndPairRows(order[0], order[1]), robotAndPairRows(order[0], order[1])));
+	locateEnds(fusion);
+	for (const std::size_t k : originals) fusion_of_map_[k] = fusions_.size();
+	tally_.features_rejected += fusion.rejected;
+	tally_.association_s += association_s;
+	fusion.seconds = seconds_before + secondsSince(t0);
+	costs_.push_back({originals.front(), fusion.seconds, association_s, global_->featureCount() * 2});
+	fusions_.push_back(std::move(fusion));
+	return true;
+}
+
+void DslamLocalMapJoining::recordEnds(Fusion& fusion, const std::vector<std::size_t>& originals,
+									  const Eigen::MatrixXd& pair_cov) const
+{
+	// An absorbed map's end pose: its own covariance, the pair's from the
+	// joined map (their correlation is not kept by the join).
+	for (const auto& [pose, cov] : fusion.absorbed)
+	{
+		Eigen::MatrixXd local_cov = pair_cov;
+		local_cov.topRightCorner<3, 4>().setZero();
+		local_cov.bottomLeftCorner<4, 3>().setZero();
+		local_cov.topLeftCorner<3, 3>() = cov;
+		fusion.ends.push_back({0, pose, local_cov, {}});
+	}
+	fusion.ends.push_back({0, fusion.map.end_pose, pair_cov, {}});
+	for (std::size_t j = 0; j < fusion.ends.size(); ++j) fusion.ends[j].map = originals[j];
+}
+
+void DslamLocalMapJoining::finish()
+{
+	requireConfigured();
+	if (auto map = builder_->finish()) accept(*map);
+	if (pending_) giveUpPendingMap();
+	for (auto& fusion : fusions_) locateEnds(fusion);
+}
+
+void DslamLocalMapJoining::giveUpPendingMap()
+{
+	// No neighbour is left to join (only when the log's first maps never hold
+	// two usable features): the map cannot be fused (Sec. 4.4.4). It is
+	// reported, never dropped silently: its features rejected
+	// (associations.txt, da_rejected), counted in local_maps_unjoinable, its
+	// end poses carried from the global frame's origin.
+	Fusion fusion;
+	fusion.maps = pending_maps_;
+	fusion.map = *pending_;
+	for (const auto& f : pending_->features)
+	{
+		fusion.local_ids.push_back(f.id);
+		fusion.decisions.associations.push_back({Association::Kind::Rejected, -1});
+	}
+	AbsorbedEnds ends = pending_absorbed_;
+	ends.emplace_back(pending_->end_pose, pending_->covarianceMatrix().topLeftCorner<3, 3>());
+	for (std::size_t j = 0; j < ends.size(); ++j)
+		fusion.ends.push_back({pending_maps_[j], ends[j].first, Eigen::MatrixXd(),
+							   composeIndependent(lastEndPose(), {toTPose2D(ends[j].first), ends[j].second})});
+	tally_.maps_unjoinable += pending_maps_.size();
+	for (const std::size_t k : pending_maps_) fusion_of_map_[k] = fusions_.size();
+	fusions_.push_back(std::move(fusion));
+	pending_.reset();
+	pending_absorbed_.clear();
+}
+
+Eigen::Matrix4d DslamLocalMapJoining::pairCovariance(LandmarkId f1, LandmarkId f2) const
+{
+	const auto key = std::make_pair(f1, f2);
+	if (const auto it = pair_cov_cache_.find(key); it != pair_cov_cache_.end()) return it->second;
+	return pair_cov_cache_[key] = global_->covariance({f1, f2});
+}
+
+void DslamLocalMapJoining::locateEnds(Fusion& fusion) const
+{
+	if (fusion.f1 < 0) return;	// a map that could not be fused keeps its carried poses
+	const Eigen::Matrix4d G = pairCovariance(fusion.f1, fusion.f2);
+	for (auto& end : fusion.ends)
+		end.global = robotFromPairs(end.local, fusion.f1_local, fusion.f2_local, end.local_cov,
+									global_->position(fusion.f1), global_->position(fusion.f2), G);
+}
+
+PoseEstimate DslamLocalMapJoining::lastEndPose() const
+{
+	if (fusions_.empty()) return {};  // the global frame is map 1's start
+	return fusions_.back().ends.back().global;
+}
+
+PoseEstimate DslamLocalMapJoining::openMapFrame() const
+{
+	// The open map starts at the last closed map's end pose: a fused one, or
+	// a pending one carried from the last fused.
+	const PoseEstimate last = lastEndPose();
+	if (!pending_) return last;
+	return composeIndependent(last, {toTPose2D(pending_->end_pose), pending_->covarianceMatrix().topLeftCorner<3, 3>()});
+}
+
+std::optional<LandmarkId> DslamLocalMapJoining::globalIdOfOpenFeature(LandmarkId id) const
+{
+	const bool ids = params_.association == UpperAssociation::KnownIds ||
+		(params_.association == UpperAssociation::Auto && !saw_measurement_without_id_);
+	if (ids) return global_->supported(id) ? std::optional<LandmarkId>(id) : std::nullopt;
+	const auto it = global_of_local_.find(id);
+	if (it != global_of_local_.end() && global_->supported(it->second)) return it->second;
+	return std::nullopt;
+}
+
+PoseEstimate DslamLocalMapJoining::robotPose() const
+{
+	requireConfigured();
+	const auto& open = builder_->openMap();
+	const PoseEstimate local = open.robotPose();
+	if (fusions_.empty() && !pending_) return local;  // map 1 is the global frame
+	// Sec. 4.4.1: two mapped features of the open map place the robot ...
+	std::vector<Eigen::Vector2d> points;
+	std::vector<int> mapped;
+	std::vector<LandmarkId> global_ids;
+	for (std::size_t i = 0; i < open.ids().size(); ++i)
+	{
+		points.push_back(open.core().landmark(i));
+		const auto g = globalIdOfOpenFeature(open.ids()[i]);
+		global_ids.push_back(g.value_or(-1));
+		if (g) mapped.push_back(static_cast<int>(i));
+	}
+	if (const auto pair = chooseReferenceFeatures(
+			points, mapped, params_.reference_min_separation_m, params_.reference_min_clearance_m))
+	{
+		const auto [a, b] = *pair;
+		const auto rows = robotAndPairRows(a, b);
+		const Eigen::MatrixXd local_cov = Eigen::MatrixXd(open.core().covariance())(rows, rows);
+		const LandmarkId g1 = global_ids[a], g2 = global_ids[b];
+		return robotFromPairs(toPose2(local.mean), points[a], points[b], local_cov, global_->position(g1),
+							  global_->position(g2), pairCovariance(g1, g2));
+	}
+	// ... else its pose in the open map composed onto the map's start.
+	return composeIndependent(openMapFrame(), local);
+}
+
+Estimate DslamLocalMapJoining::estimate() const
+{
+	requireConfigured();
+	// The global map only: a feature enters it when its map is fused (the
+	// book's fusion delay, Sec. 4.6.1).
+	return {robotPose(), global_->landmarks()};
+}
+
+std::vector<PoseEstimate> DslamLocalMapJoining::endPoses() const
+{
+	std::map<std::size_t, PoseEstimate> by_map;
+	for (const auto& fusion : fusions_)
+		for (const auto& end : fusion.ends) by_map[end.map] = end.global;
+	std::vector<PoseEstimate> out;
+	for (const auto& [k, pose] : by_map) out.push_back(pose);
+	return out;
+}
+
+StepReport DslamLocalMapJoining::mapReport(std::size_t k) const
+{
+	const auto fusion = fusion_of_map_.find(k);
+	if (fusion == fusion_of_map_.end()) return {};
+	const Fusion& f = fusions_[fusion->second];
+	StepReport out;
+	for (const LandmarkId id : feature_ids_of_map_.at(k))
+	{
+		const auto at = std::find(f.local_ids.begin(), f.local_ids.end(), id);
+		out.associations.push_back(at == f.local_ids.end() ? Association{Association::Kind::Rejected, -1}
+														   : f.decisions.associations[at - f.local_ids.begin()]);
+	}
+	return out;
+}
+
+std::optional<std::vector<StepReport>> DslamLocalMapJoining::finalReports() const
+{
+	if (fusions_.empty() || fusions_.front().map.step_reports.empty()) return std::nullopt;
+	std::vector<StepReport> out;
+	std::set<LandmarkId> started;
+	for (const auto& fusion : fusions_)
+		appendSettledReports(fusion.map.step_reports, fusion.local_ids, fusion.decisions, started, out);
+	return out;
+}
+
+std::optional<InformationPattern> DslamLocalMapJoining::informationPattern() const
+{
+	requireConfigured();
+	return global_->core().pattern();
+}
+
+CostFigures DslamLocalMapJoining::costFigures() const
+{
+	requireConfigured();
+	CostFigures c;
+	const SparseCounters sparse = global_->core().counters();
+	c.state_dim = 2 * global_->featureCount();
+	c.poses_in_state = 0;  // features only (eq. 4.1)
+	c.info_nnz = sparse.information_nnz;
+	c.counters = sparse.list();
+	std::size_t fused = 0;
+	for (const auto& fusion : fusions_) fused += fusion.f1 >= 0 ? fusion.maps.size() : 0;
+	c.counters.emplace_back("local_maps_fused", static_cast<double>(fused));
+	c.counters.emplace_back("local_maps_merged", static_cast<double>(tally_.maps_merged));
+	c.counters.emplace_back("local_maps_unjoinable", static_cast<double>(tally_.maps_unjoinable));
+	c.counters.emplace_back("association_s", tally_.association_s);
+	c.counters.emplace_back("association_candidates", static_cast<double>(tally_.candidates));
+	c.counters.emplace_back("association_pairs_dropped", static_cast<double>(tally_.pairs_dropped));
+	c.counters.emplace_back("features_rejected", static_cast<double>(tally_.features_rejected));
+	c.counters.emplace_back("jcbb_nodes", static_cast<double>(tally_.jcbb_nodes));
+	return c;
+}
+
+}  // namespace esif

@@ -1,0 +1,136 @@
+#pragma once
+/// \file DslamLocalMapJoining.h
+/// The D-SLAM Local Map Joining Filter (book Ch. 4): local EKF maps are
+/// reduced to the relative geometry of their features (distances from a
+/// reference feature f1 and angles from the baseline f1 -> f2, eq.
+/// 4.9-4.12, the robot pose marginalised) and fused into a global map of
+/// features only by D-SLAM's EIF (eq. 4.13-4.17), whose information matrix
+/// is exactly sparse: only features of one local map are linked (eq.
+/// 4.18-4.19). There is no robot in the state; its global pose comes from
+/// two mapped features of the open local map (Sec. 4.4.1).
+///
+/// Per closed local map (the book has no algorithm box for Ch. 4; the order
+/// of DSLAM-LMJ.md §10): the first map's features are the global map (an
+/// anchor, the only absolute information); a later map is associated at the
+/// upper level (Sec. 4.4.2), reduced to z_map with the pair (f1, f2) among
+/// its mapped features, its new features placed by eq. 4.16, fused by eq.
+/// 4.17, and the state recovered (incremental Cholesky, Sec. 4.4.3). A map
+/// sharing fewer than two features with the global map (Sec. 4.4.4 fails:
+/// map 132 of the authors' Victoria Park maps) is joined with the next map
+/// through their shared pose first (mergeConsecutiveLocalMaps), as the
+/// authors' later code does; the estimate lags by one map (Sec. 4.6.1).
+
+#include "DslamLmjParams.h"
+#include "UpperLevelAssociation.h"
+
+#include <esif/localmap/LocalMapBuilder.h>
+#include <esif/plugin/FilterPlugin.h>
+#include <esif/plugin/LocalMapJoiner.h>
+#include <esif/relative/FeatureMap.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace esif
+{
+class DslamLocalMapJoining : public FilterPlugin, public LocalMapJoiner
+{
+	DEFINE_MRPT_OBJECT(DslamLocalMapJoining, esif)
+
+   public:
+	std::string sectionName() const override { return "dslam_lmj"; }
+	void configure(const ConfigSection& section) override;
+	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
+	StepReport processStep(const StepInput& step) override;
+	void finish() override;
+	PoseEstimate robotPose() const override;
+	Estimate estimate() const override;
+	CostFigures costFigures() const override;
+	Formulation formulation() const override { return Formulation::DslamLocalMapJoining; }
+	std::optional<std::vector<StepReport>> finalReports() const override;
+	std::optional<InformationPattern> informationPattern() const override;
+
+	LocalMapBuilderParams localMapBuilderParams() const override { return params_.builder; }
+	void joinLocalMap(const LocalMap& map) override;
+	std::vector<PoseEstimate> endPoses() const override;
+	StepReport mapReport(std::size_t k) const override;
+	std::vector<LocalMapFusionCost> fusionCosts() const override { return costs_; }
+
+   private:
+	/// The end pose of one original local map, as needed for Sec. 4.4.1.
+	struct EndPose
+	{
+		std::size_t map = 0;  ///< k
+		Pose2 local = Pose2::Zero();  ///< in the frame of the fused map it belongs to
+		Eigen::MatrixXd local_cov;	///< joint covariance of (end pose, f1, f2) in that frame (7 x 7)
+		PoseEstimate global;
+	};
+
+	/// End poses of the maps a joined map absorbed, in its frame, each with
+	/// its own 3x3 covariance.
+	using AbsorbedEnds = std::vector<std::pair<Pose2, Eigen::Matrix3d>>;
+
+	/// One fusion: one local map, or several joined through their shared poses.
+	struct Fusion
+	{
+		std::vector<std::size_t> maps;	///< original indices k fused here
+		LocalMap map;  ///< what was fused (kept to join it with a later map if needed)
+		std::vector<LandmarkId> local_ids;	///< its feature IDs, in order
+		StepReport decisions;  ///< one per feature: global id or rejected
+		relative::MapUpdate update;	 ///< to withdraw it
+		bool anchor = false;  ///< the first map: the global map's only absolute information
+		AbsorbedEnds absorbed;
+		Eigen::Vector2d f1_local = Eigen::Vector2d::Zero(), f2_local = Eigen::Vector2d::Zero();
+		LandmarkId f1 = -1, f2 = -1;  ///< the pair that locates the end poses (-1: not fused)
+		std::vector<EndPose> ends;
+		std::size_t rejected = 0;
+		double seconds = 0;
+	};
+
+	void requireConfigured() const;
+	void accept(const LocalMap& map);
+	bool tryFuse(const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed,
+				 double seconds_before);
+	bool joinWithLastFusion(const LocalMap& map, const std::vector<std::size_t>& originals,
+							const AbsorbedEnds& absorbed);
+	bool useIds(const LocalMap& map) const;
+	std::optional<lmj::UpperLevelOutcome> associate(const LocalMap& map, const Eigen::MatrixXd& feature_cov);
+	LandmarkId freshId(LandmarkId proposed, std::vector<LandmarkId>& taken_now);
+	void recordEnds(Fusion& fusion, const std::vector<std::size_t>& originals, const Eigen::MatrixXd& pair_cov) const;
+	void locateEnds(Fusion& fusion) const;
+	void giveUpPendingMap();
+	Eigen::Matrix4d pairCovariance(LandmarkId f1, LandmarkId f2) const;
+	PoseEstimate lastEndPose() const;
+	PoseEstimate openMapFrame() const;
+	std::optional<LandmarkId> globalIdOfOpenFeature(LandmarkId id) const;
+
+	lmj::DslamLmjParams params_;
+	std::unique_ptr<LocalMapBuilder> builder_;
+	// Behind const robotPose()/estimate(): recovery caches.
+	std::unique_ptr<relative::FeatureMap> global_;
+	std::vector<Fusion> fusions_;
+	std::map<std::size_t, std::vector<LandmarkId>> feature_ids_of_map_;	 // original map k -> its feature IDs
+	std::map<std::size_t, std::size_t> fusion_of_map_;	// original map k -> fusions_ index
+	std::map<LandmarkId, LandmarkId> global_of_local_;	// a fused feature's local ID -> global ID
+	bool anchored_ = false;	 // the first map is in
+	// The first map, when it has fewer than two usable features, waits for the next.
+	std::optional<LocalMap> pending_;
+	std::vector<std::size_t> pending_maps_;	 // the original maps in it
+	AbsorbedEnds pending_absorbed_;
+	/// Global covariance of a feature pair, for the robot pose of each step (cleared by every fusion).
+	mutable std::map<std::pair<LandmarkId, LandmarkId>, Eigen::Matrix4d> pair_cov_cache_;
+	std::vector<LocalMapFusionCost> costs_;
+	bool saw_measurement_without_id_ = false;
+	LandmarkId next_free_id_ = 1;
+
+	struct Tally
+	{
+		std::size_t maps_merged = 0, maps_unjoinable = 0, features_rejected = 0, candidates = 0, pairs_dropped = 0,
+					jcbb_nodes = 0;
+		double association_s = 0;
+	} tally_;
+};
+
+}  // namespace esif

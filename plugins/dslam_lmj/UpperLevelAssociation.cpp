@@ -1,0 +1,154 @@
+#include "UpperLevelAssociation.h"
+
+#include "PairFrame.h"
+#include "ReferenceChoice.h"
+
+#include <esif/association/Chi2.h>
+#include <esif/association/PointSetAssociation.h>
+#include <esif/models/LocalMapObservation.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <set>
+
+namespace esif::lmj
+{
+namespace
+{
+double largestSigma(const Eigen::Matrix2d& cov)
+{
+	const double l = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov, Eigen::EigenvaluesOnly).eigenvalues()(1);
+	return std::sqrt(std::max(0.0, l));
+}
+
+/// The points `moved` of a stacked list `xy` (joint covariance `cov`) in the
+/// frame of its points a and b, with the covariance carried through
+/// (first order): rows of the result follow `moved`.
+void intoPairFrame(const Eigen::VectorXd& xy, const Eigen::MatrixXd& cov, int a, int b, const std::vector<int>& moved,
+				   Eigen::MatrixXd& points, Eigen::MatrixXd& points_cov)
+{
+	const PairFrame f = pairFrame(xy.segment<2>(2 * a), xy.segment<2>(2 * b));
+	const auto m = static_cast<Eigen::Index>(moved.size());
+	Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * m, xy.size());
+	points.resize(m, 2);
+	for (Eigen::Index r = 0; r < m; ++r)
+	{
+		const PointInFrame p = pointInFrame(f.pose, xy.segment<2>(2 * moved[r]));
+		points.row(r) = p.value.transpose();
+		const Eigen::Matrix<double, 2, 4> d_pair = p.d_frame * f.d_pair;
+		J.block<2, 2>(2 * r, 2 * moved[r]) = p.d_point;
+		J.block<2, 2>(2 * r, 2 * a) += d_pair.leftCols<2>();
+		J.block<2, 2>(2 * r, 2 * b) += d_pair.rightCols<2>();
+	}
+	points_cov = J * cov * J.transpose();
+}
+
+/// Global features within the local map's reach of f1 (Sec. 4.4.2 region
+/// pruning), other than the known ones.
+std::vector<LandmarkId> regionCandidates(
+	const LocalMap& map, int f1, LandmarkId g1, double delta_m, const std::set<LandmarkId>& known,
+	const relative::FeatureMap& global)
+{
+	double reach = 0;
+	for (const auto& f : map.features) reach = std::max(reach, (f.position - map.features[f1].position).norm());
+	const Eigen::Vector2d centre = global.position(g1);
+	std::vector<LandmarkId> out;
+	for (const LandmarkId id : global.ids())
+		if (!known.count(id) && global.supported(id) && (global.position(id) - centre).norm() < reach + delta_m)
+			out.push_back(id);
+	return out;
+}
+}  // namespace
+
+std::vector<std::optional<LandmarkId>> knownGlobalIds(
+	const LocalMap& map, bool use_ids, const std::map<LandmarkId, LandmarkId>& global_of_local,
+	const relative::FeatureMap& global)
+{
+	std::vector<std::optional<LandmarkId>> out;
+	for (const auto& f : map.features)
+	{
+		if (use_ids)
+			out.push_back(global.contains(f.id) ? std::optional<LandmarkId>(f.id) : std::nullopt);
+		else if (const auto it = global_of_local.find(f.id); it != global_of_local.end() && global.contains(it->second))
+			out.push_back(it->second);
+		else
+			out.push_back(std::nullopt);
+	}
+	return out;
+}
+
+UpperLevelOutcome associateByIds(const LocalMap& map, const relative::FeatureMap& global)
+{
+	UpperLevelOutcome out;
+	for (const auto& f : map.features)
+		out.decisions.associations.push_back(
+			{global.contains(f.id) ? Association::Kind::Matched : Association::Kind::New, f.id});
+	return out;
+}
+
+std::optional<UpperLevelOutcome> associateInPairFrame(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, const std::vector<std::optional<LandmarkId>>& known,
+	relative::FeatureMap& global, const DslamLmjParams& params)
+{
+	std::vector<Eigen::Vector2d> points;
+	std::vector<int> pair_eligible, unknown_indices;
+	std::set<LandmarkId> known_ids;
+	for (std::size_t i = 0; i < map.features.size(); ++i)
+	{
+		points.push_back(map.features[i].position);
+		if (!known[i])
+			unknown_indices.push_back(static_cast<int>(i));
+		else if (global.supported(*known[i]))  // not one whose only information was withdrawn
+			pair_eligible.push_back(static_cast<int>(i));
+		if (known[i]) known_ids.insert(*known[i]);
+	}
+	const auto pair = chooseReferenceFeatures(
+		points, pair_eligible, params.reference_min_separation_m, params.reference_min_clearance_m);
+	if (!pair) return std::nullopt;
+	const auto [a, b] = *pair;
+	const LandmarkId g1 = *known[a], g2 = *known[b];
+
+	UpperLevelOutcome out;
+	for (std::size_t i = 0; i < map.features.size(); ++i)
+		out.decisions.associations.push_back(
+			known[i] ? Association{Association::Kind::Matched, *known[i]}
+					 : Association{Association::Kind::New, map.features[i].id});
+	if (unknown_indices.empty()) return out;
+
+	const double delta_m = params.region_sigmas * largestSigma(global.covariance({g1})) + params.region_margin_m;
+	const std::vector<LandmarkId> candidates = regionCandidates(map, a, g1, delta_m, known_ids, global);
+	out.candidates = candidates.size();
+	if (candidates.empty()) return out;
+
+	// Both sides in the frame of the pair: the local features from the local
+	// map alone, the candidates from the global map alone.
+	PointSets sets;
+	Eigen::VectorXd local_xy(2 * points.size());
+	for (std::size_t i = 0; i < points.size(); ++i) local_xy.segment<2>(2 * i) = points[i];
+	intoPairFrame(local_xy, local_cov, a, b, unknown_indices, sets.observed, sets.observed_cov);
+	std::vector<LandmarkId> global_ids = {g1, g2};
+	global_ids.insert(global_ids.end(), candidates.begin(), candidates.end());
+	Eigen::VectorXd global_xy(2 * global_ids.size());
+	for (std::size_t i = 0; i < global_ids.size(); ++i) global_xy.segment<2>(2 * i) = global.position(global_ids[i]);
+	std::vector<int> moved(candidates.size());
+	for (std::size_t c = 0; c < candidates.size(); ++c) moved[c] = static_cast<int>(c + 2);
+	intoPairFrame(global_xy, global.covariance(global_ids), 0, 1, moved, sets.candidates, sets.candidates_cov);
+
+	const auto method = params.association == UpperAssociation::NearestNeighbor ? AssociationMethod::NearestNeighbor
+																				 : AssociationMethod::Jcbb;
+	const auto result = associatePointSets(sets, method, params.gate_chi2_quantile, params.joint_chi2_quantile);
+	out.pairs_dropped = result.pairs_dropped;
+	out.jcbb_nodes = result.jcbb_nodes;
+	const double new_gate = chi2Quantile(params.new_feature_chi2_quantile, 2);
+	for (std::size_t u = 0; u < unknown_indices.size(); ++u)
+	{
+		auto& decision = out.decisions.associations[unknown_indices[u]];
+		if (const int c = result.candidate_of[u]; c >= 0)
+			decision = {Association::Kind::Matched, candidates[c]};
+		else if (result.min_distance2[u] <= new_gate)
+			decision = {Association::Kind::Rejected, -1};
+	}
+	return out;
+}
+
+}  // namespace esif::lmj

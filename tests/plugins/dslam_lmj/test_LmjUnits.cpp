@@ -1,0 +1,233 @@
+// The D-SLAM local map joining filter (book Ch. 4) on inputs whose answer is
+// known: one local map is the global map with the robot marginalised; the
+// pair-frame transforms and the global robot pose (Sec. 4.4.1) have the
+// Jacobians finite differences give; local maps of a single scan reproduce
+// D-SLAM's mapping update (Sec. 4.9); the information matrix is exactly
+// sparse (eq. 4.18-4.19): every off-diagonal block links two features of one
+// local map.
+
+#include <EsifTestSupport.h>
+#include <NumericJacobian.h>
+
+#include "PairFrame.h"
+#include "ReferenceChoice.h"
+
+#include <esif/io/RawlogReader.h>
+#include <esif/localmap/LocalMapBuilder.h>
+#include <esif/plugin/LocalMapJoiner.h>
+#include <esif/relative/FeatureMap.h>
+#include <esif/relative/RelativeGeometry.h>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+#include <set>
+
+namespace
+{
+using namespace esif;
+
+const std::string kGrid196 = test::sourcePath("rawlogs/grid196.rawlog");
+
+LocalMapJoiner& joinerOf(FilterPlugin& plugin) { return dynamic_cast<LocalMapJoiner&>(plugin); }
+
+LocalMap randomLocalMap(int features, unsigned seed)
+{
+	std::mt19937 rng(seed);
+	std::normal_distribution<double> n(0, 1);
+	LocalMap map;
+	map.index = 1;
+	map.end_pose = Pose2(2 + n(rng), n(rng), 0.3 * n(rng));
+	for (int i = 0; i < features; ++i)
+		map.features.push_back({10 + i, Eigen::Vector2d(3 * i + n(rng), 3 * n(rng)), false});
+	const int d = 3 + 2 * features;
+	Eigen::MatrixXd A(d, d);
+	for (int r = 0; r < d; ++r)
+		for (int c = 0; c < d; ++c) A(r, c) = n(rng);
+	map.information = A * A.transpose() + d * Eigen::MatrixXd::Identity(d, d);
+	return map;
+}
+
+TEST(LmjUnits, OneLocalMapIsTheGlobalMapWithTheRobotMarginalised)
+{
+	// Sec. 4.3: "the global map is just the same as the first local map
+	// without the robot pose": I(1) = P_ff^-1.
+	auto plugin = test::makePlugin("DslamLocalMapJoining", "");
+	const LocalMap map = randomLocalMap(4, 5);
+	joinerOf(*plugin).joinLocalMap(map);
+	plugin->finish();
+	const Eigen::MatrixXd P = map.information.inverse();  // 11 x 11 reference
+	const Estimate e = plugin->estimate();
+	ASSERT_EQ(e.landmarks.size(), 4u);
+	for (std::size_t i = 0; i < 4; ++i)
+	{
+		EXPECT_EQ(e.landmarks[i].id, map.features[i].id);
+		EXPECT_LT((e.landmarks[i].mean - map.features[i].position).norm(), 1e-10);
+		EXPECT_LT((e.landmarks[i].cov - P.block<2, 2>(3 + 2 * i, 3 + 2 * i)).norm(), 1e-10 * P.norm());
+	}
+	const CostFigures cost = plugin->costFigures();
+	EXPECT_EQ(cost.state_dim, 8u);
+	EXPECT_EQ(cost.poses_in_state, 0u);
+	EXPECT_EQ(cost.info_nnz, 64u);	// one dense 8 x 8 block
+	// Map 1's frame is the global frame: its end pose is the local one.
+	const auto ends = joinerOf(*plugin).endPoses();
+	ASSERT_EQ(ends.size(), 1u);
+	EXPECT_LT((toPose2(ends[0].mean) - map.end_pose).norm(), 1e-9);
+}
+
+TEST(LmjUnits, PairFrameAndRobotPoseJacobiansMatchFiniteDifferences)
+{
+	std::mt19937 rng(3);
+	std::uniform_real_distribution<double> u(-5, 5);
+	for (int trial = 0; trial < 20; ++trial)
+	{
+		Eigen::VectorXd x(4);
+		x << u(rng), u(rng), u(rng), u(rng);
+		const auto f = [](const Eigen::VectorXd& p) -> Eigen::VectorXd {
+			return lmj::pairFrame(p.head<2>(), p.tail<2>()).pose;
+		};
+		const Eigen::MatrixXd numeric = test::numericJacobian(f, x, 1e-6, {2});
+		EXPECT_LT((numeric - lmj::pairFrame(x.head<2>(), x.tail<2>()).d_pair).cwiseAbs().maxCoeff(), 1e-6) << trial;
+
+		// The global robot pose from (robot, f1, f2) local and (f1, f2) global:
+		// its covariance is J P J^T with the finite-difference J.
+		Eigen::VectorXd all(11);
+		all << u(rng), u(rng), 0.5 * u(rng), x, u(rng), u(rng), u(rng), u(rng);
+		const auto g = [](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+			return toPose2(lmj::robotFromPairs(v.head<3>(), v.segment<2>(3), v.segment<2>(5), Eigen::MatrixXd::Zero(7, 7),
+											   v.segment<2>(7), v.segment<2>(9), Eigen::Matrix4d::Zero())
+							   .mean);
+		};
+		const Eigen::MatrixXd J = test::numericJacobian(g, all, 1e-6, {2});
+		Eigen::MatrixXd A(11, 11);
+		for (int r = 0; r < 11; ++r)
+			for (int c = 0; c < 11; ++c) A(r, c) = u(rng);
+		const Eigen::MatrixXd Pall = A * A.transpose() * 1e-3;
+		const auto pose = lmj::robotFromPairs(all.head<3>(), all.segment<2>(3), all.segment<2>(5),
+											  Pall.topLeftCorner(7, 7), all.segment<2>(7), all.segment<2>(9),
+											  Pall.bottomRightCorner<4, 4>());
+		// The two estimates are independent: the reference drops the cross terms.
+		Eigen::MatrixXd P = Pall;
+		P.topRightCorner(7, 4).setZero();
+		P.bottomLeftCorner(4, 7).setZero();
+		const Eigen::Matrix3d expected = J * P * J.transpose();
+		EXPECT_LT((pose.cov - expected).cwiseAbs().maxCoeff(), 1e-6 * expected.cwiseAbs().maxCoeff()) << trial;
+	}
+}
+
+/// grid196's local maps of `steps` steps (IDs known, features closer than
+/// 0.3 m unused, as the configs).
+std::vector<LocalMap> grid196Maps(int steps, std::size_t step_count)
+{
+	LocalMapBuilderParams p;
+	p.local_map_steps = steps;
+	p.local_map_min_common_features = 2;
+	p.association.association = EkfAssociation::KnownIds;
+	p.association.min_range_m = 0.3;
+	LocalMapBuilder builder(p);
+	std::vector<LocalMap> maps;
+	const Rawlog log = readRawlog(kGrid196);
+	for (std::size_t k = 0; k < std::min(step_count, log.steps.size()); ++k)
+	{
+		builder.processStep(log.steps[k]);
+		if (auto m = builder.takeClosedMap()) maps.push_back(*m);
+	}
+	if (auto m = builder.finish()) maps.push_back(*m);
+	return maps;
+}
+
+TEST(LmjUnits, InformationMatrixIsExactlySparse)
+{
+	// Eq. 4.18-4.19: each map's update is a dense block over its own features
+	// and zero elsewhere, and there is no prediction step, so an off-diagonal
+	// block of I is non-zero only for two features of one local map.
+	auto plugin = test::makePlugin("DslamLocalMapJoining", "association = known_ids\n");
+	const auto maps = grid196Maps(45, 3000);
+	std::set<std::pair<LandmarkId, LandmarkId>> together;
+	for (const auto& map : maps)
+	{
+		joinerOf(*plugin).joinLocalMap(map);
+		for (const auto& a : map.features)
+			for (const auto& b : map.features) together.insert({a.id, b.id});
+	}
+	plugin->finish();
+	const auto pattern = plugin->informationPattern();
+	ASSERT_TRUE(pattern);
+	const auto landmarks = plugin->estimate().landmarks;  // variable order
+	ASSERT_EQ(pattern->information.rows(), static_cast<Eigen::Index>(2 * landmarks.size()));
+	std::set<std::pair<LandmarkId, LandmarkId>> linked;
+	for (int col = 0; col < pattern->information.outerSize(); ++col)
+		for (Eigen::SparseMatrix<double>::InnerIterator it(pattern->information, col); it; ++it)
+		{
+			const LandmarkId i = landmarks[it.row() / 2].id, j = landmarks[col / 2].id;
+			if (i == j || it.value() == 0.0) continue;
+			linked.insert({i, j});
+			EXPECT_TRUE(together.count({i, j})) << "features " << i << " and " << j << " linked, in no map together";
+		}
+	// Conversely every two features of one map are linked: the blocks are
+	// dense (eq. 4.18), and the links are those of the maps, no more.
+	std::size_t pairs = 0;
+	for (const auto& [i, j] : together) pairs += i != j;
+	EXPECT_EQ(linked.size(), pairs);
+}
+
+TEST(LmjUnits, SingleScanMapsReproduceDslamMapping)
+{
+	// Sec. 4.9: with local maps of one scan each, the filter is D-SLAM's
+	// mapping. The local map's features carry the robot pose's uncertainty
+	// too, but distances and angles among them do not depend on the pose, so
+	// z_map and R_map are D-SLAM's (eq. 3.8-3.9) with the pair chosen alike.
+	const auto maps = grid196Maps(1, 120);
+	auto plugin = test::makePlugin("DslamLocalMapJoining", "association = known_ids\n");
+	for (const auto& map : maps) joinerOf(*plugin).joinLocalMap(map);
+	plugin->finish();
+	for (const auto& [name, value] : plugin->costFigures().counters)
+	{
+		if (name == "local_maps_merged") ASSERT_EQ(value, 0) << "a merged map has no D-SLAM counterpart";
+	}
+
+	// D-SLAM's mapping on the same scans: the first anchors the map, each
+	// later one is a relative update about the same pair.
+	relative::FeatureMap dslam(SparseRecoveryParams{});
+	for (const auto& map : maps)
+	{
+		std::vector<LandmarkId> ids;
+		std::vector<Eigen::Vector2d> points;
+		for (const auto& f : map.features)
+		{
+			ids.push_back(f.id);
+			points.push_back(f.position);
+		}
+		const Eigen::MatrixXd P = map.covarianceMatrix().bottomRightCorner(2 * ids.size(), 2 * ids.size());
+		relative::PointSet all{map.state().tail(2 * ids.size()), P};
+		if (dslam.featureCount() == 0)
+		{
+			dslam.updateAnchor(ids, all);
+			dslam.recover(points.front());
+			continue;
+		}
+		std::vector<int> mapped;
+		for (int i = 0; i < static_cast<int>(ids.size()); ++i)
+			if (dslam.supported(ids[i])) mapped.push_back(i);
+		const auto pair = lmj::chooseReferenceFeatures(points, mapped, 1.0, 0.2);
+		ASSERT_TRUE(pair) << "map " << map.index;
+		const auto order = relative::pairFirst(static_cast<int>(ids.size()), pair->first, pair->second);
+		std::vector<LandmarkId> ordered;
+		for (const int i : order) ordered.push_back(ids[i]);
+		dslam.updateRelative(ordered, relative::selectPoints(all, order));
+		dslam.recover(dslam.position(ordered.front()));
+	}
+	const auto lmj = plugin->estimate().landmarks;
+	const auto reference = dslam.landmarks();
+	ASSERT_EQ(lmj.size(), reference.size());
+	for (std::size_t i = 0; i < lmj.size(); ++i)
+	{
+		EXPECT_EQ(lmj[i].id, reference[i].id);
+		EXPECT_LT((lmj[i].mean - reference[i].mean).norm(), 1e-9) << lmj[i].id;
+		EXPECT_LT((lmj[i].cov - reference[i].cov).norm(), 1e-9 * reference[i].cov.norm()) << lmj[i].id;
+	}
+}
+
+}  // namespace
