@@ -272,6 +272,34 @@ TEST(FigureWriter, LocalMapTimesShowBothLinesInBothPanels)
 	EXPECT_FALSE(fs::exists(dir.file("bad.png")));
 }
 
+TEST(FigureWriter, LineChartBreaksALineWhereAPointIsNotFinite)
+{
+	TempDir dir;
+	// One panel, a red line at y = 0.5 over x in [0, 100] with a hole from
+	// 40 to 60: red pixels on both sides of the hole, none inside it.
+	// A blue line up to y = 2 puts the red one low in the plot, clear of the legend.
+	esif::LineSeries line{"std", {}}, other{"other", {{0, 2}, {100, 2}}};
+	for (int x = 0; x <= 100; ++x) line.points.emplace_back(x, x > 40 && x < 60 ? NAN : 0.5);
+	esif::writeLineChartImage({"chart", "step", {{"sigma [m]", {line, other}}}}, dir.file("chart.png"), 800);
+	const auto img = load(dir.file("chart.png"));
+	ASSERT_EQ(img.getWidth(), 800u);
+	std::vector<int> red_columns;
+	for (int x = 0; x < 800; ++x)
+		for (int y = 100; y < 600; ++y)	 // below the legend
+			if (isRed(img, x, y))
+			{
+				red_columns.push_back(x);
+				break;
+			}
+	ASSERT_FALSE(red_columns.empty());
+	int widest_gap = 0;
+	for (std::size_t i = 1; i < red_columns.size(); ++i) widest_gap = std::max(widest_gap, red_columns[i] - red_columns[i - 1]);
+	// The plot is about 740 px wide for 100 units: a 20-unit hole is ~150 px.
+	EXPECT_GT(widest_gap, 100);
+	EXPECT_LT(widest_gap, 200);
+	EXPECT_GT(red_columns.back() - red_columns.front(), 600);
+}
+
 TEST(FigureWriter, InvalidArgumentsAreRefusedBeforeWriting)
 {
 	TempDir dir;

@@ -1,6 +1,6 @@
 /// \file FigureWriter.cpp
 /// info_matrix.png (book Fig. 3.12-3.13), step_times.png (Fig. 3.20) and
-/// localmap_times.png (Fig. 5.7-5.8).
+/// line charts: localmap_times.png (Fig. 5.7-5.8), feature_std.png (Fig. 4.9).
 
 #include <esif/io/FigureWriter.h>
 
@@ -319,72 +319,54 @@ class StepTimesPainter
 	Font sub_font_ = kFontTiny;
 };
 
-// --- localmap_times.png ------------------------------------------------------
+// --- line charts (localmap_times.png, feature_std.png) -----------------------
 
-/// One line of a panel: its points (map index, value) and how it is drawn.
-struct Series
-{
-	std::string label;
-	TColor color;
-	std::vector<StepPoint> points;	///< landmarks = map index k, ms = value
-};
+/// Colours of a chart's series, in order.
+const TColor kSeriesColors[] = {map_palette::kLandmarkColor, map_palette::kPathColor,
+								map_palette::kTruthLandmarkColor, TColor(200, 130, 0), TColor(120, 50, 170)};
 
-/// The two series of a panel of localmap_times.png: the whole fusion and
-/// the fusion without data association, each divided by `divide(cost)`.
-template <class Divisor>
-std::vector<Series> fusionSeries(const std::vector<LocalMapFusionCost>& costs, Divisor divide)
-{
-	std::vector<Series> out{{"with association", map_palette::kLandmarkColor, {}},
-							{"without association", map_palette::kPathColor, {}}};
-	for (const auto& c : costs)
-	{
-		const double d = divide(c);
-		const double k = static_cast<double>(c.map);
-		if (!(d > 0) || !std::isfinite(c.total_s)) continue;
-		out[0].points.push_back({k, 1000.0 * c.total_s / d});
-		out[1].points.push_back({k, 1000.0 * std::max(0.0, c.total_s - c.association_s) / d});
-	}
-	return out;
-}
+TColor seriesColor(std::size_t i) { return kSeriesColors[i % (sizeof(kSeriesColors) / sizeof(kSeriesColors[0]))]; }
 
-/// Draws localmap_times.png: two panels one above the other, each a line
-/// chart of its series against the map index with a legend in the corner.
-class LocalMapTimesPainter
+/// Draws a LineChart: its panels one above the other over a shared x
+/// range, each a line chart of its series with a legend in the corner.
+class LineChartPainter
 {
    public:
-	LocalMapTimesPainter(const std::vector<LocalMapFusionCost>& costs, int width_px)
-		: costs_(costs), w_(width_px), h_(width_px * 3 / 4), fonts_(w_), img_(blankImage(w_, h_))
+	LineChartPainter(const LineChart& chart, int width_px)
+		: chart_(chart), w_(width_px), h_(width_px * 3 / 4), fonts_(w_), img_(blankImage(w_, h_))
 	{
-		for (const auto& c : costs_) k_max_ = std::max(k_max_, static_cast<double>(c.map));
+		for (const auto& panel : chart_.panels)
+			for (const auto& s : panel.series)
+				for (const auto& [x, y] : s.points)
+					if (std::isfinite(x)) x_max_ = std::max(x_max_, x);
 	}
 
 	mrpt::img::CImage paint()
 	{
 		const int pad = 8;
-		const std::string title = "time to fuse each local map (" + std::to_string(costs_.size()) + " maps)";
-		centredText(img_, w_ / 2, pad, title, fittingFont(title, w_ - 2 * pad, {fonts_.title, kFontSmall, kFontTiny}),
-					kTextColor);
+		centredText(img_, w_ / 2, pad, chart_.title,
+					fittingFont(chart_.title, w_ - 2 * pad, {fonts_.title, kFontSmall, kFontTiny}), kTextColor);
 		const int top = 2 * pad + fonts_.title.h, bottom = h_ - (fonts_.body.h + 2 * pad);
-		const int middle = (top + bottom) / 2;
-		drawPanel(top, middle, "fusion time [ms]", fusionSeries(costs_, [](const LocalMapFusionCost&) { return 1.0; }));
-		drawPanel(middle, bottom, "fusion time / state dimension [ms]",
-				  fusionSeries(costs_, [](const LocalMapFusionCost& c) { return static_cast<double>(c.state_dim); }));
-		centredText(img_, w_ / 2, h_ - fonts_.body.h - pad, "local map k", fonts_.body, kTextColor);
+		const int n = std::max<int>(1, static_cast<int>(chart_.panels.size()));
+		for (int i = 0; i < static_cast<int>(chart_.panels.size()); ++i)
+			drawPanel(top + (bottom - top) * i / n, top + (bottom - top) * (i + 1) / n, chart_.panels[i]);
+		centredText(img_, w_ / 2, h_ - fonts_.body.h - pad, chart_.x_label, fonts_.body, kTextColor);
 		return img_;
 	}
 
    private:
 	/// One panel in the band [y_top, y_bottom): y label above the plot,
-	/// ticks on both axes, the series as lines with a legend top-left.
-	void drawPanel(int y_top, int y_bottom, const std::string& y_label, const std::vector<Series>& series)
+	/// ticks on both axes, the series as lines with a legend top-right.
+	void drawPanel(int y_top, int y_bottom, const LinePanel& panel)
 	{
 		const int pad = 8;
 		double y_max = 0;
-		for (const auto& s : series)
-			for (const auto& p : s.points) y_max = std::max(y_max, p.ms);
+		for (const auto& s : panel.series)
+			for (const auto& [x, y] : s.points)
+				if (std::isfinite(y)) y_max = std::max(y_max, y);
 		Axes axes;
-		const double x_step = map_geometry::niceStep(k_max_, 8);
-		axes.x_top = std::ceil(k_max_ / x_step) * x_step;
+		const double x_step = map_geometry::niceStep(x_max_, 8);
+		axes.x_top = std::ceil(x_max_ / x_step) * x_step;
 		axes.y_top = y_max > 0 ? 1.05 * y_max : 1.0;
 		const std::vector<double> x_ticks = niceTicks(axes.x_top, 8), y_ticks = niceTicks(axes.y_top, 4);
 		int label_w = 0;
@@ -394,50 +376,76 @@ class LocalMapTimesPainter
 		axes.y0 = y_top + fonts_.label.h + 2 * pad;
 		axes.y1 = y_bottom - (fonts_.label.h + 2 * pad);
 		drawGridAndTicks(img_, axes, x_ticks, y_ticks, fonts_.label);
-		// Last series first, so the first (the whole fusion) shows where they coincide.
-		for (auto s = series.rbegin(); s != series.rend(); ++s) drawSeries(axes, *s);
+		// Last series first, so the first shows where they coincide.
+		for (std::size_t i = panel.series.size(); i-- > 0;) drawSeries(axes, panel.series[i], seriesColor(i));
 		img_.line(axes.x0, axes.y0, axes.x0, axes.y1, kInk, 1);
 		img_.line(axes.x0, axes.y1, axes.x1, axes.y1, kInk, 1);
-		text(img_, pad, y_top + pad / 2, y_label, fonts_.label, kTextColor);
-		drawLegend(axes.x1, y_top + pad / 2, series);
+		text(img_, pad, y_top + pad / 2, panel.y_label, fonts_.label, kTextColor);
+		drawLegend(axes.x1, y_top + pad / 2, panel.series);
 	}
 
-	void drawSeries(const Axes& axes, const Series& s)
+	/// A polyline through the finite points; a gap where a point is not finite.
+	void drawSeries(const Axes& axes, const LineSeries& s, TColor color)
 	{
 		const unsigned thick = w_ >= 600 ? 2 : 1;
-		for (std::size_t i = 0; i < s.points.size(); ++i)
+		bool have_previous = false;
+		int px = 0, py = 0;
+		for (const auto& [x, y] : s.points)
 		{
-			const int x = axes.px(s.points[i].landmarks), y = axes.py(s.points[i].ms);
-			if (i > 0)
-				img_.line(axes.px(s.points[i - 1].landmarks), axes.py(s.points[i - 1].ms), x, y, s.color, thick);
+			if (!std::isfinite(x) || !std::isfinite(y))
+			{
+				have_previous = false;
+				continue;
+			}
+			const int cx = axes.px(x), cy = axes.py(y);
+			if (have_previous)
+				img_.line(px, py, cx, cy, color, thick);
 			else
-				img_.filledRectangle(x - 1, y - 1, x + 1, y + 1, s.color);
+				img_.filledRectangle(cx - 1, cy - 1, cx + 1, cy + 1, color);
+			px = cx, py = cy, have_previous = true;
 		}
 	}
 
 	/// The legend on one line above the plot, ending at `right`: a short
 	/// line in each series' colour before its label.
-	void drawLegend(int right, int y, const std::vector<Series>& series)
+	void drawLegend(int right, int y, const std::vector<LineSeries>& series)
 	{
 		const Font& f = fonts_.label;
 		constexpr int kGlyph = 24, kGap = 6, kSpacing = 18;
 		int width = 0;
 		for (const auto& s : series) width += kGlyph + kGap + textWidth(s.label, f) + kSpacing;
 		int x = right - width + kSpacing;
-		for (const auto& s : series)
+		for (std::size_t i = 0; i < series.size(); ++i)
 		{
-			img_.line(x, y + f.h / 2, x + kGlyph, y + f.h / 2, s.color, 2);
-			text(img_, x + kGlyph + kGap, y, s.label, f, kTextColor);
-			x += kGlyph + kGap + textWidth(s.label, f) + kSpacing;
+			img_.line(x, y + f.h / 2, x + kGlyph, y + f.h / 2, seriesColor(i), 2);
+			text(img_, x + kGlyph + kGap, y, series[i].label, f, kTextColor);
+			x += kGlyph + kGap + textWidth(series[i].label, f) + kSpacing;
 		}
 	}
 
-	const std::vector<LocalMapFusionCost>& costs_;
+	const LineChart& chart_;
 	const int w_, h_;
 	const Fonts fonts_;
 	mrpt::img::CImage img_;
-	double k_max_ = 1;
+	double x_max_ = 1;
 };
+
+/// The two series of a panel of localmap_times.png: the whole fusion and
+/// the fusion without data association, each divided by `divide(cost)`.
+template <class Divisor>
+LinePanel fusionPanel(const std::string& y_label, const std::vector<LocalMapFusionCost>& costs, Divisor divide)
+{
+	LinePanel panel{y_label, {{"with association", {}}, {"without association", {}}}};
+	for (const auto& c : costs)
+	{
+		const double d = divide(c);
+		const double k = static_cast<double>(c.map);
+		if (!(d > 0) || !std::isfinite(c.total_s)) continue;
+		panel.series[0].points.emplace_back(k, 1000.0 * c.total_s / d);
+		panel.series[1].points.emplace_back(k, 1000.0 * std::max(0.0, c.total_s - c.association_s) / d);
+	}
+	return panel;
+}
 
 }  // namespace
 
@@ -471,10 +479,21 @@ void writeStepTimesImage(
 	savePngAtomically(StepTimesPainter(pts, width_px).paint(), path);
 }
 
-void writeLocalMapTimesImage(const std::vector<LocalMapFusionCost>& costs, const std::string& path, int width_px)
+void writeLineChartImage(const LineChart& chart, const std::string& path, int width_px)
 {
 	validateSize("image_size_px", width_px);
-	savePngAtomically(LocalMapTimesPainter(costs, width_px).paint(), path);
+	savePngAtomically(LineChartPainter(chart, width_px).paint(), path);
+}
+
+void writeLocalMapTimesImage(const std::vector<LocalMapFusionCost>& costs, const std::string& path, int width_px)
+{
+	const LineChart chart{
+		"time to fuse each local map (" + std::to_string(costs.size()) + " maps)",
+		"local map k",
+		{fusionPanel("fusion time [ms]", costs, [](const LocalMapFusionCost&) { return 1.0; }),
+		 fusionPanel("fusion time / state dimension [ms]", costs,
+					 [](const LocalMapFusionCost& c) { return static_cast<double>(c.state_dim); })}};
+	writeLineChartImage(chart, path, width_px);
 }
 
 }  // namespace esif

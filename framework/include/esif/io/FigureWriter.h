@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace esif
@@ -59,6 +60,36 @@ void writeInformationPatternImage(const InformationPattern& p, const std::string
 void writeStepTimesImage(
 	const std::vector<double>& step_us, const std::vector<std::size_t>& landmark_counts, const std::string& path,
 	int width_px);
+
+/// One line of a chart: (x, y) points, joined in order; a non-finite point
+/// breaks the line.
+struct LineSeries
+{
+	std::string label;
+	std::vector<std::pair<double, double>> points;
+};
+
+/// One panel: its y-axis label and its lines (coloured in order: red, blue,
+/// green, orange, purple).
+struct LinePanel
+{
+	std::string y_label;
+	std::vector<LineSeries> series;
+};
+
+/// Panels one above the other over a shared x axis from 0.
+struct LineChart
+{
+	std::string title;
+	std::string x_label;
+	std::vector<LinePanel> panels;
+};
+
+/// Writes `chart` as a PNG, width_px wide and 3/4 of that high, each panel
+/// with ticks, grid and a legend. Throws ConfigError for width_px outside
+/// [200, 16384] before writing, and InputError naming `path` when it cannot
+/// be written.
+void writeLineChartImage(const LineChart& chart, const std::string& path, int width_px);
 
 /// Writes a PNG, width_px wide and 3/4 of that high, with two panels
 /// against the map index k (book Fig. 5.7-5.8): the time to fuse each map
