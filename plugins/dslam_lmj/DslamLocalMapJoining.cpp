@@ -118,7 +118,7 @@ void DslamLocalMapJoining::accept(const LocalMap& closed)
 		++tally_.maps_merged;
 		pending_.reset();
 	}
-	if (tryFuse(map, originals, absorbed, 0)) return;
+	if (tryFuse(map, originals, absorbed, 0, std::nullopt)) return;
 	// Sec. 4.4.4 fails: fewer than two of the map's features are in the
 	// global map. Join it with the map fused last, through their shared pose,
 	// and fuse the two anew (the previous map's features give the pair).
@@ -131,36 +131,64 @@ void DslamLocalMapJoining::accept(const LocalMap& closed)
 bool DslamLocalMapJoining::joinWithLastFusion(
 	const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed)
 {
-	Fusion last = std::move(fusions_.back());
-	fusions_.pop_back();
-	global_->withdraw(last.update);	 // its features stay, without its information, until fused again
-	if (last.anchor) anchored_ = false;
-	tally_.features_rejected -= last.rejected;
-	costs_.pop_back();
-	pair_cov_cache_.clear();
-
+	const Fusion& last = fusions_.back();
 	LocalMap earlier = last.map;
 	earlier.index = map.index - 1;
 	LocalMap joined = mergeConsecutiveLocalMaps(earlier, map);
 	joined.index = last.map.index;
-	AbsorbedEnds ends = last.absorbed;
-	ends.emplace_back(last.map.end_pose, last.map.covarianceMatrix().topLeftCorner<3, 3>());
+
+	// Decide everything before the last fusion is withdrawn: its features
+	// have no information until the joined map is fused, so no covariance
+	// could be recovered then. The association sees the last map's
+	// information twice (in the global map and in the joined map), a small
+	// over-confidence of the test only. The pair of the update must not be
+	// one of the features the last fusion created.
+	std::optional<UpperLevelOutcome> decided;
+	if (!last.anchor)
+	{
+		const auto n = static_cast<int>(joined.features.size());
+		decided = associate(joined, joined.covarianceMatrix().bottomRightCorner(2 * n, 2 * n));
+		if (!decided) return false;
+		const auto& created = last.update.new_features;
+		std::vector<Eigen::Vector2d> points;
+		std::vector<int> usable;
+		for (int i = 0; i < n; ++i)
+		{
+			points.push_back(joined.features[i].position);
+			const auto& a = decided->decisions.associations[i];
+			if (a.kind == Association::Kind::Matched && global_->supported(a.id) &&
+				std::find(created.begin(), created.end(), a.id) == created.end())
+				usable.push_back(i);
+		}
+		if (!chooseReferenceFeatures(points, usable, params_.reference_min_separation_m,
+									 params_.reference_min_clearance_m))
+			return false;
+	}
+
+	Fusion withdrawn = std::move(fusions_.back());
+	fusions_.pop_back();
+	global_->withdraw(withdrawn.update);  // its features stay, without its information, until fused again
+	if (withdrawn.anchor) anchored_ = false;
+	tally_.features_rejected -= withdrawn.rejected;
+	costs_.pop_back();
+	pair_cov_cache_.clear();
+
+	AbsorbedEnds ends = withdrawn.absorbed;
+	ends.emplace_back(withdrawn.map.end_pose, withdrawn.map.covarianceMatrix().topLeftCorner<3, 3>());
 	const Eigen::Matrix3d earlier_end_cov = ends.back().second;
 	for (const auto& [pose, cov] : absorbed)
 	{
 		// End poses the later map absorbed are in its frame: carry them into the earlier one's.
-		const PoseEstimate moved = composeIndependent({toTPose2D(last.map.end_pose), earlier_end_cov}, {toTPose2D(pose), cov});
+		const PoseEstimate moved =
+			composeIndependent({toTPose2D(withdrawn.map.end_pose), earlier_end_cov}, {toTPose2D(pose), cov});
 		ends.emplace_back(toPose2(moved.mean), moved.cov);
 	}
-	std::vector<std::size_t> maps = last.maps;
+	std::vector<std::size_t> maps = withdrawn.maps;
 	maps.insert(maps.end(), originals.begin(), originals.end());
 	++tally_.maps_merged;
-	if (tryFuse(joined, maps, ends, last.seconds)) return true;
-	// Cannot happen with the earlier map's own common features; never lose
-	// them: the joined map waits for the next one.
-	pending_ = joined;
-	pending_maps_ = maps;
-	pending_absorbed_ = ends;
+	if (!tryFuse(joined, maps, ends, withdrawn.seconds, std::move(decided)))
+		throw std::logic_error("D-SLAM map joining: local maps joined with map " + std::to_string(joined.index) +
+							   " could not be fused again");  // the checks above rule this out
 	return true;
 }
 
@@ -184,7 +212,8 @@ LandmarkId DslamLocalMapJoining::freshId(LandmarkId proposed, std::vector<Landma
 }
 
 bool DslamLocalMapJoining::tryFuse(
-	const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed, double seconds_before)
+	const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed, double seconds_before,
+	std::optional<UpperLevelOutcome> decided)
 {
 	const auto t0 = Clock::now();
 	const Eigen::MatrixXd P = map.covarianceMatrix();
@@ -228,7 +257,7 @@ bool DslamLocalMapJoining::tryFuse(
 	else
 	{
 		const auto t_association = Clock::now();
-		auto outcome = associate(map, P_ff);
+		auto outcome = decided ? std::move(decided) : associate(map, P_ff);
 		association_s = secondsSince(t_association);
 		if (!outcome) return false;
 		// The reference pair among the kept features already mapped (eq. 4.9).

@@ -91,8 +91,11 @@ class DslamLocalMapJoining : public FilterPlugin, public LocalMapJoiner
 
 	void requireConfigured() const;
 	void accept(const LocalMap& map);
+	/// Fuses `map` (association `decided` when already made); false, with
+	/// nothing changed, when fewer than two of its features are usable in
+	/// the global map.
 	bool tryFuse(const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed,
-				 double seconds_before);
+				 double seconds_before, std::optional<lmj::UpperLevelOutcome> decided);
 	bool joinWithLastFusion(const LocalMap& map, const std::vector<std::size_t>& originals,
 							const AbsorbedEnds& absorbed);
 	bool useIds(const LocalMap& map) const;

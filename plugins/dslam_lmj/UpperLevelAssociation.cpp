@@ -65,6 +65,7 @@ std::vector<std::optional<LandmarkId>> knownGlobalIds(
 	const relative::FeatureMap& global)
 {
 	std::vector<std::optional<LandmarkId>> out;
+	std::map<LandmarkId, int> claims;
 	for (const auto& f : map.features)
 	{
 		if (use_ids)
@@ -73,7 +74,13 @@ std::vector<std::optional<LandmarkId>> knownGlobalIds(
 			out.push_back(it->second);
 		else
 			out.push_back(std::nullopt);
+		if (out.back()) ++claims[*out.back()];
 	}
+	// Two local features that earlier fusions gave one global feature (an
+	// earlier association merged them) cannot both be it: neither is known,
+	// and the association decides between them.
+	for (auto& known : out)
+		if (known && claims[*known] > 1) known.reset();
 	return out;
 }
 

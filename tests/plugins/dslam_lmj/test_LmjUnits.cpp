@@ -11,6 +11,7 @@
 
 #include "PairFrame.h"
 #include "ReferenceChoice.h"
+#include "UpperLevelAssociation.h"
 
 #include <esif/io/RawlogReader.h>
 #include <esif/localmap/LocalMapBuilder.h>
@@ -117,6 +118,27 @@ TEST(LmjUnits, PairFrameAndRobotPoseJacobiansMatchFiniteDifferences)
 	}
 }
 
+TEST(LmjUnits, TwoLocalFeaturesGivenOneGlobalFeatureAreNeitherKnown)
+{
+	// When an earlier association merged two local features into one global
+	// feature, a later map holding both cannot use either as a known
+	// correspondence (the update would list the global feature twice).
+	relative::FeatureMap global(SparseRecoveryParams{});
+	Eigen::VectorXd xy(4);
+	xy << 0, 0, 3, 0;
+	global.updateAnchor({100, 101}, {xy, 0.01 * Eigen::MatrixXd::Identity(4, 4)});
+	LocalMap map;
+	map.index = 2;
+	for (const LandmarkId id : {7, 8, 9}) map.features.push_back({id, Eigen::Vector2d::Zero(), false});
+	const std::map<LandmarkId, LandmarkId> global_of_local = {{7, 100}, {8, 100}, {9, 101}};
+	const auto known = lmj::knownGlobalIds(map, false, global_of_local, global);
+	ASSERT_EQ(known.size(), 3u);
+	EXPECT_FALSE(known[0]);
+	EXPECT_FALSE(known[1]);
+	ASSERT_TRUE(known[2]);
+	EXPECT_EQ(*known[2], 101);
+}
+
 /// grid196's local maps of `steps` steps (IDs known, features closer than
 /// 0.3 m unused, as the configs).
 std::vector<LocalMap> grid196Maps(int steps, std::size_t step_count)
@@ -185,7 +207,10 @@ TEST(LmjUnits, SingleScanMapsReproduceDslamMapping)
 	plugin->finish();
 	for (const auto& [name, value] : plugin->costFigures().counters)
 	{
-		if (name == "local_maps_merged") ASSERT_EQ(value, 0) << "a merged map has no D-SLAM counterpart";
+		if (name == "local_maps_merged")
+		{
+			ASSERT_EQ(value, 0) << "a merged map has no D-SLAM counterpart";
+		}
 	}
 
 	// D-SLAM's mapping on the same scans: the first anchors the map, each
