@@ -9,6 +9,7 @@
 #include <esif/io/MapWriter.h>
 #include <esif/io/RunOutputReader.h>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <cmath>
 #include <fstream>
@@ -192,20 +193,65 @@ TEST(RunDifference, ColumnsAppearInTablesOnlyWhenSet)
 		EXPECT_EQ(comparisonCsv({a, b}).find(k), std::string::npos) << k;
 	}
 	RunOutputs ref, run;
-	ref.landmarks = {{1, {0, 0}, {}}, {2, {1, 1}, {}}};
-	run.landmarks = {{1, {3, 4}, {}}};
+	const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+	ref.landmarks = {{1, {0, 0}, I}, {2, {1, 1}, I}};
+	run.landmarks = {{1, {3, 4}, I}};
 	setDifferenceStats(a, referenceItself(ref));
 	setDifferenceStats(b, runDifference(run, ref));
 	const auto csv = comparisonCsv({a, b});
+	// One matched landmark fits no rotation; with unit covariances the
+	// reference's own landmarks are inside their ellipse and
+	// the run's, 5 m off, is not.
 	EXPECT_NE(csv.find("label,ref_traj_rms_m,ref_traj_max_m,ref_heading_rms_deg,ref_landmark_rms_m,"
-					   "ref_landmark_max_m,ref_landmarks_matched\n"),
+					   "ref_landmark_max_m,ref_landmarks_matched,ref_rotation_deg,ref_landmark_rms_aligned_m,"
+					   "ref_landmarks_in_own95\n"),
 			  std::string::npos)
 		<< csv;
-	EXPECT_NE(csv.find("ekf,,,,0,0,2\n"), std::string::npos) << csv;
-	EXPECT_NE(csv.find("other,,,,5,5,1\n"), std::string::npos) << csv;
+	EXPECT_NE(csv.find("ekf,,,,0,0,2,0,0,1\n"), std::string::npos) << csv;
+	EXPECT_NE(csv.find("other,,,,5,5,1,,,0\n"), std::string::npos) << csv;
 	const auto text = comparisonText({a, b});
 	for (const auto& k : runDifferenceKeys()) EXPECT_NE(text.find(k), std::string::npos) << k;
 	EXPECT_NE(comparisonMarkdown({a, b}).find("| ref_landmarks_matched | 2 | 1 |"), std::string::npos);
+}
+
+TEST(RunDifference, BestFitRotationTellsARotatedMapFromADistortedOne)
+{
+	// The run's map is the reference turned by 4.3 deg about (10, -5) (the
+	// EKF's Victoria Park error is almost all such a rotation): every
+	// difference is large, the best-fit rotation is exactly -4.3 deg (it
+	// turns the run back) and nothing is left after it.
+	RunOutputs ref, run;
+	const double a = 4.3 * kDeg;
+	const Eigen::Vector2d centre(10, -5);
+	const Eigen::Matrix2d R = Eigen::Rotation2Dd(a).toRotationMatrix();
+	for (int i = 0; i < 20; ++i)
+	{
+		const Eigen::Vector2d p(3.0 * i - 20.0, 40.0 * std::sin(0.7 * i));
+		ref.landmarks.push_back({i, p, Eigen::Matrix2d::Identity()});
+		run.landmarks.push_back({i, centre + R * (p - centre), Eigen::Matrix2d::Identity()});
+	}
+	const RunDifference d = runDifference(run, ref);
+	// MRPT's se2_l2 sums in single precision (SSE): 1e-6 deg and 1e-6 m
+	// seen at these 40 m coordinates; 1e-5 leaves a margin.
+	EXPECT_GT(*d.landmark_rms_m, 1.0);
+	EXPECT_NEAR(*d.best_fit_rotation_deg, -4.3, 1e-5);
+	EXPECT_NEAR(*d.landmark_rms_aligned_m, 0.0, 1e-5);
+}
+
+TEST(RunDifference, CountsReferencePositionsInsideTheRunsOwn95Ellipse)
+{
+	// A thin ellipse along x (sigma 1 m by 0.1 m): 2 m along x is inside
+	// (d^T P^-1 d = 4 <= 5.991), 0.3 m along y is outside (9), 0.2 m along y
+	// inside (4), and a landmark without a positive-definite covariance is
+	// not counted at all.
+	const Eigen::Matrix2d P = Eigen::Vector2d(1.0, 0.01).asDiagonal();
+	RunOutputs ref, run;
+	ref.landmarks = {{1, {2, 0}, {}}, {2, {0, 0.3}, {}}, {3, {0, 0.2}, {}}, {4, {5, 5}, {}}};
+	run.landmarks = {{1, {0, 0}, P}, {2, {0, 0}, P}, {3, {0, 0}, P}, {4, {0, 0}, Eigen::Matrix2d::Zero()}};
+	const RunDifference d = runDifference(run, ref);
+	EXPECT_EQ(d.landmarks_matched, 4u);
+	EXPECT_EQ(d.landmarks_with_covariance, 3u);
+	EXPECT_NEAR(*d.landmarks_inside_own95_fraction, 2.0 / 3.0, 1e-12);
 }
 
 TEST(RunOutputReader, MalformedLinesNameFileAndLine)
