@@ -8,6 +8,7 @@
 #include <esif/eval/ComparisonTable.h>
 #include <esif/eval/RunDifference.h>
 #include <esif/io/AtomicFile.h>
+#include <esif/io/MapOverlay.h>
 #include <esif/io/RunOutputReader.h>
 #include <esif/io/StatsJson.h>
 #include <esif/run/LocalMapRunPipeline.h>
@@ -190,18 +191,31 @@ Stats runConfig(
 
 std::string labelOf(const Stats& run) { return run.text("label").value_or("?"); }
 
-/// Adds the ref_* keys (difference from run `ref`) to every run; returns the
-/// note line, which calls the reference `who` (e.g. "run 'ekf'").
-std::string addReferenceColumns(
-	std::vector<Stats>& runs, const std::vector<std::string>& dirs, std::size_t ref, const std::string& who)
+/// Adds the ref_* keys (difference from run `ref`) to every run and draws
+/// every run's map over the reference's into OUT/maps_overlay.png; returns
+/// the note lines, which call the reference `who` (e.g. "run 'ekf'").
+std::string addReferenceColumns(std::vector<Stats>& runs, const std::vector<std::string>& dirs, std::size_t ref,
+								const std::string& who, const std::string& out_dir)
 {
 	const RunOutputs reference_outputs = readRunOutputs(dirs[ref]);
+	std::vector<MapOverlayLayer> layers{{labelOf(runs[ref]), reference_outputs}};
 	for (std::size_t i = 0; i < runs.size(); ++i)
-		setDifferenceStats(
-			runs[i], i == ref ? referenceItself(reference_outputs)
-							  : runDifference(readRunOutputs(dirs[i]), reference_outputs));
+	{
+		if (i == ref)
+		{
+			setDifferenceStats(runs[i], referenceItself(reference_outputs));
+			continue;
+		}
+		RunOutputs outputs = readRunOutputs(dirs[i]);
+		setDifferenceStats(runs[i], runDifference(outputs, reference_outputs));
+		layers.push_back({labelOf(runs[i]), std::move(outputs)});
+	}
+	writeMapOverlayImage(layers, "maps over " + who, (fs::path(out_dir) / "maps_overlay.png").string(), 1200);
 	return "ref_*: difference from " + who +
-		   " in the initial-pose frame, no alignment (trajectory by step, landmarks by ID)\n";
+		   " in the initial-pose frame, no alignment (trajectory by step, landmarks by ID); ref_rotation_deg and "
+		   "ref_landmark_rms_aligned_m: the best-fit rigid transform of the landmarks and what is left after it; "
+		   "ref_landmarks_in_own95: share of landmarks whose reference position is inside the run's own 95% "
+		   "ellipse; maps_overlay.png draws them\n";
 }
 }  // namespace
 
@@ -290,12 +304,13 @@ int compareCommand(int argc, char** argv)
 		note += baselineNote(labelOf(runs[*baseline.index]));
 	}
 	if (ref)
-		note += addReferenceColumns(runs, dirs, *ref, "run '" + reference.getValue() + "'");
+		note += addReferenceColumns(runs, dirs, *ref, "run '" + reference.getValue() + "'", out.getValue());
 	else if (baseline.index && !with_truth)
 	{
 		warnAboutUnrelatedIds(planned, sources, *baseline.index);
 		note += addReferenceColumns(
-			runs, dirs, *baseline.index, "the optimization baseline '" + labelOf(runs[*baseline.index]) + "'");
+			runs, dirs, *baseline.index, "the optimization baseline '" + labelOf(runs[*baseline.index]) + "'",
+			out.getValue());
 	}
 
 	if (reference_result.isSet())

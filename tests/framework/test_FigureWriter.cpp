@@ -8,6 +8,7 @@
 
 #include <esif/core/Errors.h>
 #include <esif/io/FigureWriter.h>
+#include <esif/io/MapOverlay.h>
 
 #include <mrpt/img/CImage.h>
 
@@ -270,6 +271,51 @@ TEST(FigureWriter, LocalMapTimesShowBothLinesInBothPanels)
 	EXPECT_GT(blue_bottom, 300);
 	EXPECT_THROW(esif::writeLocalMapTimesImage(costs, dir.file("bad.png"), 100), esif::ConfigError);
 	EXPECT_FALSE(fs::exists(dir.file("bad.png")));
+}
+
+TEST(FigureWriter, MapOverlayIsFramedOnTheReferenceWhateverAnotherRunDid)
+{
+	// The reference: a 40 m square loop with 16 landmarks beside it (black);
+	// a run 1 m off it (red); a diverged run with one landmark 214 km away
+	// (blue). The picture must stay on the reference: its black marks spread
+	// over most of the plot, and both other runs show.
+	esif::RunOutputs ref;
+	for (int k = 0; k <= 160; ++k)
+	{
+		const double t = k / 40.0;	// side index and position along it
+		const int side = std::min(3, static_cast<int>(t));
+		const double u = 40.0 * (t - side);
+		const double xy[4][2] = {{u, 0}, {40, u}, {40 - u, 40}, {0, 40 - u}};
+		ref.trajectory.push_back({0.1 * k, {xy[side][0], xy[side][1], 0}});
+	}
+	for (int i = 0; i < 16; ++i)
+		ref.landmarks.push_back({i, Eigen::Vector2d(2.5 * i + 1, i % 2 ? -3.0 : 43.0), Eigen::Matrix2d::Identity()});
+	esif::RunOutputs close = ref, diverged = ref;
+	for (auto& p : close.trajectory) p.pose.y += 1.0;
+	for (auto& lm : close.landmarks) lm.mean.y() += 1.0;
+	diverged.landmarks.back().mean = Eigen::Vector2d(2.14e5, 0);
+	for (auto& p : diverged.trajectory) p.pose.x -= 1.0;
+	TempDir dir;
+	esif::writeMapOverlayImage({{"optimum", ref}, {"close", close}, {"diverged", diverged}}, "overlay",
+							   dir.file("o.png"), 800);
+	const auto img = load(dir.file("o.png"));
+	ASSERT_EQ(img.getWidth(), 800u);
+	ASSERT_EQ(img.getHeight(), 600u);
+	int x_min = 800, x_max = 0, red = 0, blue = 0;
+	for (int y = 0; y < 600; ++y)
+		for (int x = 0; x < 800; ++x)
+		{
+			red += isRed(img, x, y);
+			blue += isBlue(img, x, y);
+			if (shade(img, x, y) == 0) x_min = std::min(x_min, x), x_max = std::max(x_max, x);
+		}
+	EXPECT_GT(x_max - x_min, 400);
+	EXPECT_GT(red, 300);
+	EXPECT_GT(blue, 300);
+	EXPECT_THROW(esif::writeMapOverlayImage({}, "t", dir.file("none.png"), 800), esif::ConfigError);
+	EXPECT_THROW(esif::writeMapOverlayImage({{"r", ref}}, "t", dir.file("small.png"), 100), esif::ConfigError);
+	EXPECT_FALSE(fs::exists(dir.file("none.png")));
+	EXPECT_FALSE(fs::exists(dir.file("small.png")));
 }
 
 TEST(FigureWriter, LineChartBreaksALineWhereAPointIsNotFinite)

@@ -112,12 +112,17 @@ TEST_F(CompareReference, AddsDifferenceColumns)
 	for (const auto& k : esif::runDifferenceKeys())
 		EXPECT_NE(text.str().find("| " + k + " |"), std::string::npos) << k;
 	EXPECT_NE(text.str().find("difference from run 'ekf'"), std::string::npos) << text.str();
+	// Same data, same IDs: no rotation to speak of between the two maps.
+	EXPECT_LT(std::abs(number(other, "ref_rotation_deg")), 1.0);
+	EXPECT_LE(number(other, "ref_landmark_rms_aligned_m"), number(other, "ref_landmark_rms_m") + 1e-9);
+	EXPECT_TRUE(std::filesystem::exists(dir_->file("cmp/maps_overlay.png")));
 }
 
 TEST_F(CompareReference, WithoutReferenceNoColumns)
 {
 	const auto r = runEsif(compareArgs("plain", ""));
 	ASSERT_EQ(r.exit_code, 0) << r.out;
+	EXPECT_FALSE(std::filesystem::exists(dir_->file("plain/maps_overlay.png")));
 	EXPECT_EQ(r.out.find("ref_"), std::string::npos) << r.out;
 	std::ifstream csv(dir_->file("plain/comparison.csv"));
 	std::string header;
