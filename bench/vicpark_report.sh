@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Victoria Park report (book Sec. 3.6.2, 4.7, 5.6): every plugin's
+# configs/vicpark/*.ini run on the dataset beside the full-SLAM optimum
+# (configs/vicpark/ceres_full.ini, the yardstick when there is no ground
+# truth). Prints, per filter, the RMS and largest landmark and trajectory
+# difference from the optimum, the best-fit rotation of its map onto the
+# optimum's and the RMS left after it (a map that is only rotated, an EKF
+# heading error, against one that is distorted), and the share of landmarks
+# whose optimal position lies inside the filter's own 95% ellipse (a
+# consistency test without ground truth: about 95% for a consistent filter).
+# The optimum's chi-square is printed beside (GTSAM's batch optimum of the
+# same problem: 7930 at 0.5 m / 2 deg, the importer's defaults).
+#
+# Writes out/bench/vicpark_report/ (one folder per run, comparison.md/.csv,
+# maps_overlay.png: every map over the optimum's).
+#
+# The dataset is third-party, never committed: out/data/vicpark.rawlog is
+# imported on first use from ${VICPARK_TXT:-../shared/data/victoria_park/victoria_park.txt}.
+#
+# usage: bench/vicpark_report.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+esif=$(realpath build/bin/esif)
+out=out/bench/vicpark_report
+
+vicpark_rawlog() {
+  local log=out/data/vicpark.rawlog txt=${VICPARK_TXT:-../shared/data/victoria_park/victoria_park.txt}
+  if [ ! -f "$log" ]; then
+    [ -f "$txt" ] || { echo "bench/vicpark_report.sh: $(realpath -m "$txt") not present (the Victoria Park dataset; set VICPARK_TXT)" >&2; exit 1; }
+    mkdir -p out/data
+    "$esif" import victoria-park --in "$txt" --out "$log" >&2
+  fi
+  echo "$log"
+}
+
+log=$(vicpark_rawlog)
+configs=$(ls configs/vicpark/*.ini | grep -v ceres_full | tr '\n' ',')configs/vicpark/ceres_full.ini
+set +e
+"$esif" compare --configs "$configs" --rawlog "$log" --out "$out" >/dev/null
+status=$?
+set -e
+[ -f "$out/comparison.csv" ] || { echo "bench/vicpark_report.sh: compare wrote no table (exit $status)" >&2; exit 1; }
+
+python3 - "$out" <<'PY'
+import csv, json, os, sys
+out = sys.argv[1]
+rows = list(csv.DictReader(open(os.path.join(out, "comparison.csv"))))
+def cell(row, key, fmt):
+    v = row.get(key, "")
+    try:
+        return fmt.format(float(v))
+    except ValueError:
+        return v if v else "-"
+cols = [("landmarks", "ref_landmarks_matched", "{:.0f}"),
+        ("landmark RMS [m]", "ref_landmark_rms_m", "{:.2f}"), ("landmark max [m]", "ref_landmark_max_m", "{:.2f}"),
+        ("path RMS [m]", "ref_traj_rms_m", "{:.2f}"), ("path max [m]", "ref_traj_max_m", "{:.2f}"),
+        ("rotation [deg]", "ref_rotation_deg", "{:.2f}"), ("RMS after it [m]", "ref_landmark_rms_aligned_m", "{:.2f}"),
+        ("inside own 95%", "ref_landmarks_in_own95", "{:.1%}"), ("wall [s]", "wall_s", "{:.1f}")]
+print("| run | " + " | ".join(c[0] for c in cols) + " |")
+print("|---" * (len(cols) + 1) + "|")
+for r in rows:
+    print("| " + r.get("label", "?") + " | " + " | ".join(cell(r, k, f) for _, k, f in cols) + " |")
+for r in rows:
+    stats = os.path.join(out, r.get("label", ""), "stats.json")
+    if os.path.exists(stats):
+        s = json.load(open(stats))
+        if "plugin_chi2" in s or "plugin_chi2_per_dof" in s:
+            print(f"\noptimum '{r['label']}': chi2 {s.get('plugin_chi2', 'n/a')}, chi2/dof {s.get('plugin_chi2_per_dof', 'n/a')}"
+                  f" (GTSAM's batch optimum: 7930)")
+PY
+echo "figure: $out/maps_overlay.png"
+exit $status
