@@ -1,6 +1,8 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
 
+#include "IniStructure.h"
+
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <filesystem>
@@ -43,6 +45,7 @@ ConfigFile ConfigFile::load(const std::string& path)
 
 ConfigFile ConfigFile::fromText(const std::string& text, const std::string& origin)
 {
+	checkIniStructure(text, origin);
 	ConfigFile out;
 	out.origin_ = origin;
 	try

@@ -1,8 +1,10 @@
 #pragma once
 /// \file ConfigFile.h
 /// An INI file read through MRPT's config classes, with strict checks MRPT
-/// leaves out: a missing file is an error (MRPT yields an empty config), and
-/// values are parsed strictly by ConfigSection.
+/// leaves out: a missing file is an error (MRPT yields an empty config), a
+/// repeated section or key, a malformed header or a stray line is an error
+/// naming its line (MRPT merges or skips them silently), and values are
+/// parsed strictly by ConfigSection.
 
 #include <esif/config/ConfigSection.h>
 
