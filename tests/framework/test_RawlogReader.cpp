@@ -6,6 +6,7 @@
 #include <esif/io/RawlogReader.h>
 
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -207,12 +208,104 @@ TEST(RawlogReader, NoOdometryOrNoObservationsAreErrors)
 TEST(RawlogReader, BadRangesNameTheEntryAndMeasurement)
 {
 	test::TempDir dir;
-	for (float bad : {std::nanf(""), INFINITY, -1.0f})
+	for (float bad : {std::nanf(""), INFINITY, -1.0f, 3e38f})
 	{
 		writeActionsSfLog(dir.file("bad.rawlog"), 3, bad);
 		const std::string err = errorOf(dir.file("bad.rawlog"));
 		EXPECT_NE(err.find("entry 5, measurement 0: range"), std::string::npos) << err;
 	}
+}
+
+TEST(RawlogReader, AnotherMrptObjectIsNamedNotReadAsAnEmptyRawlog)
+{
+	test::TempDir dir;
+	{
+		mrpt::maps::CSimpleMap map;
+		mrpt::io::CFileGZOutputStream f(dir.file("map.simplemap"));
+		auto ar = mrpt::serialization::archiveFrom(f);
+		ar << map;
+	}
+	EXPECT_EQ(errorOf(dir.file("map.simplemap")),
+			  dir.file("map.simplemap") +
+				  ": entry 0: mrpt::maps::CSimpleMap is not a rawlog entry (a rawlog holds CActionCollection, "
+				  "CSensoryFrame and CObservation objects)");
+}
+
+TEST(RawlogReader, NegativeLandmarkIdsAreRefusedNotAliased)
+{
+	// -1 is MRPT's "no ID"; any other negative ID was silently aliased by the
+	// EKF's maps to landmark 0.
+	test::TempDir dir;
+	{
+		mrpt::io::CFileGZOutputStream f(dir.file("neg.rawlog"));
+		auto ar = mrpt::serialization::archiveFrom(f);
+		ar << *odometryAction(0.1, 0) << *frameOf(scan({{1.0f, 3}, {2.0f, -1}}));
+		ar << *odometryAction(0.1, 0) << *frameOf(scan({{1.0f, 3}, {2.0f, -7}}));
+	}
+	EXPECT_EQ(errorOf(dir.file("neg.rawlog")),
+			  dir.file("neg.rawlog") + ": entry 3, measurement 1: landmark ID -7 is negative (IDs are >= 0; -1 means none)");
+}
+
+/// A one-step log whose odometry action carries `mean` and `cov` (kept as
+/// given: not emOdometry, see odometryAction).
+std::string errorOfOdometry(const test::TempDir& dir, const mrpt::poses::CPose2D& mean, const mrpt::math::CMatrixDouble33& cov)
+{
+	CActionRobotMovement2D mv;
+	mv.estimationMethod = CActionRobotMovement2D::emScan2DMatching;
+	mv.poseChange = mrpt::poses::CPosePDFGaussian::Create(mean, cov);
+	auto acts = CActionCollection::Create();
+	acts->insert(mv);
+	{
+		mrpt::io::CFileGZOutputStream f(dir.file("odo.rawlog"));
+		auto ar = mrpt::serialization::archiveFrom(f);
+		ar << *acts << *frameOf(scan({{1.0f, 3}}));
+	}
+	return errorOf(dir.file("odo.rawlog"));
+}
+
+TEST(RawlogReader, BadOdometryNamesTheEntryAndWhatIsWrong)
+{
+	test::TempDir dir;
+	mrpt::math::CMatrixDouble33 good;
+	good.setDiagonal(std::vector<double>{1e-4, 1e-4, 1e-5});
+	EXPECT_EQ(errorOfOdometry(dir, mrpt::poses::CPose2D(0.1, 0, 0), good), "");
+	const std::string where = dir.file("odo.rawlog") + ": entry 0: ";
+	EXPECT_EQ(errorOfOdometry(dir, mrpt::poses::CPose2D(std::nan(""), 0, 0), good),
+			  where + "odometry increment is not finite");
+	EXPECT_EQ(errorOfOdometry(dir, mrpt::poses::CPose2D(1e300, 0, 0), good),
+			  where + "odometry increment (1e+300, 0) is beyond 10000 m");
+	mrpt::math::CMatrixDouble33 negative = good;
+	negative(0, 0) = -1e-4;
+	EXPECT_NE(errorOfOdometry(dir, mrpt::poses::CPose2D(0.1, 0, 0), negative)
+				  .find(where + "odometry covariance is not positive semidefinite"),
+			  std::string::npos);
+	mrpt::math::CMatrixDouble33 indefinite = good;	// a correlation larger than both variances allow
+	indefinite(0, 1) = indefinite(1, 0) = 1e-3;
+	EXPECT_NE(errorOfOdometry(dir, mrpt::poses::CPose2D(0.1, 0, 0), indefinite)
+				  .find(where + "odometry covariance is not positive semidefinite"),
+			  std::string::npos);
+}
+
+TEST(RawlogReader, NonFiniteSensorPoseOrAbsoluteOdometryIsRefused)
+{
+	test::TempDir dir;
+	{
+		auto obs = scan({{1.0f, 3}});
+		obs->sensorLocationOnRobot = mrpt::poses::CPose3D(std::nan(""), 0, 0, 0, 0, 0);
+		mrpt::io::CFileGZOutputStream f(dir.file("sensor.rawlog"));
+		auto ar = mrpt::serialization::archiveFrom(f);
+		ar << *odometryAction(0.1, 0) << *frameOf(obs);
+	}
+	EXPECT_EQ(errorOf(dir.file("sensor.rawlog")),
+			  dir.file("sensor.rawlog") + ": entry 1: sensor pose on the robot is not finite");
+	{
+		auto odo = CObservationOdometry::Create();
+		odo->odometry = mrpt::poses::CPose2D(0, std::nan(""), 0);
+		mrpt::io::CFileGZOutputStream f(dir.file("abs.rawlog"));
+		auto ar = mrpt::serialization::archiveFrom(f);
+		ar << *odo;
+	}
+	EXPECT_EQ(errorOf(dir.file("abs.rawlog")), dir.file("abs.rawlog") + ": entry 0: odometry reading is not finite");
 }
 
 }  // namespace

@@ -25,6 +25,44 @@ namespace
 {
 using mrpt::obs::CObservationBearingRange;
 
+/// No range-bearing sensor measures beyond this; a larger range (e.g. 3e38
+/// from a corrupt byte) is a broken entry, not a far landmark [m].
+constexpr double kMaxRangeM = 1e4;
+/// No odometry increment between two steps moves further [m].
+constexpr double kMaxIncrementM = 1e4;
+
+std::string numberText(double v)
+{
+	std::ostringstream s;
+	s << v;
+	return s.str();
+}
+
+/// Throws InputError naming `what` unless `cov` is a finite symmetric
+/// positive-semidefinite 3x3 covariance (round-off tolerated).
+void checkOdometryCovariance(const Eigen::Matrix3d& cov, const std::string& what)
+{
+	if (!cov.allFinite()) throw InputError(what + ": odometry covariance is not finite");
+	const double scale = std::max(cov.cwiseAbs().maxCoeff(), 1e-300);
+	if ((cov - cov.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
+		throw InputError(what + ": odometry covariance is not symmetric");
+	const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly).eigenvalues()(0);
+	if (smallest < -1e-9 * scale)
+		throw InputError(what + ": odometry covariance is not positive semidefinite (eigenvalue " +
+						 numberText(smallest) + ")");
+}
+
+/// Throws InputError naming `what` unless the pose is finite and moves at
+/// most kMaxIncrementM.
+void checkOdometryPose(const mrpt::math::TPose2D& p, const std::string& what, const char* kind, double max_xy)
+{
+	if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.phi))
+		throw InputError(what + ": " + kind + " is not finite");
+	if (std::abs(p.x) > max_xy || std::abs(p.y) > max_xy)
+		throw InputError(what + ": " + kind + " (" + numberText(p.x) + ", " + numberText(p.y) + ") is beyond " +
+						 numberText(max_xy) + " m");
+}
+
 /// Accumulates rawlog entries into steps: odometry opens a step, a scan
 /// closes it (see RawlogReader.h).
 class StepBuilder
@@ -43,8 +81,10 @@ class StepBuilder
 
 	/// Absolute odometry reading (CObservationOdometry): the increment is the
 	/// difference of consecutive readings; the first reading only anchors.
-	void onAbsoluteOdometry(const mrpt::poses::CPose2D& reading, double t)
+	void onAbsoluteOdometry(const mrpt::poses::CPose2D& reading, double t, const std::string& where)
 	{
+		// Readings are absolute: bounded by the largest plausible world, not one step's motion.
+		checkOdometryPose(reading.asTPose(), where, "odometry reading", 1e7);
 		const Pose2 now = toPose2(reading.asTPose());
 		out_.has_odometry = true;
 		if (last_reading_)
@@ -66,6 +106,9 @@ class StepBuilder
 		step.time_s = t;
 		Scan scan;
 		scan.sensor_on_robot = mrpt::poses::CPose2D(obs.sensorLocationOnRobot).asTPose();
+		if (!std::isfinite(scan.sensor_on_robot.x) || !std::isfinite(scan.sensor_on_robot.y) ||
+			!std::isfinite(scan.sensor_on_robot.phi))
+			throw InputError(where + ": sensor pose on the robot is not finite");
 		scan.max_range_m = obs.maxSensorDistance;
 		scan.fov_rad = obs.fieldOfView_yaw;
 		std::vector<std::optional<LandmarkId>> ids;
@@ -73,13 +116,18 @@ class StepBuilder
 		{
 			const auto& m = obs.sensedData[i];
 			const std::string what = where + ", measurement " + std::to_string(i);
-			if (!std::isfinite(m.range) || m.range < 0)
-				throw InputError(what + ": range = " + std::to_string(m.range) + ": must be finite and >= 0");
+			if (!std::isfinite(m.range) || m.range < 0 || m.range > kMaxRangeM)
+				throw InputError(what + ": range = " + numberText(m.range) + ": must be finite, >= 0 and <= " +
+								 numberText(kMaxRangeM) + " m");
 			if (!std::isfinite(m.yaw)) throw InputError(what + ": bearing is not finite");
 			RangeBearing rb;
 			rb.range_m = m.range;
 			rb.bearing_rad = wrapAngle(m.yaw);
 			rb.cov = measurementCovariance(obs, m, what);
+			if (m.landmarkID < 0 && m.landmarkID != mrpt::obs::INVALID_LANDMARK_ID)
+				throw InputError(what + ": landmark ID " + std::to_string(m.landmarkID) +
+								 " is negative (IDs are >= 0; " + std::to_string(mrpt::obs::INVALID_LANDMARK_ID) +
+								 " means none)");
 			if (m.landmarkID != mrpt::obs::INVALID_LANDMARK_ID)
 			{
 				ids.emplace_back(m.landmarkID);
@@ -151,9 +199,8 @@ OdometryIncrement incrementOf(const mrpt::obs::CActionRobotMovement2D& act, cons
 	OdometryIncrement inc;
 	inc.delta = mean.asTPose();
 	inc.cov = cov.asEigen();
-	if (!std::isfinite(inc.delta.x) || !std::isfinite(inc.delta.y) || !std::isfinite(inc.delta.phi) ||
-		!inc.cov.allFinite())
-		throw InputError(where + ": odometry increment is not finite");
+	checkOdometryPose(inc.delta, where, "odometry increment", kMaxIncrementM);
+	checkOdometryCovariance(inc.cov, where);
 	return inc;
 }
 
@@ -186,6 +233,12 @@ class EntryVisitor
 			// Old-style files hold one serialized CRawlog with every entry inside.
 			for (std::size_t i = 0; i < log->size(); ++i) visit(log->getAsGeneric(i), i);
 		}
+		else
+			// A map or any other MRPT object: say what the file is instead of
+			// reading on to "holds no odometry".
+			throw InputError(
+				where + ": " + (obj ? std::string(obj->GetRuntimeClass()->className) : std::string("a null object")) +
+				" is not a rawlog entry (a rawlog holds CActionCollection, CSensoryFrame and CObservation objects)");
 	}
 
    private:
@@ -194,7 +247,7 @@ class EntryVisitor
 	{
 		using namespace mrpt::obs;
 		if (auto odo = std::dynamic_pointer_cast<CObservationOdometry>(o))
-			builder_.onAbsoluteOdometry(odo->odometry, toSeconds(odo->timestamp));
+			builder_.onAbsoluteOdometry(odo->odometry, toSeconds(odo->timestamp), where);
 		else if (auto rb = std::dynamic_pointer_cast<CObservationBearingRange>(o))
 			builder_.onScan(*rb, frame, toSeconds(rb->timestamp), where);
 	}
