@@ -39,16 +39,17 @@ struct ChildResult
 	std::string error_line;
 };
 
-/// The first line that reports an error ("esif: error: ...", "esif:
-/// numerical failure: ...", "esif: internal error: ..."), else the last
-/// non-empty line: warnings come before the error, never instead of it.
+/// The first line in which esif reports its failure ("esif: error: ...",
+/// "esif: numerical failure: ...", "esif: internal error: ...": any "esif: "
+/// line but a warning), else the last non-empty line (e.g. a library's
+/// message, or the signal that killed the run).
 std::string firstErrorLine(const std::string& text)
 {
 	std::istringstream in(text);
 	std::string last;
 	for (std::string line; std::getline(in, line);)
 	{
-		if (line.find("error") != std::string::npos || line.find("failure") != std::string::npos) return line;
+		if (line.rfind("esif: ", 0) == 0 && line.rfind("esif: warning", 0) != 0) return line;
 		if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
 	}
 	return last.empty() ? "(nothing on stderr)" : last;
