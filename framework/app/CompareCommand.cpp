@@ -15,6 +15,8 @@
 #include <esif/run/RunOrder.h>
 #include <esif/run/RunSetup.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -30,23 +32,80 @@ namespace esif::app
 {
 namespace
 {
+/// What a child run left behind: its exit code (128 + N when killed by
+/// signal N) and the line of its stderr that says why it failed.
+struct ChildResult
+{
+	int exit_code = 0;
+	std::string error_line;
+};
+
+/// The first line in which esif reports its failure ("esif: error: ...",
+/// "esif: numerical failure: ...", "esif: internal error: ...": any "esif: "
+/// line but a warning), else the last non-empty line (e.g. a library's
+/// message, or the signal that killed the run).
+std::string firstErrorLine(const std::string& text)
+{
+	std::istringstream in(text);
+	std::string last;
+	for (std::string line; std::getline(in, line);)
+	{
+		if (line.rfind("esif: ", 0) == 0 && line.rfind("esif: warning", 0) != 0) return line;
+		if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+	}
+	return last.empty() ? "(nothing on stderr)" : last;
+}
+
 /// Each config runs as its own `esif run` process: its wall time and peak
-/// memory are then its own, and one plugin cannot disturb the next.
-int runChild(const std::vector<std::string>& args)
+/// memory are then its own, and one plugin cannot disturb the next (a crash
+/// included). Its stderr comes through a pipe: passed on to ours as it
+/// arrives, and kept for the error line of a failed run.
+ChildResult runChild(const std::vector<std::string>& args)
 {
 	std::vector<char*> argv;
 	for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
 	argv.push_back(nullptr);
+	int pipe_fds[2];
+	if (pipe(pipe_fds) != 0) throw InputError("compare: cannot start a run: pipe failed");
+	std::cout.flush();
+	std::cerr.flush();
 	const pid_t pid = fork();
 	if (pid < 0) throw InputError("compare: cannot start a run: fork failed");
 	if (pid == 0)
 	{
+		close(pipe_fds[0]);
+		dup2(pipe_fds[1], STDERR_FILENO);
+		close(pipe_fds[1]);
 		execv("/proc/self/exe", argv.data());
+		const char message[] = "esif: error: compare: cannot execute /proc/self/exe for the run\n";
+		(void)!write(STDERR_FILENO, message, sizeof(message) - 1);
 		_exit(127);
 	}
+	close(pipe_fds[1]);
+	std::string captured;
+	char buffer[4096];
+	for (ssize_t n; (n = read(pipe_fds[0], buffer, sizeof(buffer))) != 0;)
+	{
+		if (n < 0 && errno == EINTR) continue;
+		if (n < 0) break;
+		std::cerr.write(buffer, n);
+		captured.append(buffer, static_cast<std::size_t>(n));
+	}
+	close(pipe_fds[0]);
 	int status = 0;
-	waitpid(pid, &status, 0);
-	return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+	while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+	{
+	}
+	ChildResult result;
+	if (WIFEXITED(status))
+		result.exit_code = WEXITSTATUS(status);
+	else
+	{
+		result.exit_code = 128 + WTERMSIG(status);
+		captured += "killed by signal " + std::to_string(WTERMSIG(status)) + " (" + strsignal(WTERMSIG(status)) + ")\n";
+	}
+	if (result.exit_code != 0) result.error_line = firstErrorLine(captured);
+	return result;
 }
 
 /// One output folder per config, named after the file (a suffix keeps repeats apart).
@@ -155,26 +214,54 @@ struct ChildSettings
 	std::optional<std::string> plugin_dir;
 };
 
-/// On local-map input every config must name a joining plugin: checked in
-/// this process before any run, so the error is one line and nothing is
-/// written (a child's failure would come after the output folder exists).
-void requireJoiners(const std::vector<std::string>& configs, const std::optional<std::string>& plugin_dir)
+/// What checking a config found out before any run.
+struct CheckedConfig
+{
+	std::string plugin;	 ///< [esif] plugin
+	Formulation formulation = Formulation::Other;
+};
+
+/// `message` naming `config` (errors from the plugin loader name no file).
+std::string namingConfig(const std::string& config, const std::string& message)
+{
+	return message.find(config) != std::string::npos ? message : config + ": " + message;
+}
+
+/// Every config checked in this process before the first run, as `esif run`
+/// would check it: [esif], the plugin found and configured from its
+/// section, and on local-map input a joining plugin. A mistake in the last
+/// config is then one error line before any run has cost time and before
+/// any output folder exists.
+std::vector<CheckedConfig> checkConfigs(
+	const std::vector<std::string>& configs, const std::optional<std::string>& plugin_dir, bool local_maps)
 {
 	PluginLoader loader(plugin_dir ? std::vector<std::string>{*plugin_dir} : std::vector<std::string>{});
 	loader.loadAll();
+	std::vector<CheckedConfig> checked;
 	for (const auto& c : configs)
 	{
-		const ConfigFile config = ConfigFile::load(c);
-		const HostParams host = loadHostParams(config);
-		requireLocalMapJoiner(*loader.create(host.plugin), config.origin(), host.plugin);
+		try
+		{
+			const ConfigFile config = ConfigFile::load(c);
+			const HostParams host = loadHostParams(config);
+			const auto plugin = createConfiguredPlugin(config, host, loader);
+			if (local_maps) requireLocalMapJoiner(*plugin, config.origin(), host.plugin);
+			checked.push_back({host.plugin, plugin->formulation()});
+		}
+		catch (const ConfigError& e)
+		{
+			throw ConfigError(namingConfig(c, e.what()));
+		}
 	}
+	return checked;
 }
 
 /// Runs one config as `esif run` into `dir`; `associations_dir` is the run
-/// folder of the config its associations_from names, if any.
+/// folder of the config its associations_from names, if any. Returns its
+/// stats, or a failed row (failedRunStats) when the run failed.
 Stats runConfig(
-	const std::string& config, const std::string& dir, const std::optional<std::string>& associations_dir,
-	const ChildSettings& settings)
+	const std::string& config, const CheckedConfig& checked, const std::string& label, const std::string& dir,
+	const std::optional<std::string>& associations_dir, const ChildSettings& settings)
 {
 	std::vector<std::string> args = {"esif", "run", "--quiet", "--config", config, settings.input_option,
 									 settings.input, "--out", dir};
@@ -184,23 +271,39 @@ Stats runConfig(
 	if (associations_dir) args.insert(args.end(), {"--associations-from", *associations_dir});
 	std::cerr << "esif compare: running " << config
 			  << (associations_dir ? " (data association of " + *associations_dir + ")" : std::string()) << "\n";
-	if (const int code = runChild(args); code != 0)
-		throw InputError("compare: the run of " + config + " failed (exit " + std::to_string(code) + ")");
-	return readStats((fs::path(dir) / "stats.json").string());
+	const ChildResult child = runChild(args);
+	if (child.exit_code != 0)
+	{
+		std::cerr << "esif compare: the run of " << config << " failed (exit " << child.exit_code
+				  << "); the others go on\n";
+		return failedRunStats(label, checked.plugin, child.exit_code, child.error_line);
+	}
+	try
+	{
+		return readStats((fs::path(dir) / "stats.json").string());
+	}
+	catch (const InputError& e)
+	{
+		// The run said it succeeded but left no readable stats: a failure all the same.
+		return failedRunStats(label, checked.plugin, 1, e.what());
+	}
 }
 
 std::string labelOf(const Stats& run) { return run.text("label").value_or("?"); }
 
-/// Adds the ref_* keys (difference from run `ref`) to every run and draws
-/// every run's map over the reference's into OUT/maps_overlay.png; returns
-/// the note lines, which call the reference `who` (e.g. "run 'ekf'").
+/// Adds the ref_* keys (difference from run `ref`) to every run that did
+/// not fail and draws their maps over the reference's into
+/// OUT/maps_overlay.png; returns the note lines, which call the reference
+/// `who` (e.g. "run 'ekf'"), or says that the reference failed.
 std::string addReferenceColumns(std::vector<Stats>& runs, const std::vector<std::string>& dirs, std::size_t ref,
 								const std::string& who, const std::string& out_dir)
 {
+	if (isFailedRun(runs[ref])) return "ref_*: none, " + who + " failed\n";
 	const RunOutputs reference_outputs = readRunOutputs(dirs[ref]);
 	std::vector<MapOverlayLayer> layers{{labelOf(runs[ref]), reference_outputs}};
 	for (std::size_t i = 0; i < runs.size(); ++i)
 	{
+		if (isFailedRun(runs[i])) continue;
 		if (i == ref)
 		{
 			setDifferenceStats(runs[i], referenceItself(reference_outputs));
@@ -217,12 +320,92 @@ std::string addReferenceColumns(std::vector<Stats>& runs, const std::vector<std:
 		   "ref_landmarks_in_own95: share of landmarks whose reference position is inside the run's own 95% "
 		   "ellipse; maps_overlay.png draws them\n";
 }
+
+/// Runs every config in run order; a failed run is a row of its own and
+/// the others still run, except those taking their data association from
+/// it (rows "not run").
+std::vector<Stats> runAll(
+	const std::vector<std::string>& configs, const std::vector<CheckedConfig>& checked,
+	const std::vector<PlannedRun>& planned, const std::vector<std::optional<std::size_t>>& sources,
+	const std::vector<std::size_t>& order, const std::vector<std::string>& dirs, const ChildSettings& settings)
+{
+	std::vector<Stats> runs(configs.size());  // in the configs' order, whatever the run order
+	for (const auto i : order)
+	{
+		const auto source = sources[i];
+		if (source && isFailedRun(runs[*source]))
+		{
+			runs[i] = notRunStats(
+				planned[i].label, checked[i].plugin,
+				"its associations_from run '" + planned[*source].label + "' failed");
+			continue;
+		}
+		runs[i] = runConfig(
+			configs[i], checked[i], planned[i].label, dirs[i],
+			source ? std::optional<std::string>(dirs[*source]) : std::nullopt, settings);
+	}
+	return runs;
+}
+
+/// When no run is the optimization baseline because the one that would
+/// have been failed: says so (its plugin's formulation is known from the check).
+std::string failedBaselineNote(const std::vector<Stats>& runs, const std::vector<CheckedConfig>& checked)
+{
+	for (std::size_t i = 0; i < runs.size(); ++i)
+		if (isFailedRun(runs[i]) && checked[i].formulation == Formulation::FullSlamOptimum)
+			return "no optimization baseline: the full-SLAM run '" + labelOf(runs[i]) +
+				   "' failed, so no base_* ratios\n";
+	return "";
+}
+/// Filters are measured against the optimum: by accuracy ratios with
+/// ground truth, else (unless --reference, given as index and label, says
+/// otherwise) by their difference from it. Adds those keys to `runs` and
+/// returns the notes, including a remark when the baseline's own check
+/// finds its optimum implausible and one when the baseline's run failed.
+std::string measureAgainstBaseline(
+	std::vector<Stats>& runs, const std::vector<std::string>& dirs, const std::vector<PlannedRun>& planned,
+	const std::vector<std::optional<std::size_t>>& sources, const std::vector<CheckedConfig>& checked,
+	const std::optional<std::pair<std::size_t, std::string>>& reference, const std::string& out_dir)
+{
+	std::string note;
+	const BaselineChoice baseline = findBaseline(runs);
+	if (baseline.warning) std::cerr << "esif: warning: " << *baseline.warning << "\n";
+	const bool with_truth = hasGroundTruthFigures(runs);
+	std::optional<std::string> implausible;
+	if (baseline.index)
+	{
+		implausible = baselineImplausibility(runs[*baseline.index]);
+		if (implausible) std::cerr << "esif: warning: " << *implausible << "\n";
+		if (with_truth)
+		{
+			setBaselineRatios(runs, *baseline.index);
+			note += baselineNote(labelOf(runs[*baseline.index]));
+		}
+	}
+	else
+		note += failedBaselineNote(runs, checked);
+	if (reference)
+		note += addReferenceColumns(runs, dirs, reference->first, "run '" + reference->second + "'", out_dir);
+	else if (baseline.index && !with_truth)
+	{
+		warnAboutUnrelatedIds(planned, sources, *baseline.index);
+		note += addReferenceColumns(
+			runs, dirs, *baseline.index, "the optimization baseline '" + labelOf(runs[*baseline.index]) + "'",
+			out_dir);
+	}
+	// Only where something was measured against the baseline.
+	if (implausible && (with_truth || !reference)) note += *implausible + "\n";
+	return note;
+}
 }  // namespace
 
 int compareCommand(int argc, char** argv)
 {
 	TCLAP::CmdLine cmd("Runs several configs on one rawlog (or folder of local maps), each in its own process, and "
-					   "tabulates them.",
+					   "tabulates them. Every config and its plugin is checked before the first run. A run that "
+					   "fails is a row with status 'failed', its exit code and its first error line, the others "
+					   "still run, the tables are written all the same, and compare exits with the code of the "
+					   "first failed run in --configs order (0 when none failed).",
 					   ' ',
 					   ESIF_VERSION);
 	TCLAP::ValueArg<std::string> configs("c", "configs", "comma-separated INI files", true, "", "A.ini,B.ini,...", cmd);
@@ -277,7 +460,7 @@ int compareCommand(int argc, char** argv)
 	const auto sources = associationSources(planned);
 	const auto order = runOrder(planned, sources);
 	if (ref) warnAboutUnrelatedIds(planned, sources, *ref);
-	if (local_maps.isSet()) requireJoiners(config_list, plugin_folder);
+	const auto checked = checkConfigs(config_list, plugin_folder, local_maps.isSet());
 	ensureDirectory(out.getValue());
 
 	const std::string input = rawlog.isSet() ? rawlog.getValue() : local_maps.getValue();
@@ -286,44 +469,29 @@ int compareCommand(int argc, char** argv)
 		ground_truth.isSet() ? std::optional<std::string>(ground_truth.getValue()) : std::nullopt,
 		reference_result.isSet() ? std::optional<std::string>(reference_result.getValue()) : std::nullopt,
 		plugin_folder};
-	std::vector<Stats> runs(config_list.size());  // in the configs' order, whatever the run order
-	for (const auto i : order)
-		runs[i] = runConfig(
-			config_list[i], dirs[i], sources[i] ? std::optional<std::string>(dirs[*sources[i]]) : std::nullopt,
-			settings);
+	std::vector<Stats> runs = runAll(config_list, checked, planned, sources, order, dirs, settings);
+	markSucceededRuns(runs);
 
-	// Filters are measured against the optimum: by accuracy ratios with ground
-	// truth, else (unless --reference says otherwise) by their difference from it.
-	std::string note;
-	const BaselineChoice baseline = findBaseline(runs);
-	if (baseline.warning) std::cerr << "esif: warning: " << *baseline.warning << "\n";
-	const bool with_truth = hasGroundTruthFigures(runs);
-	if (baseline.index && with_truth)
-	{
-		setBaselineRatios(runs, *baseline.index);
-		note += baselineNote(labelOf(runs[*baseline.index]));
-	}
-	if (ref)
-		note += addReferenceColumns(runs, dirs, *ref, "run '" + reference.getValue() + "'", out.getValue());
-	else if (baseline.index && !with_truth)
-	{
-		warnAboutUnrelatedIds(planned, sources, *baseline.index);
-		note += addReferenceColumns(
-			runs, dirs, *baseline.index, "the optimization baseline '" + labelOf(runs[*baseline.index]) + "'",
-			out.getValue());
-	}
-
+	std::string note = measureAgainstBaseline(
+		runs, dirs, planned, sources, checked,
+		ref ? std::optional<std::pair<std::size_t, std::string>>({*ref, reference.getValue()}) : std::nullopt,
+		out.getValue());
 	if (reference_result.isSet())
 		note += "refres_*: difference from the reference result " + reference_result.getValue() +
 				" (landmarks by the files' feature IDs, end poses by map k, headings modulo 2 pi)\n";
 
-	const std::string text = comparisonText(runs) + note + "\n" + bookTable51Text(runs);
+	note += failureNote(runs);
+	// Table 5.1 is about the estimators: failed runs have nothing to show there.
+	std::vector<Stats> succeeded;
+	for (const auto& run : runs)
+		if (!isFailedRun(run)) succeeded.push_back(run);
+	const std::string text = comparisonText(runs) + note + "\n" + bookTable51Text(succeeded);
 	writeTextAtomically((fs::path(out.getValue()) / "comparison.csv").string(), comparisonCsv(runs));
 	writeTextAtomically((fs::path(out.getValue()) / "comparison.md").string(),
 						"# esif compare on " + input + "\n\n" + comparisonMarkdown(runs) +
-							(note.empty() ? "" : "\n" + note) + "\n" + bookTable51Markdown(runs));
+							(note.empty() ? "" : "\n" + note) + "\n" + bookTable51Markdown(succeeded));
 	std::cout << text;
-	return 0;
+	return comparisonExitCode(runs);
 }
 
 }  // namespace esif::app

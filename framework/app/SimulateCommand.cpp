@@ -9,6 +9,7 @@
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 #include <esif/io/GroundTruth.h>
+#include <esif/sim/MeasurementTruth.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>
 
@@ -18,6 +19,40 @@
 
 namespace esif::app
 {
+namespace
+{
+/// Scans that cannot locate the robot: a featureless stretch shows here.
+void printGaps(const SimulationSummary& s, const Scenario& scenario)
+{
+	const double metres_per_scan = scenario.speed_mps * scenario.dt_s;
+	std::printf(
+		"Scans without any measurement: %zu, longest run %zu (%.1f m); longest run below two measurements %zu "
+		"(%.1f m).\n",
+		s.scans_without_measurements, s.longest_run_without_measurements,
+		s.longest_run_without_measurements * metres_per_scan, s.longest_run_below_two_measurements,
+		s.longest_run_below_two_measurements * metres_per_scan);
+}
+
+/// How many measurements lie about their landmark, and where the truth is:
+/// data-association audits that take the rawlog's IDs as the truth count a
+/// misread measurement as wrong when a filter associates it correctly.
+void printOutliers(const SimulationSummary& s, const Scenario& scenario, const std::string& prefix)
+{
+	const std::size_t true_returns = s.measurements - s.spurious_measurements;
+	if (scenario.wrong_id_rate > 0)
+		std::printf(
+			"Wrong IDs: %zu of %zu landmark measurements carry another landmark's ID (%.3f %%, wrong_id_rate %g).\n",
+			s.wrong_id_measurements, true_returns, true_returns ? 100.0 * s.wrong_id_measurements / true_returns : 0.0,
+			scenario.wrong_id_rate);
+	if (scenario.spurious_rate > 0)
+		std::printf(
+			"Clutter: %zu spurious returns (%.3f per scan, spurious_rate %g), IDs %lld and up (no landmark).\n",
+			s.spurious_measurements, s.steps ? double(s.spurious_measurements) / s.steps : 0.0, scenario.spurious_rate,
+			static_cast<long long>(scenario.clutterIdBase()));
+	std::printf("True landmark of every measurement in %s.\n", measurementTruthFileOf(prefix).c_str());
+}
+}  // namespace
+
 int simulateCommand(int argc, char** argv)
 {
 	TCLAP::CmdLine cmd(
@@ -59,6 +94,8 @@ int simulateCommand(int argc, char** argv)
 		"and %s_ground_truth_robot_path.txt.\n",
 		out_arg.getValue().c_str(), scenario.seed, seconds, s.steps, s.measurements, s.features_seen, s.features,
 		s.meanMeasurementsPerScan(), s.path_length_m, prefix.c_str(), prefix.c_str());
+	printGaps(s, scenario);
+	if (scenario.hasOutliers()) printOutliers(s, scenario, prefix);
 	return 0;
 }
 

@@ -88,4 +88,61 @@ TEST(BaselineComparison, Note)
 			  "base_*: ratio to the optimization baseline 'ceres' (1 = as accurate as the optimum)\n");
 }
 
+/// stats.json as the Ceres plugin writes it after its plausibility check
+/// (hand-written here: the keys are plugin_* counters of its CostFigures).
+esif::Stats baselineStats(const std::string& plugin_keys)
+{
+	return esif::Stats::fromJson(
+		"{\n  \"label\": \"ceres\",\n  \"formulation\": \"full_slam\",\n  \"landmark_rmse_m\": 0.1" +
+			plugin_keys + "\n}\n",
+		"stats.json");
+}
+
+TEST(BaselineComparison, ImplausibleBaselineRemark)
+{
+	const auto implausible = baselineStats(
+		",\n  \"plugin_optimum_plausible\": 0,\n  \"plugin_chi2_per_dof\": 7.1,\n  \"plugin_degenerate_poses\": 2");
+	EXPECT_EQ(esif::baselineImplausibility(implausible).value_or("none"),
+			  "baseline 'ceres' implausible: chi2/dof 7.1, 2 degenerate poses; ratios and differences against it "
+			  "are not trustworthy");
+	// Whatever figures the plugin gives.
+	EXPECT_EQ(esif::baselineImplausibility(baselineStats(",\n  \"plugin_optimum_plausible\": 0")).value_or("none"),
+			  "baseline 'ceres' implausible; ratios and differences against it are not trustworthy");
+	// Plausible, or no check at all (an older plugin): no remark.
+	EXPECT_FALSE(esif::baselineImplausibility(baselineStats(
+		",\n  \"plugin_optimum_plausible\": 1,\n  \"plugin_chi2_per_dof\": 1.02,\n  \"plugin_degenerate_poses\": 0")));
+	EXPECT_FALSE(esif::baselineImplausibility(baselineStats("")));
+}
+
+TEST(ComparisonTable, FailedRowsStatusExitCodeAndNote)
+{
+	std::vector<esif::Stats> runs = {run("ekf", "ekf_slam", 0.1, 0.2), esif::failedRunStats("bad", "X", 3, "esif: numerical failure: step 5"),
+									 esif::notRunStats("dep", "Y", "its associations_from run 'bad' failed"),
+									 esif::failedRunStats("worse", "Z", 1, "esif: error: f.ini: no")};
+	EXPECT_FALSE(esif::isFailedRun(runs[0]));
+	EXPECT_TRUE(esif::isFailedRun(runs[1]));
+	EXPECT_TRUE(esif::isFailedRun(runs[2]));
+	esif::markSucceededRuns(runs);
+	EXPECT_EQ(runs[0].text("status").value_or(""), "ok");
+	// The first failure in row order decides; a not-run row never does.
+	EXPECT_EQ(esif::comparisonExitCode(runs), 3);
+	EXPECT_EQ(esif::comparisonExitCode({runs[0], runs[2], runs[3], runs[1]}), 1);
+	EXPECT_EQ(esif::comparisonExitCode({runs[0]}), 0);
+	EXPECT_EQ(esif::failureNote(runs),
+			  "run 'bad' failed (exit 3): esif: numerical failure: step 5\n"
+			  "run 'dep' not run: its associations_from run 'bad' failed\n"
+			  "run 'worse' failed (exit 1): esif: error: f.ini: no\n");
+	const std::string md = esif::comparisonMarkdown(runs);
+	EXPECT_NE(md.find("| plugin | - | X | Y | Z |\n| status | ok | failed | not run | failed |\n"
+					  "| exit_code | - | 3 | - | 1 |\n"),
+			  std::string::npos)
+		<< md;
+
+	// Without failures nothing changes: no status column.
+	std::vector<esif::Stats> fine = {run("ekf", "ekf_slam", 0.1, 0.2)};
+	esif::markSucceededRuns(fine);
+	EXPECT_FALSE(fine[0].get("status"));
+	EXPECT_EQ(esif::comparisonMarkdown(fine).find("status"), std::string::npos);
+}
+
 }  // namespace

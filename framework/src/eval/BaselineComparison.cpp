@@ -1,6 +1,7 @@
 #include <esif/eval/BaselineComparison.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace esif
 {
@@ -69,6 +70,23 @@ void setBaselineRatios(std::vector<Stats>& runs, std::size_t baseline)
 std::string baselineNote(const std::string& label)
 {
 	return "base_*: ratio to the optimization baseline '" + label + "' (1 = as accurate as the optimum)\n";
+}
+
+std::optional<std::string> baselineImplausibility(const Stats& baseline)
+{
+	const auto plausible = baseline.number("plugin_optimum_plausible");
+	if (!plausible || *plausible != 0) return std::nullopt;
+	std::string why;
+	if (const auto chi2 = baseline.number("plugin_chi2_per_dof"))
+	{
+		char buf[48];
+		std::snprintf(buf, sizeof(buf), "chi2/dof %.3g", *chi2);
+		why = buf;
+	}
+	if (const auto degenerate = baseline.number("plugin_degenerate_poses"))
+		why += (why.empty() ? "" : ", ") + std::to_string(static_cast<long long>(*degenerate)) + " degenerate poses";
+	return "baseline '" + labelOf(baseline) + "' implausible" + (why.empty() ? std::string() : ": " + why) +
+		   "; ratios and differences against it are not trustworthy";
 }
 
 }  // namespace esif

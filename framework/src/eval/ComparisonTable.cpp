@@ -44,12 +44,24 @@ const std::vector<std::string>& localMapJoinKeys()
 	return keys;
 }
 
+/// What a failed row adds: shown after "plugin" when any row has it.
+const std::vector<std::string>& failureKeys()
+{
+	static const std::vector<std::string> keys = {"status", "exit_code"};
+	return keys;
+}
+
+constexpr const char* kFailed = "failed";
+constexpr const char* kNotRun = "not run";
+
 /// comparisonKeys(), then the map-joining figures, the ratios to the
 /// optimization baseline, the difference-from-reference keys and the
 /// difference from a reference result (--reference-result) when a run has them.
 std::vector<std::string> tableKeys(const std::vector<Stats>& runs)
 {
 	std::vector<std::string> keys = comparisonKeys();
+	if (std::any_of(runs.begin(), runs.end(), [](const Stats& s) { return s.get("status").has_value(); }))
+		keys.insert(keys.begin() + 1, failureKeys().begin(), failureKeys().end());
 	for (const auto* optional_keys :
 		 {&localMapJoinKeys(), &baselineRatioKeys(), &runDifferenceKeys(), &referenceResultKeys()})
 		for (const auto& k : *optional_keys)
@@ -66,6 +78,64 @@ std::string csvEscape(const std::string& t)
 	return out + "\"";
 }
 }  // namespace
+
+Stats failedRunStats(const std::string& label, const std::string& plugin, int exit_code, const std::string& error)
+{
+	Stats s;
+	s.set("label", StatValue(label));
+	s.set("plugin", StatValue(plugin));
+	s.set("status", StatValue(std::string(kFailed)));
+	s.set("exit_code", StatValue(static_cast<long long>(exit_code)));
+	s.set("error", StatValue(error));
+	return s;
+}
+
+Stats notRunStats(const std::string& label, const std::string& plugin, const std::string& reason)
+{
+	Stats s;
+	s.set("label", StatValue(label));
+	s.set("plugin", StatValue(plugin));
+	s.set("status", StatValue(std::string(kNotRun)));
+	s.set("exit_code", StatValue(nullptr));
+	s.set("error", StatValue(reason));
+	return s;
+}
+
+bool isFailedRun(const Stats& run)
+{
+	const auto status = run.text("status");
+	return status && (*status == kFailed || *status == kNotRun);
+}
+
+void markSucceededRuns(std::vector<Stats>& runs)
+{
+	if (std::none_of(runs.begin(), runs.end(), isFailedRun)) return;
+	for (auto& run : runs)
+		if (!isFailedRun(run)) run.set("status", StatValue(std::string("ok")));
+}
+
+std::string failureNote(const std::vector<Stats>& runs)
+{
+	std::string note;
+	for (const auto& run : runs)
+	{
+		if (!isFailedRun(run)) continue;
+		const std::string error = run.text("error").value_or("");
+		if (run.text("status") == std::string(kNotRun))
+			note += "run '" + label(run) + "' not run: " + error + "\n";
+		else
+			note += "run '" + label(run) + "' failed (exit " + cell(run, "exit_code") + "): " + error + "\n";
+	}
+	return note;
+}
+
+int comparisonExitCode(const std::vector<Stats>& runs)
+{
+	for (const auto& run : runs)
+		if (run.text("status") == std::string(kFailed))
+			if (const auto code = run.number("exit_code"); code && *code != 0) return static_cast<int>(*code);
+	return 0;
+}
 
 std::string comparisonText(const std::vector<Stats>& runs)
 {

@@ -56,6 +56,22 @@ void Scenario::declare(ParamBinder& b)
 	b.real("sensor_x_m", sensor_x_m, "sensor position on the robot [m]", Bounds::any());
 	b.real("sensor_y_m", sensor_y_m, "sensor position on the robot [m]", Bounds::any());
 	b.real("sensor_yaw_deg", sensor_yaw_deg, "sensor heading on the robot [deg]", Bounds::any());
+
+	b.real(
+		"wrong_id_rate", wrong_id_rate,
+		"probability that a measurement carries the ID of another landmark (one of the 8 nearest to it not "
+		"measured in the same scan); 0 = none",
+		Bounds::closed(0, 1));
+	b.real(
+		"spurious_rate", spurious_rate,
+		"expected spurious returns per scan (Poisson), uniform in range and field of view, each with a fresh ID "
+		"no landmark has; 0 = none",
+		Bounds::closed(0, kMaxSpuriousRate));
+	b.real(
+		"cluster_pair_distance_m", cluster_pair_distance_m,
+		"> 0: every grid feature gets a twin this far away in a random direction (ID + features_per_side^2); "
+		"below half the feature spacing [m]",
+		Bounds::nonNegative());
 }
 
 Scenario Scenario::fromConfig(const ConfigFile& config)
@@ -80,6 +96,12 @@ void Scenario::validate() const
 			"featureless_x_min_m", featureless_x_min_m,
 			"must be <= featureless_x_max_m = " + formatNumber(featureless_x_max_m) +
 				" (equal values: no featureless band)");
+
+	if (cluster_pair_distance_m >= featureSpacing() / 2)
+		fail(
+			"cluster_pair_distance_m", cluster_pair_distance_m,
+			"must be less than half the feature spacing (world_size_m / features_per_side / 2 = " +
+				formatNumber(featureSpacing() / 2) + ") so each twin is nearest to its own feature");
 
 	const std::vector<Eigen::Vector2d> script = scriptedWaypoints();
 	if (script.empty())

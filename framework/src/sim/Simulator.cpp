@@ -2,7 +2,10 @@
 #include <esif/io/AtomicFile.h>
 #include <esif/io/GroundTruth.h>
 #include <esif/io/RawlogWriter.h>
+#include <esif/sim/MeasurementTruth.h>
 #include <esif/sim/Simulator.h>
+
+#include "MeasurementOutliers.h"
 
 #include <mrpt/core/Clock.h>
 #include <mrpt/io/CFileGZOutputStream.h>
@@ -41,6 +44,12 @@ constexpr int kWaypointDraws = 100;
 /// Seed offset of the noise generator: the path has its own generator, so a
 /// change of noise levels keeps the same true trajectory for a given seed.
 constexpr std::uint32_t kNoiseSeedOffset = 0x9E3779B9u;
+
+/// Seed offsets of the outlier generator (wrong IDs, clutter) and of the
+/// twins' directions: each has its own, so turning one on changes nothing
+/// the others draw.
+constexpr std::uint32_t kOutlierSeedOffset = 0x85EBCA6Bu;
+constexpr std::uint32_t kLayoutSeedOffset = 0xC2B2AE35u;
 
 /// Waypoint tour steered with a saturated proportional heading controller:
 /// the scripted waypoints in order (repeated), or, without a script, uniform
@@ -141,6 +150,15 @@ Eigen::Matrix3d odometryCovariance(double d, double a, double var_d, double var_
 	return (cov + cov.transpose()) / 2;
 }
 
+/// A step's rawlog IDs beside its true ones.
+std::vector<MeasurementIds> measurementIdsOf(const SimulatedStep& step)
+{
+	std::vector<MeasurementIds> out;
+	for (std::size_t i = 0; i < step.input.scan->measurements.size(); ++i)
+		out.push_back({*step.input.scan->measurements[i].id, step.true_ids[i]});
+	return out;
+}
+
 }  // namespace
 
 Simulator::Simulator(const Scenario& scenario) : scenario_(scenario)
@@ -161,6 +179,21 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario)
 			features_.push_back(p);
 			feature_ids_.push_back(static_cast<LandmarkId>(row * n + col));
 		}
+	if (scenario_.hasClusterPairs()) addClusterTwins();
+}
+
+void Simulator::addClusterTwins()
+{
+	mrpt::random::CRandomGenerator layout(static_cast<std::uint32_t>(scenario_.seed) + kLayoutSeedOffset);
+	const LandmarkId twin_offset = LandmarkId(scenario_.features_per_side) * scenario_.features_per_side;
+	const std::size_t grid_count = features_.size();
+	for (std::size_t i = 0; i < grid_count; ++i)
+	{
+		const double direction = layout.drawUniform(-M_PI, M_PI);
+		features_.push_back(
+			features_[i] + scenario_.cluster_pair_distance_m * Eigen::Vector2d(std::cos(direction), std::sin(direction)));
+		feature_ids_.push_back(feature_ids_[i] + twin_offset);
+	}
 }
 
 Pose2 Simulator::midpointIncrement(double distance_m, double angle_rad)
@@ -174,6 +207,7 @@ SimulationSummary Simulator::simulate(const std::function<void(const SimulatedSt
 	const auto seed = static_cast<std::uint32_t>(s.seed);
 	WaypointTour tour(s, seed);
 	mrpt::random::CRandomGenerator noise(seed + kNoiseSeedOffset);
+	MeasurementOutliers outliers(s, features_, feature_ids_, seed + kOutlierSeedOffset);
 
 	const double dt = s.dt_s;
 	const double var_d = std::pow(s.std_speed_mps * dt, 2);
@@ -189,6 +223,7 @@ SimulationSummary Simulator::simulate(const std::function<void(const SimulatedSt
 	summary.features = features_.size();
 	std::vector<bool> seen(features_.size(), false);
 	std::size_t sparse_run = 0;	 // consecutive scans so far with fewer than two measurements
+	std::size_t empty_run = 0;	// consecutive scans so far without measurements
 
 	Pose2 pose(s.start_x_m, s.start_y_m, wrapAngle(s.start_yaw_deg * kDegToRad));
 	for (int k = 0; k < s.steps; ++k)
@@ -241,19 +276,25 @@ SimulationSummary Simulator::simulate(const std::function<void(const SimulatedSt
 			m.cov = measurement_cov;
 			m.id = feature_ids_[i];
 			scan.measurements.push_back(m);
+			step.true_ids.push_back(feature_ids_[i]);
 			seen[i] = true;
 		}
+		outliers.apply(scan, step.true_ids, measurement_cov);
 		summary.measurements += scan.measurements.size();
 		if (scan.measurements.empty()) ++summary.scans_without_measurements;
 		if (scan.measurements.size() == 1) ++summary.scans_with_one_measurement;
 		sparse_run = scan.measurements.size() < 2 ? sparse_run + 1 : 0;
 		summary.longest_run_below_two_measurements = std::max(summary.longest_run_below_two_measurements, sparse_run);
+		empty_run = scan.measurements.empty() ? empty_run + 1 : 0;
+		summary.longest_run_without_measurements = std::max(summary.longest_run_without_measurements, empty_run);
 		step.input.scan = std::move(scan);
 		step.true_pose = pose;
 		sink(step);
 		++summary.steps;
 	}
 	summary.features_seen = static_cast<std::size_t>(std::count(seen.begin(), seen.end(), true));
+	summary.wrong_id_measurements = outliers.wrongIdCount();
+	summary.spurious_measurements = outliers.spuriousCount();
 	return summary;
 }
 
@@ -266,6 +307,7 @@ SimulationSummary Simulator::writeRawlog(const std::string& rawlog_path) const
 	for (std::size_t i = 0; i < features_.size(); ++i) truth.landmarks[feature_ids_[i]] = features_[i];
 	truth.path.reserve(static_cast<std::size_t>(scenario_.steps));
 
+	MeasurementTruth measurement_truth;  // kept only when the rawlog's IDs are not the truth
 	SimulationSummary summary;
 	writeAtomically(rawlog_path, [&](const std::string& tmp) {
 		// Best compression: committed rawlogs stay small, and writing is
@@ -275,10 +317,12 @@ SimulationSummary Simulator::writeRawlog(const std::string& rawlog_path) const
 		summary = simulate([&](const SimulatedStep& step) {
 			appendStep(ar, step.input, {scenario_.std_range_m, scenario_.std_bearing_deg * kDegToRad});
 			truth.path.push_back(step.true_pose);
+			if (scenario_.hasOutliers()) measurement_truth.push_back(measurementIdsOf(step));
 		});
 		out.close();
 	});
 	saveGroundTruth(truth, groundTruthPrefixFor(rawlog_path));
+	if (scenario_.hasOutliers()) saveMeasurementTruth(measurement_truth, groundTruthPrefixFor(rawlog_path));
 	return summary;
 }
 

@@ -42,4 +42,12 @@ void setBaselineRatios(std::vector<Stats>& runs, std::size_t baseline);
 /// baseline '<label>' (1 = as accurate as the optimum)", with a newline.
 std::string baselineNote(const std::string& label);
 
+/// When the baseline's own plausibility check (the full-SLAM plugin's
+/// stats plugin_optimum_plausible = 0, with plugin_chi2_per_dof and
+/// plugin_degenerate_poses) says its optimum is not to be trusted: one line,
+/// e.g. "baseline 'full' implausible: chi2/dof 7.1, 2 degenerate poses;
+/// ratios and differences against it are not trustworthy". nullopt when the
+/// key is absent or not 0.
+std::optional<std::string> baselineImplausibility(const Stats& baseline);
+
 }  // namespace esif

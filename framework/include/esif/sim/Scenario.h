@@ -8,6 +8,8 @@
 /// World frame: the square [0, world_size_m] x [0, world_size_m], origin at
 /// its bottom-left corner, x to the right, y up.
 
+#include <esif/core/StepInput.h>
+
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -69,6 +71,26 @@ struct Scenario
 	double sensor_y_m = 0.0;  ///< sensor pose on the robot [m]
 	double sensor_yaw_deg = 0.0;  ///< sensor pose on the robot [deg]
 
+	// ---- outliers and hard layouts (all off by default: the rawlog is then
+	// byte-identical to one made before these keys existed)
+	/// Probability that a measurement carries the ID of another landmark (a
+	/// misread, drawn independently per measurement): one of the 8 landmarks
+	/// nearest to the true one that are not measured in the same scan (a
+	/// scan cannot hold one ID twice), drawn uniformly; in [0, 1]. The true
+	/// IDs go to PREFIX_ground_truth_measurement_ids.txt.
+	double wrong_id_rate = 0.0;
+	/// Expected number of spurious returns (clutter) per scan, Poisson:
+	/// uniform over the area within sensor_max_range_m and the field of
+	/// view, each with a fresh ID no landmark has (from clutterIdBase(),
+	/// counting up), so ground truth knows none of them; in [0, 100].
+	double spurious_rate = 0.0;
+	/// > 0: every grid feature gets a twin at this distance in a uniformly
+	/// random direction, ID = its own + features_per_side^2 (the pair is then
+	/// two landmarks, a hard case for data association); 0: no twins [m].
+	/// Must be below featureSpacing() / 2 so each twin is nearer to its own
+	/// feature than to any other grid feature.
+	double cluster_pair_distance_m = 0.0;
+
 	/// Declares every field once, for loading (`loadParams(scenario,
 	/// section)`), validation of each value and listings.
 	void declare(ParamBinder& b);
@@ -83,6 +105,20 @@ struct Scenario
 	/// waypoint list (see `waypoints`); throws ConfigError naming the
 	/// [simulation] key at fault. Per-field rules are checked by declare().
 	void validate() const;
+
+	/// Whether grid features have twins (cluster_pair_distance_m > 0).
+	bool hasClusterPairs() const { return cluster_pair_distance_m > 0; }
+
+	/// Whether any measurement may carry an ID other than its landmark's
+	/// (wrong IDs or clutter): the rawlog's IDs are then not the truth.
+	bool hasOutliers() const { return wrong_id_rate > 0 || spurious_rate > 0; }
+
+	/// First ID of clutter returns: above every landmark ID (grid and twins).
+	LandmarkId clutterIdBase() const
+	{
+		const LandmarkId grid = LandmarkId(features_per_side) * features_per_side;
+		return hasClusterPairs() ? 2 * grid : grid;
+	}
 
 	/// Spacing between two neighbouring features [m].
 	double featureSpacing() const { return world_size_m / features_per_side; }
@@ -111,6 +147,10 @@ struct Scenario
 	/// The robot switches to its next waypoint once this close to the
 	/// current one [m].
 	static constexpr double kWaypointReach_m = 1.0;
+
+	/// Upper bound of spurious_rate: more clutter per scan than a grid scan
+	/// has true returns by an order of magnitude is no longer a SLAM problem.
+	static constexpr double kMaxSpuriousRate = 100.0;
 };
 
 }  // namespace esif

@@ -10,7 +10,9 @@
 /// - landmark ID = 0-based grid index, row-major from the bottom-left
 ///   feature (ID = row * features_per_side + column); the ground-truth file
 ///   uses the same IDs; features removed by a featureless band leave their
-///   IDs unused, so the IDs then have gaps;
+///   IDs unused, so the IDs then have gaps; a grid feature's twin
+///   (cluster_pair_distance_m) has its ID + features_per_side^2; spurious
+///   returns have IDs from Scenario::clutterIdBase() up, of no landmark;
 /// - step k holds the odometry increment from pose k-1 to pose k (step 0: a
 ///   zero increment) and the scan taken at pose k; ground-truth path row k is
 ///   pose k;
@@ -26,6 +28,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +41,10 @@ struct SimulatedStep
 	/// possibly without measurements), exactly as written to the rawlog.
 	StepInput input;
 	Pose2 true_pose;  ///< true robot pose when the scan was taken
+	/// The true landmark of each measurement (parallel to the scan's
+	/// measurements): its rawlog ID unless Scenario::wrong_id_rate misread
+	/// it, none for a spurious return.
+	std::vector<std::optional<LandmarkId>> true_ids;
 };
 
 /// Counts of a finished simulation.
@@ -54,6 +61,13 @@ struct SimulationSummary
 	/// scans that cannot locate the robot relative to the map on their own
 	/// (book Sec. 3.4.1, admissible measurements).
 	std::size_t longest_run_below_two_measurements = 0;
+	/// Longest run of consecutive scans that measure nothing (long stretches
+	/// without any landmark, or clutter, in view).
+	std::size_t longest_run_without_measurements = 0;
+	/// Measurements carrying another landmark's ID (Scenario::wrong_id_rate).
+	std::size_t wrong_id_measurements = 0;
+	/// Spurious returns (Scenario::spurious_rate), included in `measurements`.
+	std::size_t spurious_measurements = 0;
 
 	/// Mean number of measurements per scan.
 	double meanMeasurementsPerScan() const { return steps ? double(measurements) / steps : 0.0; }
@@ -67,12 +81,14 @@ class Simulator
 
 	const Scenario& scenario() const { return scenario_; }
 
-	/// True feature positions in the world frame, in grid order; the landmark
-	/// ID of features()[i] is featureIds()[i], which is i when there is no
-	/// featureless band.
+	/// True feature positions in the world frame, in grid order, then the
+	/// twins (Scenario::cluster_pair_distance_m) in the order of their grid
+	/// features; the landmark ID of features()[i] is featureIds()[i], which is
+	/// i when there is no featureless band and no twin.
 	const std::vector<Eigen::Vector2d>& features() const { return features_; }
 
-	/// Landmark IDs (grid indices) of features(), increasing.
+	/// Landmark IDs of features(), increasing: grid indices, then for the
+	/// twins their grid feature's ID + features_per_side^2.
 	const std::vector<LandmarkId>& featureIds() const { return feature_ids_; }
 
 	/// Runs the whole scenario, handing each step to `sink` in order. The
@@ -84,6 +100,8 @@ class Simulator
 	/// actions/sensory-frames format) and its ground truth
 	/// (groundTruthPrefixFor(rawlog_path) + "_ground_truth.txt" and
 	/// "_ground_truth_robot_path.txt"), each atomically. Creates the folder.
+	/// With wrong IDs or clutter (Scenario::hasOutliers()) also the true
+	/// landmark of every measurement (MeasurementTruth.h).
 	SimulationSummary writeRawlog(const std::string& rawlog_path) const;
 
 	/// Odometry increment of the mid-point unicycle model: driving `distance_m`
@@ -92,6 +110,9 @@ class Simulator
 	static Pose2 midpointIncrement(double distance_m, double angle_rad);
 
    private:
+	/// Adds a twin to every grid feature (Scenario::cluster_pair_distance_m).
+	void addClusterTwins();
+
 	Scenario scenario_;
 	std::vector<Eigen::Vector2d> features_;
 	std::vector<LandmarkId> feature_ids_;  ///< parallel to features_
