@@ -4,6 +4,8 @@
 
 #include <esif/core/Errors.h>
 
+#include <cmath>
+
 namespace esif::ceres_full
 {
 namespace
@@ -60,6 +62,7 @@ void FullSlamGraph::addObservation(
 		RangeBearingResidual::create(Eigen::Vector2d(m.range_m, m.bearing_rad), w, sensor_on_robot), loss_.get(),
 		poses_[pose].data(), lm);
 	residual_dim_ += 2;
+	observations_.push_back({pose, id, m.range_m, std::sqrt(m.cov(0, 0)), sensor_on_robot});
 	linkBlocks(poses_[pose].data(), isGauge(pose) ? 0 : 3, lm, 2);
 }
 
@@ -76,6 +79,16 @@ void FullSlamGraph::linkBlocks(const double* a, int dim_a, const double* b, int 
 	if (dim_a == 0 || dim_b == 0) return;  // the gauge pose is not in the state
 	const auto key = a < b ? std::make_pair(a, b) : std::make_pair(b, a);
 	if (linked_.insert(key).second) off_diagonal_nnz_ += static_cast<std::size_t>(dim_a * dim_b);
+}
+
+double FullSlamGraph::plainChi2(int threads)
+{
+	ceres::Problem::EvaluateOptions options;
+	options.apply_loss_function = false;
+	options.num_threads = threads;
+	double cost = 0;  // Ceres' cost: half the sum of squares
+	problem_->Evaluate(options, &cost, nullptr, nullptr, nullptr);
+	return 2 * cost;
 }
 
 std::size_t FullSlamGraph::informationNonZeros() const
