@@ -271,7 +271,14 @@ std::optional<InformationPattern> CeresFullSlam::informationPattern() const
 	// J^T J at the optimum, poses first then landmarks (the gauge pose left out).
 	if (graph_->residualDim() == 0) return std::nullopt;
 	InformationPattern p;
-	p.information = graph_->informationMatrix(threads());
+	try
+	{
+		p.information = graph_->informationMatrix(threads());
+	}
+	catch (const NumericalError&)
+	{
+		return std::nullopt;  // a collapsed solution, already reported by finish()
+	}
 	return p;
 }
 

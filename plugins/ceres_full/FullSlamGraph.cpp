@@ -1,5 +1,6 @@
 #include "FullSlamGraph.h"
 
+#include "QuietCeresLogging.h"
 #include "Residuals.h"
 
 #include <esif/core/Errors.h>
@@ -87,7 +88,8 @@ double FullSlamGraph::plainChi2(int threads)
 	options.apply_loss_function = false;
 	options.num_threads = threads;
 	double cost = 0;  // Ceres' cost: half the sum of squares
-	problem_->Evaluate(options, &cost, nullptr, nullptr, nullptr);
+	const QuietCeresLogging quiet;
+	if (!problem_->Evaluate(options, &cost, nullptr, nullptr, nullptr)) return std::nan("");
 	return 2 * cost;
 }
 
@@ -105,7 +107,9 @@ Eigen::SparseMatrix<double> FullSlamGraph::informationMatrix(int threads)
 	options.apply_loss_function = true;
 	options.num_threads = threads;
 	ceres::CRSMatrix crs;
-	problem_->Evaluate(options, nullptr, nullptr, nullptr, &crs);
+	const QuietCeresLogging quiet;
+	if (!problem_->Evaluate(options, nullptr, nullptr, nullptr, &crs))
+		throw NumericalError("the Jacobian cannot be evaluated (a pose sits on a landmark)");
 	const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> j(
 		crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(), crs.cols.data(),
 		crs.values.data());

@@ -85,7 +85,8 @@ class FullSlamGraph
 	std::size_t parameterDim() const { return 3 * (poses_.size() - 1) + 2 * landmarks_.size(); }
 
 	/// Sum of squared whitened residuals at the current values, without the
-	/// robust loss: chi-square(m - n) at the optimum when the noise model is right.
+	/// robust loss: chi-square(m - n) at the optimum when the noise model is
+	/// right. NaN when a residual cannot be evaluated.
 	double plainChi2(int threads);
 
 	/// Non-zeros of J^T J over the estimated blocks (both triangles): each
@@ -95,7 +96,8 @@ class FullSlamGraph
 	std::size_t informationNonZeros() const;
 
 	/// J^T J at the current values, over the estimated blocks: poses 1..N,
-	/// then landmarks in first-seen order. Evaluates every residual.
+	/// then landmarks in first-seen order. Evaluates every residual; throws
+	/// NumericalError when a derivative is not finite.
 	Eigen::SparseMatrix<double> informationMatrix(int threads);
 
    private:
