@@ -6,8 +6,8 @@
 /// landmarks are held at their current values), so it costs a few
 /// Gauss-Newton steps on three unknowns per step, yet it keeps the poses
 /// between two re-solves as close to the map as the measurements allow
-/// instead of drifting with dead reckoning (grid1225_large: 1800 steps of
-/// dead reckoning between 10 % re-solves drift out of the optimum's basin).
+/// instead of drifting with dead reckoning (grid1225_large with re-solves at
+/// 10 % growth but no refinement ends at chi2 9.0e8 for 155,190 dof).
 
 #include <esif/core/StepInput.h>
 #include <esif/models/Se2.h>
