@@ -10,9 +10,9 @@ namespace esif::ceres_full
 {
 enum class RobustLoss
 {
-	None,  ///< plain least squares: the MAP estimate of eq. 1.21
-	Huber,
-	Cauchy
+	None = 0,  ///< plain least squares: the MAP estimate of eq. 1.21
+	Huber = 1,
+	Cauchy = 2
 };
 
 /// Which marginal covariances finish() computes.
@@ -23,22 +23,68 @@ enum class CovarianceScope
 	AllPoses  ///< also every pose of the trajectory (pose NEES over all steps)
 };
 
+/// Ceres' trust-region step: Levenberg-Marquardt or Powell's dogleg.
+enum class TrustRegion
+{
+	LevenbergMarquardt,
+	Dogleg
+};
+
 struct CeresFullParams
 {
-	/// 0: one batch solve at the end of the rawlog; K > 0: also re-solve after
-	/// every K steps, so the running trajectory is the optimum so far.
+	// When to solve. Between solves every new pose starts from odometry
+	// composed onto the current estimate (the optimum of the last solve and
+	// dead reckoning since), every new landmark from its first measurement.
+	/// Re-solve once the pose count has grown by this fraction since the
+	/// last solve (0 = never): solve sizes grow geometrically, so the work
+	/// of all intermediate solves is (1 + 1/g) times that of one full solve.
+	double resolve_growth = 0.2;
+	/// ... but never after fewer new poses than this.
+	int resolve_min_new_poses = 20;
+	/// Refine each new pose by the step's measurements of mapped landmarks
+	/// (PoseRefiner) before its new landmarks are placed.
+	bool refine_new_poses = true;
+	/// Also re-solve after every K steps (0 = off); the older, quadratic schedule.
 	int resolve_every_steps = 0;
-	int max_iterations = 200;  ///< Levenberg-Marquardt iterations per solve
+	/// Intermediate solves only need to keep the estimate in the basin of the
+	/// optimum: few iterations and a loose tolerance.
+	int intermediate_max_iterations = 50;
+	double intermediate_function_tolerance = 1e-6;
+
+	// The final solve.
+	int max_iterations = 200;  ///< trust-region iterations of the final solve
 	double function_tolerance = 1e-10;	///< relative cost change that ends a solve
 	double gradient_tolerance = 1e-12;
 	double parameter_tolerance = 1e-10;
+
+	// Trust-region damping (Ceres' Solver::Options of the same names).
+	TrustRegion trust_region_strategy = TrustRegion::LevenbergMarquardt;
+	/// Ceres' Levenberg-Marquardt damps with mu D, D = diag(J^T J) clamped to
+	/// [min_lm_diagonal, max_lm_diagonal], of J scaled to unit columns when
+	/// jacobi_scaling is on. Off with both clamps at 1: plain damping mu I,
+	/// which on Victoria Park and grid1225_large converges where the
+	/// diagonal-scaled damping crawls.
+	bool jacobi_scaling = false;
+	double initial_trust_region_radius = 1e4;
+	double max_trust_region_radius = 1e16;
+	double min_lm_diagonal = 1;
+	double max_lm_diagonal = 1;
+
 	int threads = 0;  ///< Jacobian evaluation and covariance threads; 0 = every core
 	RobustLoss robust_loss = RobustLoss::None;	///< on range-bearing terms only
 	double robust_loss_scale = 3.0;	 ///< whitened residual norm where the loss turns robust [sigma]
 	CovarianceScope covariance = CovarianceScope::LandmarksAndFinalPose;
 	/// Run folder (trajectory.tum, landmarks.txt) whose estimate is the initial
-	/// guess; empty = dead reckoning and first sightings.
+	/// guess; empty = odometry and first sightings.
 	std::string initial_run;
+
+	// Checks of the final solution.
+	/// A pose closer than this to a landmark it measured more than 5 range
+	/// sigmas further away is degenerate (a collapsed solution) [m].
+	double degenerate_distance_m = 0.05;
+	/// chi2 / dof above this marks the optimum implausible (a local minimum
+	/// or a wrong noise model or association).
+	double max_chi2_per_dof = 3.0;
 
 	void declare(ParamBinder& b);
 };

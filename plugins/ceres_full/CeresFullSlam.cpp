@@ -1,11 +1,14 @@
 #include "CeresFullSlam.h"
 
 #include "MarginalCovariances.h"
+#include "PoseRefiner.h"
+#include "QuietCeresLogging.h"
 
 #include <esif/core/Errors.h>
 #include <esif/models/RangeBearingModel.h>
 
 #include <chrono>
+#include <iostream>
 #include <thread>
 
 IMPLEMENTS_MRPT_OBJECT(CeresFullSlam, FilterPlugin, esif)
@@ -28,12 +31,18 @@ bool isStandStill(const OdometryIncrement& odometry)
 {
 	return odometry.cov.isZero(0) && odometry.delta.x == 0 && odometry.delta.y == 0 && odometry.delta.phi == 0;
 }
+
+/// One line on stderr: the run goes on, its stats say what went wrong.
+void warn(const std::string& what) { std::cerr << "esif: warning: ceres_full: " << what << "\n"; }
 }  // namespace
 
 void CeresFullSlam::configure(const ConfigSection& section)
 {
 	loadParams(params_, section);
 	graph_ = std::make_unique<FullSlamGraph>(makeLoss());
+	schedule_.emplace(
+		params_.resolve_growth, static_cast<std::size_t>(params_.resolve_min_new_poses),
+		static_cast<std::size_t>(params_.resolve_every_steps));
 	if (!params_.initial_run.empty())
 		guess_ = InitialGuess::load(params_.initial_run, section.describeKey("initial_run", params_.initial_run));
 }
@@ -55,10 +64,10 @@ StepReport CeresFullSlam::processStep(const StepInput& step)
 {
 	if (step.odometry && !isStandStill(*step.odometry))
 	{
-		// The starting value of the new pose: dead reckoning from the current
-		// estimate (eq. 1.3), or the pose another run estimated for this step.
-		const Pose2 initial = guess_ ? guess_->poseAfterStep(step.index)
-									 : compose(graph_->pose(current_pose_), toPose2(step.odometry->delta));
+		// The starting value of the new pose: odometry composed onto the
+		// current estimate (eq. 1.3; the optimum of the last re-solve, and
+		// the warm starts since), or the pose another run estimated for this step.
+		const Pose2 initial = guess_ ? guess_->poseAfterStep(step.index) : warmStart(*step.odometry, step.scan);
 		current_pose_ = graph_->addPose(current_pose_, *step.odometry, initial, "odometry");
 	}
 	step_pose_.push_back(current_pose_);
@@ -72,10 +81,20 @@ StepReport CeresFullSlam::processStep(const StepInput& step)
 			report.associations.push_back(
 				observe(ms[i], sensor, "measurement " + std::to_string(i)));
 	}
-	if (params_.resolve_every_steps > 0 &&
-		step_pose_.size() % static_cast<std::size_t>(params_.resolve_every_steps) == 0)
-		solve();
+	if (schedule_ && schedule_->due(step_pose_.size(), graph_->poseCount())) solve(SolveKind::Intermediate);
 	return report;
+}
+
+Pose2 CeresFullSlam::warmStart(const OdometryIncrement& odometry, const std::optional<Scan>& scan) const
+{
+	const Pose2 previous = graph_->pose(current_pose_);
+	const Pose2 composed = compose(previous, toPose2(odometry.delta));
+	if (!params_.refine_new_poses || !scan) return composed;
+	std::vector<MappedMeasurement> seen;
+	for (const RangeBearing& m : scan->measurements)
+		if (m.id && graph_->hasLandmark(*m.id))
+			seen.push_back({graph_->landmark(*m.id), m, toPose2(scan->sensor_on_robot)});
+	return refineNewPose(previous, odometry, composed, seen, graph_->loss());
 }
 
 Association CeresFullSlam::observe(const RangeBearing& m, const Pose2& sensor, const std::string& where)
@@ -106,26 +125,23 @@ int CeresFullSlam::threads() const
 	return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-void CeresFullSlam::solve()
+void CeresFullSlam::solve(SolveKind kind)
 {
 	if (graph_->residualDim() == 0) return;
-	ceres::Solver::Options options;
-	options.minimizer_type = ceres::TRUST_REGION;
-	options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-	options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-	options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
-	options.max_num_iterations = params_.max_iterations;
-	options.function_tolerance = params_.function_tolerance;
-	options.gradient_tolerance = params_.gradient_tolerance;
-	options.parameter_tolerance = params_.parameter_tolerance;
-	options.num_threads = threads();
-	options.logging_type = ceres::SILENT;
-
 	const auto t0 = std::chrono::steady_clock::now();
 	ceres::Solver::Summary summary;
-	ceres::Solve(options, &graph_->problem(), &summary);
-	if (summary.termination_type == ceres::FAILURE || summary.termination_type == ceres::USER_FAILURE)
-		throw NumericalError("full-SLAM solve failed: " + summary.message);
+	{
+		const QuietCeresLogging quiet;	// a failure is told below, in one line
+		ceres::Solve(solverOptions(params_, kind, threads()), &graph_->problem(), &summary);
+	}
+	if (schedule_) schedule_->solved(graph_->poseCount());
+	// A failed solve (a non-finite Jacobian, a failed factorization) keeps
+	// the last accepted estimate: the run goes on and its stats say it did
+	// not converge. Failed re-solves are counted; the final one is told.
+	const bool failed =
+		summary.termination_type == ceres::FAILURE || summary.termination_type == ceres::USER_FAILURE;
+	if (failed && kind == SolveKind::Intermediate) ++tally_.failed_solves;
+	if (failed && kind == SolveKind::Final) warn("the final solve failed: " + summary.message);
 
 	++tally_.solves;
 	tally_.final_iterations = static_cast<int>(summary.iterations.size()) - 1;  // entry 0 is the start
@@ -139,9 +155,19 @@ void CeresFullSlam::solve()
 
 void CeresFullSlam::finish()
 {
-	solve();
+	solve(SolveKind::Final);
+	checkFinalSolution();
 	computeCovariances();
 	finished_ = true;
+}
+
+void CeresFullSlam::checkFinalSolution()
+{
+	const double dof = static_cast<double>(graph_->residualDim()) - static_cast<double>(graph_->parameterDim());
+	tally_.check = checkSolution(
+		graph_->plainChi2(threads()), dof, countDegeneratePoses(*graph_, params_.degenerate_distance_m),
+		params_.max_chi2_per_dof);
+	if (!tally_.check->plausible) warn(tally_.check->warning(params_.max_chi2_per_dof));
 }
 
 void CeresFullSlam::computeCovariances()
@@ -157,7 +183,18 @@ void CeresFullSlam::computeCovariances()
 		blocks.push_back(graph_->poseBlock(current_pose_));
 	if (blocks.empty()) return;
 	const auto t0 = std::chrono::steady_clock::now();
-	marginals_ = marginalCovariances(graph_->problem(), blocks, threads());
+	try
+	{
+		marginals_ = marginalCovariances(graph_->problem(), blocks, threads());
+		tally_.covariances_available = true;
+	}
+	catch (const NumericalError& e)
+	{
+		// The estimate is still the solver's: report it with zero
+		// covariances, the framework's "no covariance" (no NEES, no ellipse).
+		marginals_.clear();
+		warn(std::string(e.what()) + "; the estimate is reported without covariances");
+	}
 	tally_.covariance_s = secondsSince(t0);
 }
 
@@ -205,10 +242,21 @@ CostFigures CeresFullSlam::costFigures() const
 	c.info_nnz = graph_->informationNonZeros();
 	const auto add = [&](const char* name, double v) { c.counters.emplace_back(name, v); };
 	add("residuals", static_cast<double>(graph_->residualDim()));
-	add("chi2_dof", static_cast<double>(graph_->residualDim()) - static_cast<double>(graph_->parameterDim()));
-	add("chi2", 2 * tally_.final_cost);	// Ceres' cost is half the sum of squares
-	add("initial_chi2", 2 * tally_.final_initial_cost);
+	const double dof = static_cast<double>(graph_->residualDim()) - static_cast<double>(graph_->parameterDim());
+	add("chi2_dof", dof);
+	// Ceres' cost is half the (robustified) sum of squares; chi2 is the plain
+	// sum of squared whitened residuals, the same as 2 x cost without a loss.
+	const double objective = 2 * tally_.final_cost;
+	add("chi2", tally_.check ? tally_.check->chi2 : objective);
+	add("objective", objective);
+	add("initial_chi2", 2 * tally_.final_initial_cost);  // objective before the final solve
+	add("chi2_per_dof", tally_.check ? tally_.check->chi2PerDof() : (dof > 0 ? objective / dof : std::nan("")));
+	add("degenerate_poses", tally_.check ? static_cast<double>(tally_.check->degenerate_poses) : 0);
+	add("optimum_plausible", tally_.check && tally_.check->plausible ? 1 : 0);
+	add("covariances_available", tally_.covariances_available ? 1 : 0);
+	add("robust_loss_used", static_cast<double>(static_cast<int>(params_.robust_loss)));
 	add("solves", tally_.solves);
+	add("failed_intermediate_solves", tally_.failed_solves);
 	add("iterations", tally_.iterations);
 	add("final_iterations", tally_.final_iterations);
 	add("solve_s", tally_.solve_s);
@@ -223,7 +271,14 @@ std::optional<InformationPattern> CeresFullSlam::informationPattern() const
 	// J^T J at the optimum, poses first then landmarks (the gauge pose left out).
 	if (graph_->residualDim() == 0) return std::nullopt;
 	InformationPattern p;
-	p.information = graph_->informationMatrix(threads());
+	try
+	{
+		p.information = graph_->informationMatrix(threads());
+	}
+	catch (const NumericalError&)
+	{
+		return std::nullopt;  // a collapsed solution, already reported by finish()
+	}
 	return p;
 }
 

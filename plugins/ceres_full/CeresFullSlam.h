@@ -3,14 +3,20 @@
 /// Full SLAM by nonlinear least squares (book Sec. 1.2.2.2, eq. 1.17-1.22):
 /// the maximum-a-posteriori estimate of every robot pose and every landmark
 /// given all odometry and all measurements, solved by Ceres
-/// (Levenberg-Marquardt on sparse normal equations, CHOLMOD). It is the
-/// optimum every filter is measured against. It does not associate: it uses
-/// the measurements' landmark IDs (from the rawlog, or another run's
-/// decisions through [esif] associations_from).
+/// (a trust region on sparse normal equations, CHOLMOD). It is the optimum
+/// every filter is measured against. It does not associate: it uses the
+/// measurements' landmark IDs (from the rawlog, or another run's decisions
+/// through [esif] associations_from). It solves incrementally (SolveSchedule)
+/// so that the final solve starts inside the optimum's basin, checks the
+/// solution (SolutionChecks) and never loses a run to a covariance that
+/// cannot be computed: the estimate is then reported without covariances.
 
 #include "CeresFullParams.h"
 #include "FullSlamGraph.h"
 #include "InitialGuess.h"
+#include "SolutionChecks.h"
+#include "SolveSchedule.h"
+#include "SolverOptions.h"
 
 #include <esif/plugin/FilterPlugin.h>
 
@@ -43,6 +49,7 @@ class CeresFullSlam : public FilterPlugin
 	struct SolveTally
 	{
 		int solves = 0;
+		int failed_solves = 0;	///< re-solves during the run that Ceres gave up (the final one: converged = 0)
 		int iterations = 0;	 ///< over all solves
 		int final_iterations = 0;  ///< of the last solve
 		double solve_s = 0;	 ///< over all solves [s]
@@ -51,14 +58,18 @@ class CeresFullSlam : public FilterPlugin
 		double final_cost = 0;	///< ... and after it
 		bool converged = false;	 ///< the last solve met a tolerance (not the iteration limit)
 		double covariance_s = 0;
+		bool covariances_available = false;
+		std::optional<ceres_full::SolutionCheck> check;	 ///< of the final solve
 	};
 	const SolveTally& tally() const { return tally_; }
 	const ceres_full::FullSlamGraph& graph() const { return *graph_; }
 
    private:
-	void solve();
+	void solve(ceres_full::SolveKind kind);
+	void checkFinalSolution();
 	void computeCovariances();
 	std::unique_ptr<ceres::LossFunction> makeLoss() const;
+	Pose2 warmStart(const OdometryIncrement& odometry, const std::optional<Scan>& scan) const;
 	Association observe(const RangeBearing& m, const Pose2& sensor, const std::string& where);
 	int threads() const;
 	PoseEstimate poseEstimate(std::size_t pose) const;
@@ -66,6 +77,7 @@ class CeresFullSlam : public FilterPlugin
 	ceres_full::CeresFullParams params_;
 	std::unique_ptr<ceres_full::FullSlamGraph> graph_ = std::make_unique<ceres_full::FullSlamGraph>();
 	std::optional<ceres_full::InitialGuess> guess_;
+	std::optional<ceres_full::SolveSchedule> schedule_;
 	std::size_t current_pose_ = 0;
 	std::vector<std::size_t> step_pose_;  ///< pose index after each step
 	std::unordered_map<const double*, Eigen::MatrixXd> marginals_;

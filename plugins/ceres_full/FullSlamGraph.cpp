@@ -1,8 +1,11 @@
 #include "FullSlamGraph.h"
 
+#include "QuietCeresLogging.h"
 #include "Residuals.h"
 
 #include <esif/core/Errors.h>
+
+#include <cmath>
 
 namespace esif::ceres_full
 {
@@ -60,6 +63,7 @@ void FullSlamGraph::addObservation(
 		RangeBearingResidual::create(Eigen::Vector2d(m.range_m, m.bearing_rad), w, sensor_on_robot), loss_.get(),
 		poses_[pose].data(), lm);
 	residual_dim_ += 2;
+	observations_.push_back({pose, id, m.range_m, std::sqrt(m.cov(0, 0)), sensor_on_robot});
 	linkBlocks(poses_[pose].data(), isGauge(pose) ? 0 : 3, lm, 2);
 }
 
@@ -78,6 +82,17 @@ void FullSlamGraph::linkBlocks(const double* a, int dim_a, const double* b, int 
 	if (linked_.insert(key).second) off_diagonal_nnz_ += static_cast<std::size_t>(dim_a * dim_b);
 }
 
+double FullSlamGraph::plainChi2(int threads)
+{
+	ceres::Problem::EvaluateOptions options;
+	options.apply_loss_function = false;
+	options.num_threads = threads;
+	double cost = 0;  // Ceres' cost: half the sum of squares
+	const QuietCeresLogging quiet;
+	if (!problem_->Evaluate(options, &cost, nullptr, nullptr, nullptr)) return std::nan("");
+	return 2 * cost;
+}
+
 std::size_t FullSlamGraph::informationNonZeros() const
 {
 	const std::size_t diagonal = 9 * (poses_.size() - 1) + 4 * landmarks_.size();
@@ -92,7 +107,9 @@ Eigen::SparseMatrix<double> FullSlamGraph::informationMatrix(int threads)
 	options.apply_loss_function = true;
 	options.num_threads = threads;
 	ceres::CRSMatrix crs;
-	problem_->Evaluate(options, nullptr, nullptr, nullptr, &crs);
+	const QuietCeresLogging quiet;
+	if (!problem_->Evaluate(options, nullptr, nullptr, nullptr, &crs))
+		throw NumericalError("the Jacobian cannot be evaluated (a pose sits on a landmark)");
 	const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> j(
 		crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(), crs.cols.data(),
 		crs.values.data());

@@ -24,6 +24,17 @@
 
 namespace esif::ceres_full
 {
+/// One range-bearing term as added: which pose saw which landmark at what
+/// range, through which sensor mounting (for checks of the solution).
+struct ObservationRecord
+{
+	std::size_t pose = 0;
+	LandmarkId landmark = 0;
+	double range_m = 0;
+	double range_std_m = 0;	 ///< standard deviation of the range [m]
+	Pose2 sensor_on_robot = Pose2::Zero();
+};
+
 class FullSlamGraph
 {
    public:
@@ -47,6 +58,8 @@ class FullSlamGraph
 						const std::string& where);
 
 	std::size_t poseCount() const { return poses_.size(); }
+	/// Every range-bearing term in the order added.
+	const std::vector<ObservationRecord>& observations() const { return observations_; }
 	std::size_t landmarkCount() const { return landmarks_.size(); }
 	/// Landmark IDs in the order they were first seen.
 	const std::vector<LandmarkId>& landmarkIds() const { return landmark_ids_; }
@@ -63,11 +76,18 @@ class FullSlamGraph
 	static bool isGauge(std::size_t pose) { return pose == 0; }
 
 	ceres::Problem& problem() { return *problem_; }
+	/// The loss on range-bearing terms (null: plain least squares).
+	const ceres::LossFunction* loss() const { return loss_.get(); }
 
 	/// Residual count m and estimated-parameter count n: at the optimum of
 	/// the plain least-squares problem, 2 x cost ~ chi-square(m - n).
 	std::size_t residualDim() const { return residual_dim_; }
 	std::size_t parameterDim() const { return 3 * (poses_.size() - 1) + 2 * landmarks_.size(); }
+
+	/// Sum of squared whitened residuals at the current values, without the
+	/// robust loss: chi-square(m - n) at the optimum when the noise model is
+	/// right. NaN when a residual cannot be evaluated.
+	double plainChi2(int threads);
 
 	/// Non-zeros of J^T J over the estimated blocks (both triangles): each
 	/// block's square plus twice every distinct pair of blocks that share a
@@ -76,7 +96,8 @@ class FullSlamGraph
 	std::size_t informationNonZeros() const;
 
 	/// J^T J at the current values, over the estimated blocks: poses 1..N,
-	/// then landmarks in first-seen order. Evaluates every residual.
+	/// then landmarks in first-seen order. Evaluates every residual; throws
+	/// NumericalError when a derivative is not finite.
 	Eigen::SparseMatrix<double> informationMatrix(int threads);
 
    private:
@@ -89,6 +110,7 @@ class FullSlamGraph
 	std::deque<std::array<double, 2>> landmarks_;
 	std::unordered_map<LandmarkId, std::size_t> landmark_index_;
 	std::vector<LandmarkId> landmark_ids_;
+	std::vector<ObservationRecord> observations_;
 	std::size_t residual_dim_ = 0;
 
 	struct PairHash

@@ -1,5 +1,7 @@
 #include "MarginalCovariances.h"
 
+#include "QuietCeresLogging.h"
+
 #include <esif/core/Errors.h>
 
 namespace esif::ceres_full
@@ -15,9 +17,12 @@ std::unordered_map<const double*, Eigen::MatrixXd> marginalCovariances(
 
 	std::vector<std::pair<const double*, const double*>> pairs;
 	pairs.reserve(blocks.size());
+	const QuietCeresLogging quiet;  // the caller tells of a failure
 	for (const double* b : blocks) pairs.emplace_back(b, b);
 	if (!covariance.Compute(pairs, &problem))
-		throw NumericalError("marginal covariances: the Jacobian is rank deficient (a pose or landmark is unobservable)");
+		throw NumericalError(
+			"marginal covariances: the Jacobian is rank deficient or not finite (a pose or landmark is unobservable, "
+			"or a pose sits on a landmark)");
 
 	std::unordered_map<const double*, Eigen::MatrixXd> out;
 	for (const double* b : blocks)

@@ -13,7 +13,8 @@
 namespace esif::ceres_full
 {
 /// Covariance of every block in `blocks` (each its own diagonal block).
-/// Throws NumericalError when J is rank deficient (an unobservable block).
+/// Throws NumericalError when J is rank deficient (an unobservable block) or
+/// cannot be evaluated (a non-finite derivative).
 std::unordered_map<const double*, Eigen::MatrixXd> marginalCovariances(
 	ceres::Problem& problem, const std::vector<const double*>& blocks, int threads);
 

@@ -43,8 +43,11 @@ void scoreLandmarks(
 	acc.landmarks_evaluated = n;
 	if (n == 0) return;
 	acc.landmark_rmse_m = std::sqrt(sq / n);
+	// No covariance at all (e.g. a full-SLAM run whose marginals could not be
+	// computed): no consistency figure either, rather than a false 0.
+	if (n_nees == 0) return;
 	acc.landmark_consistent_fraction = static_cast<double>(consistent) / n;
-	if (n_nees > 0) acc.landmark_nees_mean = nees_sum / n_nees;
+	acc.landmark_nees_mean = nees_sum / n_nees;
 }
 
 void scoreTrajectory(const GroundTruth& truth, const std::vector<TrajectoryPoint>& trajectory, Accuracy& acc)

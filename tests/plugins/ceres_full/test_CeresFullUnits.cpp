@@ -1,11 +1,15 @@
 // The full-SLAM terms and graph on hand-made cases: residuals against the
 // framework's range-bearing model and against finite differences, the
 // square-root information, the J^T J non-zero count against the evaluated
-// Jacobian, and the marginal covariances against a dense inverse.
+// Jacobian, the marginal covariances against a dense inverse, the re-solve
+// schedule's sizes and the checks of a solution (a pose collapsed onto a
+// landmark, an implausible chi-square).
 
 #include "FullSlamGraph.h"
 #include "MarginalCovariances.h"
 #include "Residuals.h"
+#include "SolutionChecks.h"
+#include "SolveSchedule.h"
 
 #include <NumericJacobian.h>
 
@@ -16,6 +20,8 @@
 #include <Eigen/SparseCore>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numeric>
 #include <random>
 
 namespace
@@ -215,6 +221,103 @@ TEST(CeresFullGraph, BadCovariancesNameTheTerm)
 	m.cov << 1, 2, 2, 1;  // indefinite
 	EXPECT_THROW(g.addObservation(0, 1, m, Pose2::Zero(), "measurement 0"), NumericalError);
 	EXPECT_EQ(g.residualDim(), 0u);
+}
+
+TEST(CeresFullSchedule, GrowthRuleGivesGeometricSolveSizesAndAboutLinearTotalWork)
+{
+	// 10 % growth, at least 20 new poses: solves at 20, 40, ..., 200, then
+	// x1.1. Over 10,000 poses the solved sizes sum to about (1 + 1/g) N = 11 N
+	// (the geometric series), not the N^2 / (2K) of a fixed every-K rule.
+	SolveSchedule s(0.1, 20, 0);
+	std::vector<std::size_t> sizes;
+	for (std::size_t poses = 1; poses <= 10000; ++poses)
+		if (s.due(poses, poses))
+		{
+			sizes.push_back(poses);
+			s.solved(poses);
+		}
+	ASSERT_GE(sizes.size(), 10u);
+	EXPECT_EQ(sizes[0], 20u);
+	EXPECT_EQ(sizes[9], 200u);
+	EXPECT_EQ(sizes[10], 220u);
+	for (std::size_t i = 10; i < sizes.size(); ++i)
+		EXPECT_EQ(sizes[i] - sizes[i - 1], static_cast<std::size_t>(std::ceil(0.1 * sizes[i - 1]))) << i;
+	const double total = std::accumulate(sizes.begin(), sizes.end(), 0.0);
+	EXPECT_LT(total, 11.0 * 10000);
+	EXPECT_GT(total, 9.0 * 10000);	// the last solve is within 10 % of N: the series sums to ~10 N
+	// 10 solves up to 200 poses, then 40 of x1.1 (rounded up) to 9221:
+	// ln(9221 / 200) / ln(1.1) = 40.2.
+	EXPECT_EQ(sizes.size(), 50u);
+	EXPECT_EQ(sizes.back(), 9221u);
+
+	// The fixed rule: every K steps regardless of poses; growth 0 disables the other.
+	SolveSchedule every(0, 20, 100);
+	EXPECT_TRUE(every.due(100, 3));
+	EXPECT_FALSE(every.due(150, 150));
+	SolveSchedule never(0, 20, 0);
+	EXPECT_FALSE(never.due(1000, 1000));
+}
+
+/// One pose at `robot` seeing landmark 1 at `landmark` with measured range `range`.
+FullSlamGraph onePoseOneLandmark(const Pose2& robot, const Eigen::Vector2d& landmark, double range)
+{
+	FullSlamGraph g;
+	OdometryIncrement odo;
+	odo.delta = {robot.x(), robot.y(), robot.z()};
+	odo.cov = Eigen::Vector3d(1e-2, 1e-2, 1e-3).asDiagonal();
+	const std::size_t pose = g.addPose(0, odo, robot, "odometry");
+	g.addLandmark(1, landmark);
+	RangeBearing m;
+	m.range_m = range;
+	m.cov = Eigen::Vector2d(0.01, 3e-4).asDiagonal();
+	g.addObservation(pose, 1, m, Pose2::Zero(), "measurement");
+	return g;
+}
+
+TEST(CeresFullChecks, APoseOnALandmarkItMeasuredMetresAwayIsDegenerate)
+{
+	const Pose2 robot(2, 1, 0.3);
+	// The case: 1e-9 m apart, measured at 3.5 m.
+	EXPECT_EQ(countDegeneratePoses(onePoseOneLandmark(robot, robot.head<2>() + Eigen::Vector2d(1e-9, 0), 3.5), 0.05), 1u);
+	// At the measured range: not degenerate.
+	EXPECT_EQ(countDegeneratePoses(onePoseOneLandmark(robot, robot.head<2>() + Eigen::Vector2d(0, 3.5), 3.5), 0.05), 0u);
+	// Close, and measured close within 5 range sigmas (0.1 m here): a robot
+	// passing a feature, not a collapse; beyond 5 sigmas it is one.
+	const Eigen::Vector2d near = robot.head<2>() + Eigen::Vector2d(0.03, 0);
+	EXPECT_EQ(countDegeneratePoses(onePoseOneLandmark(robot, near, 0.08), 0.05), 0u);
+	EXPECT_EQ(countDegeneratePoses(onePoseOneLandmark(robot, near, 0.52), 0.05), 0u);
+	EXPECT_EQ(countDegeneratePoses(onePoseOneLandmark(robot, near, 0.54), 0.05), 1u);
+	// Just outside the distance: not degenerate.
+	EXPECT_EQ(countDegeneratePoses(onePoseOneLandmark(robot, robot.head<2>() + Eigen::Vector2d(0.051, 0), 3.5), 0.05), 0u);
+}
+
+TEST(CeresFullChecks, ACollapsedPoseMakesTheMarginalCovariancesFail)
+{
+	// The limit of the failure: 1e-9 m apart, the bearing term's
+	// derivatives are ~1e9 times the others' (whether Ceres' rank test then
+	// fails depends on the problem's size); exactly on the landmark they are
+	// 0 / 0, and the covariances cannot be computed at all.
+	const Pose2 robot(2, 1, 0.3);
+	FullSlamGraph g = onePoseOneLandmark(robot, robot.head<2>(), 3.5);
+	EXPECT_EQ(countDegeneratePoses(g, 0.05), 1u);
+	EXPECT_THROW(marginalCovariances(g.problem(), {g.landmarkBlock(1), g.poseBlock(1)}, 1), NumericalError);
+}
+
+TEST(CeresFullChecks, ChiSquarePerDofAboveTheThresholdOrADegeneratePoseIsImplausible)
+{
+	EXPECT_TRUE(checkSolution(1100, 1000, 0, 3).plausible);
+	EXPECT_NEAR(checkSolution(1100, 1000, 0, 3).chi2PerDof(), 1.1, 1e-12);
+	const auto high = checkSolution(7000, 1000, 0, 3);
+	EXPECT_FALSE(high.plausible);
+	EXPECT_NE(high.warning(3).find("chi2 / dof = 7"), std::string::npos) << high.warning(3);
+	const auto collapsed = checkSolution(1000, 1000, 2, 3);
+	EXPECT_FALSE(collapsed.plausible);
+	EXPECT_NE(collapsed.warning(3).find("2 pose(s) on a landmark"), std::string::npos) << collapsed.warning(3);
+	EXPECT_EQ(collapsed.warning(3).find('\n'), std::string::npos);	 // one line
+	// No redundancy: chi2 / dof undefined, nothing to judge by.
+	EXPECT_TRUE(std::isnan(checkSolution(0, 0, 0, 3).chi2PerDof()));
+	EXPECT_TRUE(checkSolution(0, 0, 0, 3).plausible);
+	EXPECT_TRUE(checkSolution(1, 1, 0, 3).warning(3).empty());
 }
 
 }  // namespace
