@@ -13,6 +13,13 @@
 /// One step, in the order of Fig. 3.4: predict (A-B); associate; local
 /// SLAM observe (B-C); kidnapped robot from Map(k) (F-G); CI (C, G -> D);
 /// new features into the local SLAM (E); map update to Map(k+1); recovery.
+///
+/// Beyond the book: measurements failing a chi-square gate against the local
+/// SLAM or, jointly on z_map, against the map are rejected whatever the
+/// association (OutlierGate.h); a diverging map stops the run
+/// (DivergenceGuard.h); every relinearise_every_steps steps the map updates
+/// whose features moved are evaluated again at the current estimate
+/// (DslamParams.h says why).
 
 #include "AdmissibleChain.h"
 #include "DivergenceGuard.h"
@@ -59,6 +66,7 @@ class Dslam : public FilterPlugin
 	StepReport associateByIds(const StepInput& step) const;
 	void nameNewFeatures(StepReport& report);
 	void rejectOutliers(const Scan& scan, StepReport& report);
+	void relinearise();
 	Observed observed(const Scan& scan, const StepReport& report) const;
 	void localize(const Observed& obs, const Pose2& sensor);
 	void fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor);
@@ -78,7 +86,6 @@ class Dslam : public FilterPlugin
 	std::unordered_set<LandmarkId> started_;	  ///< features reported New so far
 	LandmarkId next_own_id_ = 0;
 	int steps_since_relinearisation_ = 0;
-	void relinearise();
 
 	struct Tally
 	{
