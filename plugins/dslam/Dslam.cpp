@@ -2,6 +2,7 @@
 
 #include "CovarianceIntersection.h"
 #include "KidnappedRobot.h"
+#include "OutlierGate.h"
 
 #include <esif/core/Errors.h>
 
@@ -19,6 +20,8 @@ void Dslam::configure(const ConfigSection& section)
 	loadParams(params_, section);
 	map_ = std::make_unique<FeatureMap>(params_.recovery);
 	association_ = std::make_unique<RelativeAssociation>(params_.association, params_.referenceRules());
+	guard_ = DivergenceGuard(params_.divergence_factor);
+	map_->keepRelativeTerms(params_.relinearise_every_steps > 0);
 }
 
 StepReport Dslam::processStep(const StepInput& step)
@@ -28,8 +31,10 @@ StepReport Dslam::processStep(const StepInput& step)
 	{
 		local_.predict(*step.odometry);	 // Fig. 3.4, A -> B
 		chain_.predict(*step.odometry);
+		guard_.travel(*step.odometry);
 	}
 	if (!step.scan || step.scan->measurements.empty()) return {};
+	guard_.sense(*step.scan);
 
 	const Pose2 sensor = toPose2(step.scan->sensor_on_robot);
 	StepReport report = associateScan(step);
@@ -40,13 +45,31 @@ StepReport Dslam::processStep(const StepInput& step)
 			if (a.kind == Association::Kind::New) a = {};
 	}
 	nameNewFeatures(report);
+	if (params_.outlier_chi2_quantile < 1) rejectOutliers(*step.scan, report);
 	const Observed obs = observed(*step.scan, report);
 	if (obs.all.empty()) return report;
 
 	localize(obs, sensor);
 	updateMap(obs, sensor);
 	map_->recover(local_.robot().head<2>());
+	if (params_.relinearise_every_steps > 0 && ++steps_since_relinearisation_ >= params_.relinearise_every_steps)
+		relinearise();
+	guard_.check(map_->ids(), map_->core().state(), local_.robot());
 	return report;
+}
+
+void Dslam::relinearise()
+{
+	const std::size_t n = map_->relinearise(params_.relinearise_threshold_m);
+	if (n > 0) map_->recover(local_.robot().head<2>());
+	steps_since_relinearisation_ = 0;
+	++tally_.relinearisations;
+	tally_.relinearised_terms += n;
+}
+
+void Dslam::finish()
+{
+	if (params_.relinearise_every_steps > 0 && map_ && map_->featureCount() > 0) relinearise();
 }
 
 StepReport Dslam::associateScan(const StepInput& step)
@@ -90,6 +113,61 @@ void Dslam::nameNewFeatures(StepReport& report)
 			a.id = next_own_id_++;
 		}
 		started_.insert(a.id);
+	}
+}
+
+void Dslam::rejectOutliers(const Scan& scan, StepReport& report)
+{
+	const Pose2 sensor = toPose2(scan.sensor_on_robot);
+	const auto reject = [&](std::size_t i)
+	{ report.associations[i] = {Association::Kind::Rejected, report.associations[i].id}; };
+
+	// Localisation: against the local SLAM, before its update (step B).
+	std::vector<IdentifiedMeasurement> used;
+	std::vector<std::size_t> where;
+	for (std::size_t i = 0; i < report.associations.size(); ++i)
+		if (report.associations[i].kind != Association::Kind::Rejected)
+		{
+			const auto& m = scan.measurements[i];
+			used.push_back({report.associations[i].id, Eigen::Vector2d(m.range_m, m.bearing_rad), m.cov});
+			where.push_back(i);
+		}
+	for (int k : localOutliers(local_, used, sensor, params_.outlier_chi2_quantile))
+	{
+		reject(where[k]);
+		++tally_.local_gate_rejections;
+	}
+
+	// Mapping: the scan's mapped features jointly against Map(k), eq. (3.43)-(3.45).
+	std::vector<LandmarkId> ids;
+	std::vector<std::size_t> index;
+	for (std::size_t i = 0; i < report.associations.size(); ++i)
+	{
+		const auto& a = report.associations[i];
+		if (a.kind == Association::Kind::Matched && map_->supported(a.id))
+		{
+			ids.push_back(a.id);
+			index.push_back(i);
+		}
+	}
+	if (ids.size() < 2) return;
+	Eigen::VectorXd z(2 * ids.size());
+	Eigen::MatrixXd R = Eigen::MatrixXd::Zero(z.size(), z.size());
+	MappedView view;
+	view.map_xy.resize(z.size());
+	for (std::size_t k = 0; k < ids.size(); ++k)
+	{
+		const auto& m = scan.measurements[index[k]];
+		z.segment<2>(2 * k) << m.range_m, m.bearing_rad;
+		R.block<2, 2>(2 * k, 2 * k) = m.cov;
+		view.map_xy.segment<2>(2 * k) = map_->position(ids[k]);
+	}
+	view.measured = pointsInRobotFrame(z, R, sensor);
+	view.map_cov = map_->covariance(ids);
+	for (int k : mappedOutliers(view, params_.outlier_chi2_quantile))
+	{
+		reject(index[k]);
+		++tally_.map_gate_rejections;
 	}
 }
 
@@ -265,6 +343,10 @@ CostFigures Dslam::costFigures() const
 	add("anchor_updates", static_cast<double>(tally_.anchor_updates));
 	add("ci_fusions", static_cast<double>(tally_.ci_fusions));
 	add("ci_failures", static_cast<double>(tally_.ci_failures));
+	add("local_gate_rejections", static_cast<double>(tally_.local_gate_rejections));
+	add("map_gate_rejections", static_cast<double>(tally_.map_gate_rejections));
+	add("relinearisations", static_cast<double>(tally_.relinearisations));
+	add("relinearised_terms", static_cast<double>(tally_.relinearised_terms));
 	add("ci_omega_mean", tally_.ci_fusions ? tally_.omega_sum / static_cast<double>(tally_.ci_fusions) : 0.0);
 	if (association_)
 	{

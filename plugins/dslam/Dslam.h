@@ -13,8 +13,16 @@
 /// One step, in the order of Fig. 3.4: predict (A-B); associate; local
 /// SLAM observe (B-C); kidnapped robot from Map(k) (F-G); CI (C, G -> D);
 /// new features into the local SLAM (E); map update to Map(k+1); recovery.
+///
+/// Beyond the book: measurements failing a chi-square gate against the local
+/// SLAM or, jointly on z_map, against the map are rejected whatever the
+/// association (OutlierGate.h); a diverging map stops the run
+/// (DivergenceGuard.h); every relinearise_every_steps steps the map updates
+/// whose features moved are evaluated again at the current estimate
+/// (DslamParams.h says why).
 
 #include "AdmissibleChain.h"
+#include "DivergenceGuard.h"
 #include "DslamParams.h"
 #include "LocalSlam.h"
 
@@ -37,6 +45,7 @@ class Dslam : public FilterPlugin
 	void configure(const ConfigSection& section) override;
 	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
 	StepReport processStep(const StepInput& step) override;
+	void finish() override;
 	PoseEstimate robotPose() const override;
 	Estimate estimate() const override;
 	CostFigures costFigures() const override;
@@ -56,6 +65,8 @@ class Dslam : public FilterPlugin
 	StepReport associateScan(const StepInput& step);
 	StepReport associateByIds(const StepInput& step) const;
 	void nameNewFeatures(StepReport& report);
+	void rejectOutliers(const Scan& scan, StepReport& report);
+	void relinearise();
 	Observed observed(const Scan& scan, const StepReport& report) const;
 	void localize(const Observed& obs, const Pose2& sensor);
 	void fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor);
@@ -70,15 +81,19 @@ class Dslam : public FilterPlugin
 	std::unique_ptr<relative::RelativeAssociation> association_;
 	dslam::LocalSlam local_;
 	dslam::AdmissibleChain chain_;
+	dslam::DivergenceGuard guard_;
 	std::optional<relative::MapUpdate> pending_;  ///< last map update, withdrawn if the next scan is inadmissible
 	std::unordered_set<LandmarkId> started_;	  ///< features reported New so far
 	LandmarkId next_own_id_ = 0;
+	int steps_since_relinearisation_ = 0;
 
 	struct Tally
 	{
 		std::size_t admissible = 0, inadmissible = 0, skipped = 0, withdrawals = 0, virtual_updates = 0,
-					anchor_updates = 0, ci_fusions = 0, ci_failures = 0;
+					anchor_updates = 0, ci_fusions = 0, ci_failures = 0, local_gate_rejections = 0,
+					map_gate_rejections = 0, relinearisations = 0;
 		double omega_sum = 0;
+		std::size_t relinearised_terms = 0;
 	} tally_;
 };
 

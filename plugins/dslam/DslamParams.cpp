@@ -24,6 +24,20 @@ void DslamParams::declare(ParamBinder& b)
 	b.enumeration<FusionScope>("fusion", fusion, {{"robot", FusionScope::Robot}, {"joint", FusionScope::Joint}},
 							   "covariance intersection of the robot-pose marginals (robot) or of the whole aligned "
 							   "states of the local SLAM and the kidnapped-robot solution (joint, the book's)");
+	b.real("outlier_chi2_quantile", outlier_chi2_quantile,
+		   "chi-square confidence of the localisation and mapping outlier gates (any association); 1 = off",
+		   Bounds{0, 1, true, false});
+	b.real("divergence_factor", divergence_factor,
+		   "stop with a numerical error when a feature lies farther from the origin than this times (path + "
+		   "range); 0 = off",
+		   Bounds::nonNegative());
+	b.integer("relinearise_every_steps", relinearise_every_steps,
+			  "every N steps, relinearise every map update at the current estimate; 0 = never (the book)",
+			  Bounds::nonNegative());
+	b.real("relinearise_threshold_m", relinearise_threshold_m,
+		   "relinearise only the map updates whose features' relative geometry moved more than this since their "
+		   "last evaluation [m]; 0 = all",
+		   Bounds::nonNegative());
 	recovery.declare(b);
 }
 

@@ -47,6 +47,33 @@ struct DslamParams
 	int anchor_scans = 20;
 	FusionScope fusion = FusionScope::Robot;  ///< robot | joint
 
+	/// Chi-square confidence of the outlier gates (OutlierGate.h), whatever
+	/// the association: a measurement whose innovation exceeds this quantile
+	/// against the local SLAM, or whose distances and angles contradict the
+	/// map jointly with the scan's others, is rejected (da_rejected). 1 = off.
+	/// 0.999: a correct measurement is rejected once in a thousand.
+	double outlier_chi2_quantile = 0.999;
+	/// Divergence check (DivergenceGuard.h): a feature estimated farther from
+	/// the map origin than this many times (path travelled + largest range
+	/// measured) stops the run with a numerical error. 0 = off.
+	double divergence_factor = 2.0;
+	/// Every this many steps (and at the end), the map updates are evaluated
+	/// again at the current estimate (FeatureMap::relinearise). 0 = never, as
+	/// the book's EIF: then an update keeps the Jacobian of the map as it was
+	/// when it came, and once a loop closure turns a region of the map, its
+	/// old updates hold it at its old orientation with information that
+	/// relative measurements do not have (their Jacobian's null space no
+	/// longer contains the rotation of the current map). On grid1225 that
+	/// left the whole map turned 2.5 deg about the start with 0.3% of the
+	/// features inside their 95% ellipse; relinearising every 200 steps: 1.0
+	/// deg (the full-SLAM optimum's 0.8 deg), 95.6%, for a replay 2-3 times
+	/// as long (grid1225: 3.0-4.5 s -> 8.7-9.0 s with the gates).
+	int relinearise_every_steps = 200;
+	/// ... only the updates whose features' relative geometry (offsets from
+	/// the update's f1) moved more than this since they were evaluated [m];
+	/// 0 = all. 1 cm is a tenth of the range noise.
+	double relinearise_threshold_m = 0.01;
+
 	SparseRecoveryParams recovery;	///< recovery, reordering, n0, ... (Sec. 3.3)
 
 	void declare(ParamBinder& b);

@@ -1,5 +1,9 @@
 #include "LocalSlam.h"
 
+#include <esif/models/Se2.h>
+
+#include <Eigen/Cholesky>
+
 #include <unordered_set>
 
 namespace esif::dslam
@@ -41,6 +45,18 @@ void LocalSlam::addFeatures(const std::vector<IdentifiedMeasurement>& fresh, con
 		ids_.push_back(m.id);
 	}
 	reindex();
+}
+
+std::optional<double> LocalSlam::innovationDistance2(const IdentifiedMeasurement& m,
+													 const Pose2& sensor_on_robot) const
+{
+	const auto it = index_of_.find(m.id);
+	if (it == index_of_.end()) return std::nullopt;
+	const auto h = ekf_.predictMeasurement(it->second, sensor_on_robot);
+	Eigen::Vector2d nu = m.z - h.z;
+	nu(1) = wrapAngle(nu(1));
+	const Eigen::Matrix2d S = ekf_.predictionCovariance({it->second}, sensor_on_robot) + m.R;
+	return nu.dot(S.ldlt().solve(nu));
 }
 
 void LocalSlam::reindex()

@@ -9,6 +9,7 @@
 #include <esif/core/StepInput.h>
 #include <esif/ekf/EkfSlamCore.h>
 
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -42,6 +43,10 @@ class LocalSlam
 	void addFeatures(const std::vector<IdentifiedMeasurement>& fresh, const Pose2& sensor_on_robot);
 
 	bool holds(LandmarkId id) const { return index_of_.count(id) > 0; }
+
+	/// Squared Mahalanobis distance of the innovation of `m` against this
+	/// EKF (S = H P H^T + R), or nothing when its feature is not held.
+	std::optional<double> innovationDistance2(const IdentifiedMeasurement& m, const Pose2& sensor_on_robot) const;
 
 	/// State [robot; features in order()] and its covariance (step C).
 	Eigen::VectorXd state() const { return ekf_.state(); }

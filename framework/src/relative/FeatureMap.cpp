@@ -40,24 +40,58 @@ MapUpdate FeatureMap::updateRelative(const std::vector<LandmarkId>& ids, const P
 {
 	if (ids.size() < 2 || !supported(ids[0]) || !supported(ids[1]))
 		throw std::logic_error("D-SLAM map update: the reference pair must be mapped features");
-	const ValueJacobian z = relativeGeometry(points.xy);  // z_map, eq. (3.8); dT2
 	MapUpdate update;
+	const Eigen::VectorXd z = relativeGeometry(points.xy).value;  // z_map, eq. (3.8)
 	const Eigen::Vector2d f1 = position(ids[0]), f2 = position(ids[1]);
 	for (std::size_t i = 2; i < ids.size(); ++i)
 		if (!contains(ids[i]))
 		{
 			const int row = static_cast<int>(2 * i - 3);
-			createFeature(ids[i], featureFromPair(f1, f2, z.value(row + 1), z.value(row)));	// eq. (3.14)
+			createFeature(ids[i], featureFromPair(f1, f2, z(row + 1), z(row)));	 // eq. (3.14)
 			update.new_features.push_back(ids[i]);
 		}
+	update.term = relativeTerm(ids, points);
+	if (keep_terms_)
+	{
+		update.relative_index = static_cast<long>(terms_.size());
+		terms_.push_back({ids, points, update.term, stackedPositions(ids), true});
+	}
+	markSupported(ids);
+	return update;
+}
+
+UpdateTerm FeatureMap::relativeTerm(const std::vector<LandmarkId>& ids, const PointSet& points)
+{
+	const ValueJacobian z = relativeGeometry(points.xy);  // z_map, eq. (3.8); dT2
 	// Eq. (3.9): R_map = dT2 (dT1 R_old dT1^T) dT2^T; points.cov holds the bracket.
 	const Eigen::MatrixXd R_map = z.jacobian * points.cov * z.jacobian.transpose();
 	// Eq. (3.13): H_map and its Jacobian at the current estimate.
 	const ValueJacobian h = relativeGeometry(stackedPositions(ids));
-	update.term = core_.addMeasurement(variables(ids), h.jacobian, 0.5 * (R_map + R_map.transpose()),
-									   relativeDifference(z.value, h.value));	// eq. (3.15)
-	markSupported(ids);
-	return update;
+	return core_.addMeasurement(variables(ids), h.jacobian, 0.5 * (R_map + R_map.transpose()),
+								relativeDifference(z.value, h.value));	// eq. (3.15)
+}
+
+bool FeatureMap::movedSince(const RelativeTerm& t, double threshold_m) const
+{
+	const Eigen::VectorXd now = stackedPositions(t.ids);
+	const Eigen::Vector2d shift = now.head<2>() - t.linearised_at.head<2>();
+	for (Eigen::Index i = 2; i < now.size(); i += 2)
+		if ((now.segment<2>(i) - t.linearised_at.segment<2>(i) - shift).norm() > threshold_m) return true;
+	return false;
+}
+
+std::size_t FeatureMap::relinearise(double threshold_m)
+{
+	std::size_t n = 0;
+	for (auto& t : terms_)
+		if (t.active && (threshold_m <= 0 || movedSince(t, threshold_m)))
+		{
+			core_.withdraw(t.term);
+			t.term = relativeTerm(t.ids, t.points);
+			t.linearised_at = stackedPositions(t.ids);
+			++n;
+		}
+	return n;
 }
 
 MapUpdate FeatureMap::updateAnchor(const std::vector<LandmarkId>& ids, const PointSet& points)
@@ -78,7 +112,14 @@ MapUpdate FeatureMap::updateAnchor(const std::vector<LandmarkId>& ids, const Poi
 
 void FeatureMap::withdraw(const MapUpdate& update)
 {
-	core_.withdraw(update.term);
+	if (update.relative_index >= 0)
+	{
+		auto& t = terms_.at(static_cast<std::size_t>(update.relative_index));
+		core_.withdraw(t.term);	 // the term as last relinearised
+		t.active = false;
+	}
+	else
+		core_.withdraw(update.term);
 	for (LandmarkId id : update.new_features) unsupported_.insert(id);
 }
 

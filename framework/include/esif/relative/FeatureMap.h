@@ -26,6 +26,7 @@ struct MapUpdate
 {
 	UpdateTerm term;
 	std::vector<LandmarkId> new_features;  ///< features this update created
+	long relative_index = -1;			   ///< its entry among the kept relative terms, if kept
 };
 
 class FeatureMap
@@ -56,6 +57,21 @@ class FeatureMap
 	/// unsupported until an update informs them again.
 	void withdraw(const MapUpdate& update);
 
+	/// Keep every relative update's measurement (ids and points), so that
+	/// relinearise() can evaluate it again. Off by default (the book's EIF
+	/// never revisits an update).
+	void keepRelativeTerms(bool keep) { keep_terms_ = keep; }
+	/// Re-evaluates kept relative updates, eq. (3.15), at the current
+	/// estimate: the old term is subtracted and the measurement added again
+	/// with H_map and its Jacobian at the current estimate (a Gauss-Newton
+	/// step of the static map problem; the sparsity pattern is unchanged).
+	/// Only the terms whose features' relative geometry moved since their
+	/// linearisation by more than `threshold_m` (the largest change of a
+	/// feature's offset from the term's f1; H_map is invariant to a common
+	/// translation, so a translated cluster needs none); 0 = all terms.
+	/// Returns the number of terms relinearised.
+	std::size_t relinearise(double threshold_m = 0);
+
 	/// x = I^-1 i (eq. 3.24), reordering about `robot_xy` when needed.
 	void recover(const Eigen::Vector2d& robot_xy);
 	/// Joint covariance of the features `ids` (eq. 3.25).
@@ -73,7 +89,21 @@ class FeatureMap
 	Eigen::VectorXd stackedPositions(const std::vector<LandmarkId>& ids) const;
 	void markSupported(const std::vector<LandmarkId>& ids);
 
+	/// A kept relative update: its measurement and the term now applied.
+	struct RelativeTerm
+	{
+		std::vector<LandmarkId> ids;
+		PointSet points;
+		UpdateTerm term;
+		Eigen::VectorXd linearised_at;	///< the features' positions when `term` was evaluated
+		bool active = true;
+	};
+	bool movedSince(const RelativeTerm& t, double threshold_m) const;
+	UpdateTerm relativeTerm(const std::vector<LandmarkId>& ids, const PointSet& points);
+
 	SparseInformationCore core_;
+	bool keep_terms_ = false;
+	std::vector<RelativeTerm> terms_;
 	std::unordered_map<LandmarkId, VarId> var_of_;
 	std::vector<LandmarkId> ids_;  ///< in order of creation (= variable order)
 	std::unordered_set<LandmarkId> unsupported_;

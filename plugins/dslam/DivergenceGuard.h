@@ -1,0 +1,46 @@
+#pragma once
+/// \file DivergenceGuard.h
+/// Detects a diverging D-SLAM estimate and stops the run at the step it
+/// happens, with one NumericalError line (exit 3), instead of carrying on
+/// and writing an absurd map. Every feature the robot has seen lies within
+/// the path travelled plus one sensor range of the map origin (the initial
+/// pose); an estimate `factor` times farther than that, a non-finite value
+/// in the map or the robot pose, is no estimate any more. (A singular
+/// information matrix is reported by the sparse core itself.)
+
+#include <esif/core/StepInput.h>
+#include <esif/models/Se2.h>
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace esif::dslam
+{
+class DivergenceGuard
+{
+   public:
+	/// `factor` <= 0 switches the distance check off (non-finite values are
+	/// always errors).
+	explicit DivergenceGuard(double factor = 0) : factor_(factor) {}
+
+	/// Path length from the odometry increment's translation.
+	void travel(const OdometryIncrement& u);
+	/// The largest range measured so far bounds how far a feature is seen.
+	void sense(const Scan& scan);
+
+	/// Distance bound from the origin [m].
+	double bound() const { return factor_ * (path_m_ + max_range_m_); }
+	double pathLength() const { return path_m_; }
+
+	/// Throws NumericalError naming the feature if one of `positions`
+	/// ([x1, y1, x2, y2, ...], features `ids`) is non-finite or beyond
+	/// bound(), or the robot pose is non-finite.
+	void check(const std::vector<LandmarkId>& ids, const Eigen::VectorXd& positions, const Pose2& robot) const;
+
+   private:
+	double factor_;
+	double path_m_ = 0;
+	double max_range_m_ = 0;
+};
+
+}  // namespace esif::dslam
