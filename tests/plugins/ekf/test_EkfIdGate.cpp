@@ -5,6 +5,7 @@
 // the truth the audit and the evaluation score against.
 
 #include <EsifTestSupport.h>
+#include <WrongIds.h>
 
 #include <esif/eval/Evaluator.h>
 #include <esif/io/GroundTruth.h>
@@ -13,9 +14,6 @@
 
 #include <algorithm>
 #include <map>
-#include <numeric>
-#include <random>
-#include <set>
 
 namespace
 {
@@ -40,37 +38,8 @@ GatedRun runEkf(const Rawlog& log, const std::string& section)
 	return r;
 }
 
-/// Where a measurement is: (step, index in the scan).
-using MeasurementAt = std::pair<std::size_t, std::size_t>;
-
-/// Gives `fraction` of the measurements of `log` an ID other than their own,
-/// drawn uniformly from the IDs the log contains (a misread can name any
-/// beacon, also one not yet mapped). Returns the corrupted measurements.
-std::vector<MeasurementAt> corruptIds(Rawlog& log, double fraction, unsigned seed)
-{
-	std::vector<MeasurementAt> all;
-	std::set<LandmarkId> id_set;
-	for (std::size_t k = 0; k < log.steps.size(); ++k)
-		if (log.steps[k].scan)
-			for (std::size_t i = 0; i < log.steps[k].scan->measurements.size(); ++i)
-			{
-				all.emplace_back(k, i);
-				id_set.insert(*log.steps[k].scan->measurements[i].id);
-			}
-	const std::vector<LandmarkId> ids(id_set.begin(), id_set.end());
-	std::mt19937 rng(seed);
-	std::shuffle(all.begin(), all.end(), rng);
-	all.resize(static_cast<std::size_t>(fraction * static_cast<double>(all.size()) + 0.5));
-	std::uniform_int_distribution<std::size_t> pick(0, ids.size() - 1);
-	for (const auto& [k, i] : all)
-	{
-		auto& id = log.steps[k].scan->measurements[i].id;
-		LandmarkId wrong = *id;
-		while (wrong == *id) wrong = ids[pick(rng)];
-		id = wrong;
-	}
-	return all;
-}
+using test::corruptIds;
+using test::MeasurementAt;
 
 /// The corrupted measurements the gate can catch: those whose wrong ID names
 /// a landmark the filter has already confirmed, i.e. whose beacon was seen
