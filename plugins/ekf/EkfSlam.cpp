@@ -18,7 +18,7 @@ CostFigures EkfSlam::costFigures() const
 	c.counters.emplace_back("jcbb_nodes", static_cast<double>(filter_.jcbbNodes()));
 	c.counters.emplace_back("jcbb_fallbacks", static_cast<double>(filter_.jcbbFallbacks()));
 	c.counters.emplace_back("id_gate_rejected", static_cast<double>(filter_.idGateRejections()));
-	c.counters.emplace_back("id_gate_reinitialised", static_cast<double>(filter_.idGateReinitialisations()));
+	c.counters.emplace_back("id_gate_dropped", static_cast<double>(filter_.idGateDrops()));
 	return c;
 }
 

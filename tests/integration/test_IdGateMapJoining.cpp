@@ -84,15 +84,19 @@ TEST(IdGateMapJoining, SlsjfKeepsItsAccuracyWithWrongIds)
 TEST(IdGateMapJoining, DslamMapJoiningIsOnlyPartlyProtected)
 {
 	// Known gap: D-SLAM map joining (600-step maps placed through two
-	// common features, no odometry between maps) is far from its clean
-	// accuracy with the gates (measured 2.2 m landmark RMSE, 17 m ATE,
-	// against 0.04 m and 0.18 m clean), though much better than without
-	// them (22 m, 21 m). The assertion is what holds: the gates cut the
-	// landmark error at least fivefold.
+	// common features, no odometry between maps) keeps its features
+	// (measured 0.058 m landmark RMSE against 0.040 m clean) but not its
+	// trajectory: one map fails the map-level gate as a whole (every
+	// feature, median squared distance ~4e4 in every reference frame tried),
+	// so it and the map after it are unjoinable and their steps keep
+	// unplaced poses (17 m ATE against 0.18 m clean; 22 m and 21 m without
+	// the gates). Asserted: the gates cut the landmark error at least
+	// fivefold, and the trajectory error is the part still open.
 	const auto f = runAll("DslamLocalMapJoining",
 						  "association = auto\nlocal_map_steps = 600\nlocal_map_min_common_features = 2\n"
 						  "local_min_range_m = 0.3\n");
 	EXPECT_LT(5 * *f.gated.accuracy.landmark_rmse_m, *f.ungated.accuracy.landmark_rmse_m);
+	EXPECT_LE(*f.gated.accuracy.landmark_rmse_m, 2 * *f.clean.accuracy.landmark_rmse_m);
 }
 
 }  // namespace

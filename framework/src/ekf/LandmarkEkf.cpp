@@ -35,11 +35,11 @@ StepReport LandmarkEkf::processStep(const StepInput& step)
 StepReport LandmarkEkf::processScan(const StepInput& step)
 {
 	std::vector<EkfSlamCore::Match> matches;
-	reinitialise_.clear();
+	unconfirmed_failing_.clear();
 	StepReport report = associateScan(step, matches);
 	core_.update(matches, toPose2(step.scan->sensor_on_robot));
 	for (const auto& m : matches) confirmed_.insert(ids_[m.landmark]);
-	dropLandmarks(reinitialise_);
+	dropLandmarks(unconfirmed_failing_);
 	addNewLandmarks(*step.scan, report);
 	return report;
 }
@@ -148,9 +148,9 @@ StepReport LandmarkEkf::associateByIds(const StepInput& step, std::vector<EkfSla
 		}
 		else if (!confirmed_.count(id))
 		{
-			reinitialise_.push_back(*index);
-			++id_gate_reinitialisations_;
-			report.associations.push_back({Association::Kind::New, id});
+			unconfirmed_failing_.push_back(*index);
+			++id_gate_drops_;
+			report.associations.push_back({Association::Kind::Rejected, id});
 		}
 		else
 		{

@@ -28,9 +28,16 @@ struct GatedRun
 	std::map<std::string, double> counters;
 };
 
+/// The EKF with the rawlog's IDs and, as the map-joining configs' local
+/// maps, features closer than 0.3 m unused (configs/slsjf.ini says why):
+/// without that rule one near-range bearing update can turn the heading, and
+/// the clean run's landmark RMSE is 0.10 m instead of 0.034 m, dominated by
+/// such events, so a 1.2x comparison would measure which of them a changed
+/// measurement set happens to trigger rather than the gate (measured
+/// without it: 0.129 m corrupted against 0.101 m clean).
 GatedRun runEkf(const Rawlog& log, const std::string& section)
 {
-	auto ekf = test::makePlugin("EkfSlam", "association = known_ids\n" + section);
+	auto ekf = test::makePlugin("EkfSlam", "association = known_ids\nmin_range_m = 0.3\n" + section);
 	GatedRun r{replay(*ekf, log, {0, false}), {}, {}};
 	const auto truth = loadGroundTruth(groundTruthPrefixFor(kGrid196))->inInitialPoseFrame();
 	r.accuracy = evaluate(truth, r.result.record.trajectory, r.result.record.final_estimate, r.result.audit.filterToTrue());
@@ -46,8 +53,8 @@ using test::MeasurementAt;
 /// correctly in at least two earlier scans (initialised at the first, fused
 /// at the second). A misread of a beacon not yet mapped can only start a
 /// landmark (known IDs cannot tell it from a first sighting); one of a
-/// beacon seen once re-initialises it (LandmarkEkf: neither sighting is
-/// more credible), and the next correct sighting re-initialises it again.
+/// beacon seen once drops it with the misread (LandmarkEkf: neither
+/// sighting is more credible); both are rejected.
 std::size_t catchable(const std::vector<MeasurementAt>& corrupted, const Rawlog& corrupted_log)
 {
 	std::map<LandmarkId, std::vector<std::size_t>> steps_of;  // beacon -> steps where truly seen
@@ -113,17 +120,17 @@ TEST_F(EkfIdGate, CleanLogRejectsFewMeasurementsAndKeepsTheEstimate)
 	const double measurements = static_cast<double>(clean_log->measurement_count);
 	const double rejected = clean->counters.at("id_gate_rejected");
 	std::cout << "clean grid196, gate 0.9999: landmark RMSE " << *clean->accuracy.landmark_rmse_m << " m, ATE "
-			  << *clean->accuracy.ate_rmse_m << " m, gate rejections " << rejected << ", re-initialisations "
-			  << clean->counters.at("id_gate_reinitialised") << " of " << measurements
+			  << *clean->accuracy.ate_rmse_m << " m, gate rejections " << rejected << ", unconfirmed landmarks dropped "
+			  << clean->counters.at("id_gate_dropped") << " of " << measurements
 			  << " measurements; no gate: landmark RMSE " << *ungated.accuracy.landmark_rmse_m << " m, ATE "
 			  << *ungated.accuracy.ate_rmse_m << " m\n";
 	EXPECT_EQ(ungated.counters.at("id_gate_rejected"), 0);
-	EXPECT_EQ(ungated.counters.at("id_gate_reinitialised"), 0);
+	EXPECT_EQ(ungated.counters.at("id_gate_dropped"), 0);
 	// A consistent filter's innovations fail the 0.9999 gate 1 time in 10^4;
 	// the EKF is somewhat over-confident (90% of its landmarks pass the 95%
 	// NEES bound, test_EkfGrid196), which makes the tail heavier. 10 times
 	// the nominal rate still means the gate removes almost no information.
-	EXPECT_LE(rejected + clean->counters.at("id_gate_reinitialised"), 10 * 1e-4 * measurements);
+	EXPECT_LE(rejected + clean->counters.at("id_gate_dropped"), 10 * 1e-4 * measurements);
 	// Whatever the gate removed leaves the estimate as it was: within 1 cm
 	// of RMSE, a tenth of the sensor's range sigma (0.1 m).
 	EXPECT_NEAR(*clean->accuracy.landmark_rmse_m, *ungated.accuracy.landmark_rmse_m, 0.01);
@@ -142,18 +149,18 @@ TEST_F(EkfIdGate, WrongIdsAreRejectedAndTheMapKeepsItsAccuracy)
 			  << *clean->accuracy.landmark_rmse_m << " over " << clean->accuracy.landmarks_evaluated << "), ATE "
 			  << *gated.accuracy.ate_rmse_m << " m; corrupted measurements rejected " << o.rejected << ", fused "
 			  << o.fused << ", initialised " << o.initialised << "; da_rejected " << gated.result.audit.rejectedCount()
-			  << ", da_wrong " << gated.result.audit.wrongCount() << ", re-initialisations "
-			  << gated.counters.at("id_gate_reinitialised") << "\n";
+			  << ", da_wrong " << gated.result.audit.wrongCount() << ", unconfirmed landmarks dropped "
+			  << gated.counters.at("id_gate_dropped") << "\n";
 	// A wrong ID names a landmark about 2.9 m (grid spacing 40 m / 14) or
 	// more from the measured one, tens of sigmas of a 0.13 m innovation:
 	// the gate catches every one whose landmark is mapped and confirmed.
 	// The count of those is approximate (a corrupted earlier sighting can
 	// leave a beacon unconfirmed one scan longer): 95% of it.
 	EXPECT_GE(o.rejected, 0.95 * static_cast<double>(can_catch));
-	// Most corrupted measurements are rejected: the misreads of beacons seen
-	// in fewer than two scans are ~30% here (early in the run few beacons
-	// are mapped), and they only start or restart a landmark, never move
-	// the robot.
+	// Most corrupted measurements are rejected: the misreads of beacons not
+	// yet mapped are ~30% here (early in the run few beacons are mapped);
+	// they start a landmark in the wrong place, never move the robot, and
+	// the next correct sighting drops that landmark (it was never confirmed).
 	EXPECT_GE(2 * o.rejected, corrupted->size());
 	EXPECT_EQ(o.rejected + o.initialised, corrupted->size());
 	// A wrong ID can pass only if its landmark lies within the gate of the
@@ -174,7 +181,7 @@ TEST_F(EkfIdGate, WithoutTheGateWrongIdsRuinTheMap)
 			  << ungated.result.audit.wrongCount() << "\n";
 	EXPECT_GT(o.fused, corrupted->size() / 2);
 	// Without it the error is many times the clean one (measured 25 m
-	// against 0.10 m: fused misreads pull the robot metres off, and later
+	// against 0.034 m: fused misreads pull the robot metres off, and later
 	// correct sightings cannot pull it back against the corrupted map).
 	EXPECT_GT(*ungated.accuracy.landmark_rmse_m, 2 * *clean->accuracy.landmark_rmse_m);
 }
