@@ -1,5 +1,9 @@
 #include "DslamLmjParams.h"
 
+#include <esif/association/Chi2.h>
+
+#include <limits>
+
 namespace esif::lmj
 {
 void DslamLmjParams::declare(ParamBinder& b)
@@ -27,8 +31,18 @@ void DslamLmjParams::declare(ParamBinder& b)
 		   "reference features f1, f2 of a local map at least this far apart [m]", Bounds::positive());
 	b.real("reference_min_clearance_m", reference_min_clearance_m,
 		   "no other feature of the map within this of f1 or f2 [m]", Bounds::nonNegative());
+	b.real("id_gate_chi2_quantile", id_gate_chi2_quantile,
+		   "with IDs, an ID-matched local feature that fails this chi-square quantile against its global feature "
+		   "(in a reference pair's frame) is left out (misread ID); 1 = no gate",
+		   Bounds{0, 1, true, false});
+	search.declare(b);
 	builder.declare(b);
 	recovery.declare(b);
+}
+
+double DslamLmjParams::idGateDistance2() const
+{
+	return id_gate_chi2_quantile >= 1 ? std::numeric_limits<double>::infinity() : chi2Quantile(id_gate_chi2_quantile, 2);
 }
 
 LocalMapBuilderParams DslamLmjParams::defaultBuilder()

@@ -5,6 +5,7 @@
 /// reference pair of each local map (Sec. 4.2.2), the local-map builder
 /// (with the two-common-features rule of Sec. 4.4.4) and the sparse recovery.
 
+#include <esif/association/SearchBounds.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/localmap/LocalMapBuilderParams.h>
 #include <esif/sparse/SparseRecoveryParams.h>
@@ -38,6 +39,15 @@ struct DslamLmjParams
 	/// ... whose members have no other feature of the map this close [m]:
 	/// an angle alpha_i12 is undefined when d_1i -> 0.
 	double reference_min_clearance_m = 0.2;
+	/// With IDs: an ID-matched local feature that fails this chi-square
+	/// quantile (2 dof) against its global feature, in the frame of a
+	/// reference pair, is left out (misread ID); 1 = no gate. 0.9999 as the
+	/// local-map builder's gate (LandmarkEkf).
+	double id_gate_chi2_quantile = 0.9999;
+	SearchBounds search;  ///< when JCBB falls back to nearest neighbour (jcbb_max_*)
+
+	/// The chi-square value of id_gate_chi2_quantile (+inf when disabled).
+	double idGateDistance2() const;
 
 	LocalMapBuilderParams builder = defaultBuilder();  ///< local maps built from a rawlog
 	SparseRecoveryParams recovery = defaultRecovery();	///< recovery, reordering, n0 (Sec. 4.4.3, 3.3)

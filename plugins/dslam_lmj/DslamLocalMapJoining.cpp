@@ -194,7 +194,7 @@ bool DslamLocalMapJoining::joinWithLastFusion(
 
 std::optional<UpperLevelOutcome> DslamLocalMapJoining::associate(const LocalMap& map, const Eigen::MatrixXd& feature_cov)
 {
-	if (useIds(map)) return associateByIds(map, *global_);
+	if (useIds(map)) return associateByIds(map, feature_cov, *global_, params_);
 	const auto known = knownGlobalIds(map, false, global_of_local_, *global_);
 	return associateInPairFrame(map, feature_cov, known, *global_, params_);
 }
@@ -272,6 +272,8 @@ bool DslamLocalMapJoining::tryFuse(
 		tally_.candidates += outcome->candidates;
 		tally_.pairs_dropped += outcome->pairs_dropped;
 		tally_.jcbb_nodes += outcome->jcbb_nodes;
+		tally_.jcbb_fallbacks += outcome->jcbb_fallbacks;
+		tally_.id_gate_rejected += outcome->id_gate_rejected;
 		fusion.decisions = outcome->decisions;
 		order = {pair->first, pair->second};
 		std::vector<LandmarkId> taken;
@@ -512,6 +514,8 @@ CostFigures DslamLocalMapJoining::costFigures() const
 	c.counters.emplace_back("association_pairs_dropped", static_cast<double>(tally_.pairs_dropped));
 	c.counters.emplace_back("features_rejected", static_cast<double>(tally_.features_rejected));
 	c.counters.emplace_back("jcbb_nodes", static_cast<double>(tally_.jcbb_nodes));
+	c.counters.emplace_back("jcbb_fallbacks", static_cast<double>(tally_.jcbb_fallbacks));
+	c.counters.emplace_back("id_gate_rejected", static_cast<double>(tally_.id_gate_rejected));
 	return c;
 }
 

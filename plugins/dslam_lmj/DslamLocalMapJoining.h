@@ -131,7 +131,7 @@ class DslamLocalMapJoining : public FilterPlugin, public LocalMapJoiner
 	struct Tally
 	{
 		std::size_t maps_merged = 0, maps_unjoinable = 0, features_rejected = 0, candidates = 0, pairs_dropped = 0,
-					jcbb_nodes = 0;
+					jcbb_nodes = 0, jcbb_fallbacks = 0, id_gate_rejected = 0;
 		double association_s = 0;
 	} tally_;
 };

@@ -7,8 +7,11 @@
 #include <esif/association/PointSetAssociation.h>
 #include <esif/models/LocalMapObservation.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <set>
 
 namespace esif::lmj
@@ -58,6 +61,85 @@ std::vector<LandmarkId> regionCandidates(
 			out.push_back(id);
 	return out;
 }
+/// Squared Mahalanobis distance of each local feature `others` from the
+/// global feature of the same ID, both sides in the frame of the pair (a, b).
+std::vector<double> pairFrameDistances2(const LocalMap& map, const Eigen::MatrixXd& local_cov, int a, int b,
+										const std::vector<int>& others, relative::FeatureMap& global)
+{
+	Eigen::VectorXd local_xy(2 * map.features.size());
+	for (std::size_t i = 0; i < map.features.size(); ++i) local_xy.segment<2>(2 * i) = map.features[i].position;
+	Eigen::MatrixXd local, local_c, global_p, global_c;
+	intoPairFrame(local_xy, local_cov, a, b, others, local, local_c);
+	std::vector<LandmarkId> ids = {map.features[a].id, map.features[b].id};
+	std::vector<int> moved;
+	for (const int i : others) moved.push_back(static_cast<int>(ids.size())), ids.push_back(map.features[i].id);
+	Eigen::VectorXd global_xy(2 * ids.size());
+	for (std::size_t k = 0; k < ids.size(); ++k) global_xy.segment<2>(2 * k) = global.position(ids[k]);
+	intoPairFrame(global_xy, global.covariance(ids), 0, 1, moved, global_p, global_c);
+	std::vector<double> d2;
+	for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(others.size()); ++k)
+	{
+		const Eigen::Matrix2d S = local_c.block<2, 2>(2 * k, 2 * k) + global_c.block<2, 2>(2 * k, 2 * k);
+		const Eigen::Vector2d nu = (local.row(k) - global_p.row(k)).transpose();
+		const Eigen::LLT<Eigen::Matrix2d> llt(S);
+		d2.push_back(llt.info() == Eigen::Success ? nu.dot(llt.solve(nu)) : std::numeric_limits<double>::infinity());
+	}
+	return d2;
+}
+
+/// Squared Mahalanobis distance between the pair's baseline lengths in the
+/// local and the global map (1 dof): what a pair frame cannot see, since it
+/// fixes an origin and a direction but not a scale.
+double baselineDistance2(const LocalMap& map, const Eigen::MatrixXd& local_cov, int a, int b,
+						 relative::FeatureMap& global)
+{
+	const auto lengthAndVariance = [](const Eigen::Vector2d& pa, const Eigen::Vector2d& pb, const Eigen::Matrix4d& cov) {
+		const Eigen::Vector2d d = pb - pa;
+		const double length = d.norm();
+		Eigen::Vector4d J;
+		J << -d / length, d / length;
+		return std::make_pair(length, J.dot(cov * J));
+	};
+	Eigen::Matrix4d Pl;
+	Pl << local_cov.block<2, 2>(2 * a, 2 * a), local_cov.block<2, 2>(2 * a, 2 * b), local_cov.block<2, 2>(2 * b, 2 * a),
+		local_cov.block<2, 2>(2 * b, 2 * b);
+	const LandmarkId ga = map.features[a].id, gb = map.features[b].id;
+	const auto [ll, vl] = lengthAndVariance(map.features[a].position, map.features[b].position, Pl);
+	const auto [lg, vg] = lengthAndVariance(global.position(ga), global.position(gb), global.covariance({ga, gb}));
+	return (ll - lg) * (ll - lg) / (vl + vg);
+}
+
+/// The ID-matched features of `eligible` that fail the gate in the frame of
+/// the reference pair chosen among them without `excluded` (all of
+/// `eligible` when the pair's own baseline fails); nullopt when no pair can
+/// be chosen.
+std::optional<std::vector<int>> failingInPairFrame(const LocalMap& map, const Eigen::MatrixXd& local_cov,
+												   const std::vector<int>& eligible, int excluded,
+												   relative::FeatureMap& global, const DslamLmjParams& params,
+												   std::pair<int, int>& pair_used)
+{
+	const double gate = params.idGateDistance2();
+	std::vector<Eigen::Vector2d> points;
+	for (const auto& f : map.features) points.push_back(f.position);
+	std::vector<int> usable;
+	for (const int i : eligible)
+		if (i != excluded) usable.push_back(i);
+	const auto pair =
+		chooseReferenceFeatures(points, usable, params.reference_min_separation_m, params.reference_min_clearance_m);
+	if (!pair) return std::nullopt;
+	pair_used = *pair;
+	if (!(baselineDistance2(map, local_cov, pair->first, pair->second, global) <=
+		  chi2Quantile(params.id_gate_chi2_quantile, 1)))
+		return eligible;
+	std::vector<int> others;
+	for (const int i : eligible)
+		if (i != pair->first && i != pair->second) others.push_back(i);
+	const auto d2 = pairFrameDistances2(map, local_cov, pair->first, pair->second, others, global);
+	std::vector<int> failing;
+	for (std::size_t k = 0; k < others.size(); ++k)
+		if (!(d2[k] <= gate)) failing.push_back(others[k]);
+	return failing;
+}
 }  // namespace
 
 std::vector<std::optional<LandmarkId>> knownGlobalIds(
@@ -84,12 +166,34 @@ std::vector<std::optional<LandmarkId>> knownGlobalIds(
 	return out;
 }
 
-UpperLevelOutcome associateByIds(const LocalMap& map, const relative::FeatureMap& global)
+UpperLevelOutcome associateByIds(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, relative::FeatureMap& global, const DslamLmjParams& params)
 {
 	UpperLevelOutcome out;
-	for (const auto& f : map.features)
+	std::vector<int> eligible;
+	for (std::size_t i = 0; i < map.features.size(); ++i)
+	{
+		const LandmarkId id = map.features[i].id;
 		out.decisions.associations.push_back(
-			{global.contains(f.id) ? Association::Kind::Matched : Association::Kind::New, f.id});
+			{global.contains(id) ? Association::Kind::Matched : Association::Kind::New, id});
+		if (global.contains(id) && global.supported(id)) eligible.push_back(static_cast<int>(i));
+	}
+	const double gate = params.idGateDistance2();
+	if (eligible.size() < 3 || std::isinf(gate)) return out;
+
+	std::pair<int, int> pair{-1, -1};
+	auto failing = failingInPairFrame(map, local_cov, eligible, -1, global, params, pair);
+	if (!failing) return out;
+	const std::size_t tested = eligible.size() - 2;
+	if (2 * failing->size() > tested)
+		for (const int excluded : {pair.first, pair.second})
+		{
+			std::pair<int, int> other_pair;
+			const auto retry = failingInPairFrame(map, local_cov, eligible, excluded, global, params, other_pair);
+			if (retry && retry->size() < failing->size()) failing = retry;
+		}
+	for (const int i : *failing) out.decisions.associations[i].kind = Association::Kind::Rejected;
+	out.id_gate_rejected = failing->size();
 	return out;
 }
 
@@ -143,9 +247,11 @@ std::optional<UpperLevelOutcome> associateInPairFrame(
 
 	const auto method = params.association == UpperAssociation::NearestNeighbor ? AssociationMethod::NearestNeighbor
 																				 : AssociationMethod::Jcbb;
-	const auto result = associatePointSets(sets, method, params.gate_chi2_quantile, params.joint_chi2_quantile);
+	const auto result =
+		associatePointSets(sets, method, params.gate_chi2_quantile, params.joint_chi2_quantile, params.search);
 	out.pairs_dropped = result.pairs_dropped;
 	out.jcbb_nodes = result.jcbb_nodes;
+	out.jcbb_fallbacks = result.fell_back;
 	const double new_gate = chi2Quantile(params.new_feature_chi2_quantile, 2);
 	for (std::size_t u = 0; u < unknown_indices.size(); ++u)
 	{

@@ -34,6 +34,8 @@ struct UpperLevelOutcome
 	std::size_t candidates = 0;
 	std::size_t pairs_dropped = 0;
 	std::size_t jcbb_nodes = 0;
+	std::size_t jcbb_fallbacks = 0;	 ///< 1 when the map was too ambiguous for JCBB (SearchBounds)
+	std::size_t id_gate_rejected = 0;	///< ID-matched local features that failed the ID gate
 };
 
 /// For each local feature, the global feature it is known to be before any
@@ -44,8 +46,20 @@ std::vector<std::optional<LandmarkId>> knownGlobalIds(
 	const LocalMap& map, bool use_ids, const std::map<LandmarkId, LandmarkId>& global_of_local,
 	const relative::FeatureMap& global);
 
-/// Decisions by IDs alone.
-UpperLevelOutcome associateByIds(const LocalMap& map, const relative::FeatureMap& global);
+/// Decisions by IDs: Matched when the global map has the ID, else New; but
+/// an ID-matched local feature is Rejected (left out of the fusion) when,
+/// in the frame of a reference pair of other ID-matched features (both
+/// sides moved there, each with its own covariance, as for the
+/// association), it fails the chi-square gate params.id_gate_chi2_quantile
+/// (2 dof), or the pair's baseline length differs between the two maps
+/// beyond the same quantile (1 dof; a frame fixes no scale). Rejected, not New: an ID names one feature, so a feature whose
+/// position disagrees with its ID's carries a misread ID, and as a new
+/// feature it would be a spurious one. A misread member of the pair would
+/// make most others fail; then the pair is chosen again without it (first
+/// without f1, then without f2) and the attempt with the fewest failures
+/// is kept. Nothing is tested with fewer than three ID-matched features.
+UpperLevelOutcome associateByIds(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, relative::FeatureMap& global, const DslamLmjParams& params);
 
 /// Sec. 4.4.2 as above; nullopt when fewer than two known features can serve
 /// as the pair. `local_cov` is the covariance of the local features (2n x 2n,

@@ -16,6 +16,9 @@ CostFigures EkfSlam::costFigures() const
 	c.state_dim = filter_.core().stateDim();
 	c.poses_in_state = 1;  // the current robot pose
 	c.counters.emplace_back("jcbb_nodes", static_cast<double>(filter_.jcbbNodes()));
+	c.counters.emplace_back("jcbb_fallbacks", static_cast<double>(filter_.jcbbFallbacks()));
+	c.counters.emplace_back("id_gate_rejected", static_cast<double>(filter_.idGateRejections()));
+	c.counters.emplace_back("id_gate_dropped", static_cast<double>(filter_.idGateDrops()));
 	return c;
 }
 

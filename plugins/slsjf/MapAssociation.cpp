@@ -4,8 +4,10 @@
 #include <esif/association/PointSetAssociation.h>
 #include <esif/models/LocalMapObservation.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 namespace esif::slsjf
@@ -81,12 +83,36 @@ double mapRadius(const LocalMap& map, const Eigen::MatrixXd& local_cov, double s
 	return radius;
 }
 
-MapAssociationOutcome associateByIds(const LocalMap& map, const GlobalMap& global)
+MapAssociationOutcome associateByIds(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, std::optional<VarId> start, GlobalMap& global,
+	const SlsjfParams& params)
 {
 	MapAssociationOutcome out;
-	for (const auto& f : map.features)
-		out.decisions.associations.push_back(
-			{global.featureVar(f.id) ? Association::Kind::Matched : Association::Kind::New, f.id});
+	std::vector<Eigen::Index> matched;
+	std::vector<VarId> vars;
+	for (std::size_t i = 0; i < map.features.size(); ++i)
+	{
+		const auto& f = map.features[i];
+		const auto var = global.featureVar(f.id);
+		out.decisions.associations.push_back({var ? Association::Kind::Matched : Association::Kind::New, f.id});
+		if (var) matched.push_back(static_cast<Eigen::Index>(i)), vars.push_back(*var);
+	}
+	const double gate = params.idGateDistance2();
+	if (!start || matched.empty() || std::isinf(gate)) return out;
+
+	// The matched global features in the local frame (one covariance recovery).
+	PointSets sets;
+	candidatesInLocalFrame(global, *start, vars, sets);
+	for (std::size_t k = 0; k < matched.size(); ++k)
+	{
+		const Eigen::Index i = matched[k], c = static_cast<Eigen::Index>(k);
+		const Eigen::Matrix2d S = local_cov.block<2, 2>(3 + 2 * i, 3 + 2 * i) + sets.candidates_cov.block<2, 2>(2 * c, 2 * c);
+		const Eigen::Vector2d nu = map.features[i].position - sets.candidates.row(c).transpose();
+		const Eigen::LLT<Eigen::Matrix2d> llt(S);
+		if (llt.info() == Eigen::Success && nu.dot(llt.solve(nu)) <= gate) continue;
+		out.decisions.associations[i].kind = Association::Kind::Rejected;
+		++out.id_gate_rejected;
+	}
 	return out;
 }
 
@@ -121,9 +147,11 @@ MapAssociationOutcome associateGeometrically(
 
 	const auto method = params.association == GlobalAssociation::NearestNeighbor ? AssociationMethod::NearestNeighbor
 																				  : AssociationMethod::Jcbb;
-	const auto result = associatePointSets(sets, method, params.gate_chi2_quantile, params.joint_chi2_quantile);
+	const auto result =
+		associatePointSets(sets, method, params.gate_chi2_quantile, params.joint_chi2_quantile, params.search);
 	out.pairs_dropped = result.pairs_dropped;
 	out.jcbb_nodes = result.jcbb_nodes;
+	out.jcbb_fallbacks = result.fell_back;
 	const double new_gate = chi2Quantile(params.new_feature_chi2_quantile, 2);
 	for (Eigen::Index i = 0; i < M; ++i)
 	{

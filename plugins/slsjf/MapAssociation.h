@@ -33,6 +33,8 @@ struct MapAssociationOutcome
 	std::size_t candidates = 0;
 	std::size_t pairs_dropped = 0;	///< MRPT pairs the exact joint test removed
 	std::size_t jcbb_nodes = 0;
+	std::size_t jcbb_fallbacks = 0;	 ///< 1 when the map was too ambiguous for JCBB (SearchBounds)
+	std::size_t id_gate_rejected = 0;	///< ID-matched local features that failed the ID gate
 };
 
 /// Extent of a local map: the farthest of its end position and features
@@ -40,8 +42,18 @@ struct MapAssociationOutcome
 /// the largest eigenvalue of its 2x2 covariance block).
 double mapRadius(const LocalMap& map, const Eigen::MatrixXd& local_cov, double sigmas);
 
-/// Equal IDs are one feature: Matched when the global map has the ID, else New.
-MapAssociationOutcome associateByIds(const LocalMap& map, const GlobalMap& global);
+/// Equal IDs are one feature: Matched when the global map has the ID, else
+/// New; but a local feature whose global feature of the same ID, moved into
+/// the local map's frame with the start pose, fails the chi-square gate
+/// params.id_gate_chi2_quantile (2 dof, covariance of both sides) is
+/// Rejected: left out of the fusion (marginalised from the local map). Not
+/// New: an ID names one feature, and the local feature carries a misread
+/// ID (its position belongs to another feature), so as a new feature it
+/// would be a spurious one. The gate is checked per feature, not jointly,
+/// for the reason LandmarkEkf gives.
+MapAssociationOutcome associateByIds(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, std::optional<VarId> start, GlobalMap& global,
+	const SlsjfParams& params);
 
 /// Sec. 5.4.1 as above. `local_cov` is the local state's covariance,
 /// `start` the map's start pose variable (from GlobalMap::startPose).

@@ -86,7 +86,7 @@ bool Slsjf::useIds(const LocalMap& map) const
 
 MapAssociationOutcome Slsjf::associate(const LocalMap& map, std::optional<VarId> start)
 {
-	if (useIds(map)) return associateByIds(map, *global_);
+	if (useIds(map)) return associateByIds(map, map.covarianceMatrix(), start, *global_, params_);
 	return associateGeometrically(map, map.covarianceMatrix(), start, *global_, params_);
 }
 
@@ -108,6 +108,8 @@ void Slsjf::fuse(const LocalMap& map)
 	tally_.association_s += association_s;
 	tally_.pairs_dropped += outcome.pairs_dropped;
 	tally_.jcbb_nodes += outcome.jcbb_nodes;
+	tally_.jcbb_fallbacks += outcome.jcbb_fallbacks;
+	tally_.id_gate_rejected += outcome.id_gate_rejected;
 	tally_.candidates += outcome.candidates;
 	tally_.maps_selected += outcome.maps_selected;
 
@@ -255,6 +257,8 @@ CostFigures Slsjf::costFigures() const
 	c.counters.emplace_back("association_pairs_dropped", static_cast<double>(tally_.pairs_dropped));
 	c.counters.emplace_back("features_rejected", static_cast<double>(tally_.features_rejected));
 	c.counters.emplace_back("jcbb_nodes", static_cast<double>(tally_.jcbb_nodes));
+	c.counters.emplace_back("jcbb_fallbacks", static_cast<double>(tally_.jcbb_fallbacks));
+	c.counters.emplace_back("id_gate_rejected", static_cast<double>(tally_.id_gate_rejected));
 	c.counters.emplace_back("smoothing_runs", static_cast<double>(tally_.smoothing_runs));
 	c.counters.emplace_back("smoothing_iterations", static_cast<double>(tally_.smoothing_iterations));
 	c.counters.emplace_back("smoothing_s", tally_.smoothing_s);

@@ -1,5 +1,9 @@
 #include "SlsjfParams.h"
 
+#include <esif/association/Chi2.h>
+
+#include <limits>
+
 namespace esif::slsjf
 {
 void SlsjfParams::declare(ParamBinder& b)
@@ -23,6 +27,11 @@ void SlsjfParams::declare(ParamBinder& b)
 		   Bounds::nonNegative());
 	b.real("overlap_sigmas", overlap_sigmas, "sigmas added to map radii and start-pose uncertainty in the overlap test",
 		   Bounds::nonNegative());
+	b.real("id_gate_chi2_quantile", id_gate_chi2_quantile,
+		   "with IDs, a local feature whose same-ID global feature fails this chi-square quantile is left out "
+		   "(misread ID); 1 = no gate",
+		   Bounds{0, 1, true, false});
+	search.declare(b);
 	b.enumeration<Smoothing>(
 		"smoothing", smoothing,
 		{{"none", Smoothing::None}, {"final", Smoothing::Final}, {"every_k_maps", Smoothing::EveryKMaps}},
@@ -35,6 +44,11 @@ void SlsjfParams::declare(ParamBinder& b)
 		   "relinearisation stops when no estimate moves more than this [m or rad]", Bounds::positive());
 	builder.declare(b);
 	recovery.declare(b);
+}
+
+double SlsjfParams::idGateDistance2() const
+{
+	return id_gate_chi2_quantile >= 1 ? std::numeric_limits<double>::infinity() : chi2Quantile(id_gate_chi2_quantile, 2);
 }
 
 SparseRecoveryParams SlsjfParams::defaultRecovery()

@@ -4,6 +4,7 @@
 /// association (Sec. 5.4.1), the optional relinearisation of all fused maps
 /// (iterated SLSJF), the local-map builder and the sparse recovery.
 
+#include <esif/association/SearchBounds.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/localmap/LocalMapBuilderParams.h>
 #include <esif/sparse/SparseRecoveryParams.h>
@@ -47,6 +48,14 @@ struct SlsjfParams
 	/// Sigmas added to local-map radii and to the start-pose uncertainty in
 	/// the overlap test (the authors' SigmaMultiplier).
 	double overlap_sigmas = 3.0;
+	/// With IDs: a local feature whose same-ID global feature fails this
+	/// chi-square quantile (2 dof) is left out (misread ID); 1 = no gate.
+	/// 0.9999 as the local-map builder's gate (LandmarkEkf).
+	double id_gate_chi2_quantile = 0.9999;
+	SearchBounds search;  ///< when JCBB falls back to nearest neighbour (jcbb_max_*)
+
+	/// The chi-square value of id_gate_chi2_quantile (+inf when disabled).
+	double idGateDistance2() const;
 
 	Smoothing smoothing = Smoothing::None;	///< none | final | every_k_maps
 	int smoothing_every_maps = 50;	///< K of every_k_maps

@@ -48,7 +48,12 @@ class AssociationsFrom : public ::testing::Test
 		ASSERT_EQ(r.exit_code, 0) << r.out;
 		std::ofstream(dir_->file("jcbb.ini"))
 			<< "[esif]\nplugin = EkfSlam\nlabel = jcbb\nhide_landmark_ids = true\n[ekf]\nassociation = jcbb\n";
-		std::ofstream(dir_->file("ids.ini")) << "[esif]\nplugin = EkfSlam\nlabel = ids\n[ekf]\nassociation = known_ids\n";
+		// The source run trusts the IDs (no ID gate): a measurement its gate
+		// rejected would reach the replaying known_ids filter without an ID,
+		// which it refuses (an open interplay of the gate and
+		// associations_from).
+		std::ofstream(dir_->file("ids.ini"))
+			<< "[esif]\nplugin = EkfSlam\nlabel = ids\n[ekf]\nassociation = known_ids\nid_gate_chi2_quantile = 1\n";
 		writeKnownIds("known.ini", "");
 	}
 	static void TearDownTestSuite() { dir_.reset(); }

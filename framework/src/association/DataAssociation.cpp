@@ -1,7 +1,9 @@
+#include <esif/association/Chi2.h>
 #include <esif/association/DataAssociation.h>
 #include <esif/models/Se2.h>
 
 #include <mrpt/math/CMatrixDynamic.h>
+#include <mrpt/math/distributions.h>
 #include <mrpt/slam/data_association.h>
 
 #include <Eigen/Dense>
@@ -43,9 +45,12 @@ mrpt::math::CMatrixDouble toMrpt(const Eigen::MatrixXd& m)
 	return out;
 }
 
-std::vector<double> minimumDistances(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S)
+/// Squared Mahalanobis distance of every (observation, prediction) pair, with
+/// the prediction's diagonal block as covariance (as MRPT computes it);
+/// infinity where that block is not positive definite.
+Eigen::MatrixXd pairDistances(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S)
 {
-	std::vector<double> out(z.rows(), std::numeric_limits<double>::infinity());
+	Eigen::MatrixXd d2 = Eigen::MatrixXd::Constant(z.rows(), y.rows(), std::numeric_limits<double>::infinity());
 	for (Eigen::Index j = 0; j < y.rows(); ++j)
 	{
 		const Eigen::LLT<Eigen::Matrix2d> llt(S.block<2, 2>(2 * j, 2 * j));
@@ -53,14 +58,67 @@ std::vector<double> minimumDistances(const Eigen::MatrixXd& z, const Eigen::Matr
 		for (Eigen::Index i = 0; i < z.rows(); ++i)
 		{
 			const Eigen::Vector2d nu = (z.row(i) - y.row(j)).transpose();
-			out[i] = std::min(out[i], nu.dot(llt.solve(nu)));
+			d2(i, j) = nu.dot(llt.solve(nu));
 		}
 	}
-	return out;
+	return d2;
+}
+
+/// Exact joint squared Mahalanobis distance of the pairs (i, candidate_of[i] >= 0).
+double jointDistance2(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
+					  const std::vector<int>& candidate_of)
+{
+	std::vector<Eigen::Index> obs, cand;
+	for (std::size_t i = 0; i < candidate_of.size(); ++i)
+		if (candidate_of[i] >= 0) obs.push_back(static_cast<Eigen::Index>(i)), cand.push_back(candidate_of[i]);
+	const auto k = static_cast<Eigen::Index>(obs.size());
+	if (k == 0) return 0;
+	Eigen::VectorXd nu(2 * k);
+	Eigen::MatrixXd Sk(2 * k, 2 * k);
+	for (Eigen::Index a = 0; a < k; ++a)
+	{
+		nu.segment<2>(2 * a) = (z.row(obs[a]) - y.row(cand[a])).transpose();
+		for (Eigen::Index b = 0; b < k; ++b) Sk.block<2, 2>(2 * a, 2 * b) = S.block<2, 2>(2 * cand[a], 2 * cand[b]);
+	}
+	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (Sk + Sk.transpose()));
+	if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+	return nu.dot(llt.solve(nu));
+}
+
+/// The fallback's joint compatibility test (Neira & Tardos 2001): while the
+/// pairs fail it, the pair with the largest individual distance is dropped.
+/// At most one O(k^3) test per pair.
+std::size_t enforceJointCompatibility(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
+									  const Eigen::MatrixXd& d2, double quantile, std::vector<int>& candidate_of)
+{
+	std::size_t dropped = 0;
+	for (;;)
+	{
+		const auto pairs = std::count_if(candidate_of.begin(), candidate_of.end(), [](int c) { return c >= 0; });
+		if (pairs == 0 || jointDistance2(z, y, S, candidate_of) <= chi2Quantile(quantile, 2 * static_cast<int>(pairs)))
+			return dropped;
+		std::size_t worst = 0;
+		double worst_d2 = -1;
+		for (std::size_t i = 0; i < candidate_of.size(); ++i)
+			if (candidate_of[i] >= 0 && d2(i, candidate_of[i]) > worst_d2) worst_d2 = d2(i, candidate_of[i]), worst = i;
+		candidate_of[worst] = -1;
+		++dropped;
+	}
+}
+
+/// Individually compatible candidates of each observation at MRPT's own
+/// threshold (its chi2inv), which is what its search branches on.
+std::vector<int> compatibleCounts(const Eigen::MatrixXd& d2, double gate_quantile)
+{
+	const double threshold = mrpt::math::chi2inv(gate_quantile, 2);
+	std::vector<int> counts(d2.rows(), 0);
+	for (Eigen::Index i = 0; i < d2.rows(); ++i) counts[i] = static_cast<int>((d2.row(i).array() < threshold).count());
+	return counts;
 }
 }  // namespace
 
-AssociationResult associate(const AssociationInput& input, AssociationMethod method, double gate_quantile)
+AssociationResult associate(
+	const AssociationInput& input, AssociationMethod method, double gate_quantile, const SearchBounds& bounds)
 {
 	AssociationResult out;
 	const auto M = input.observations.rows(), N = input.predictions.rows();
@@ -72,17 +130,23 @@ AssociationResult associate(const AssociationInput& input, AssociationMethod met
 	Eigen::MatrixXd z = input.observations, y = input.predictions;
 	for (Eigen::Index i = 0; i < M; ++i) z(i, 1) = wrapAngle(z(i, 1) + offset);
 	for (Eigen::Index j = 0; j < N; ++j) y(j, 1) = wrapAngle(y(j, 1) + offset);
+	const Eigen::MatrixXd d2 = pairDistances(z, y, input.covariance);
+	for (Eigen::Index i = 0; i < M; ++i) out.min_distance2[i] = d2.row(i).minCoeff();
+
+	out.effort = searchEffort(compatibleCounts(d2, gate_quantile));
+	out.fell_back = method == AssociationMethod::Jcbb && !out.effort.within(bounds);
+	const bool jcbb = method == AssociationMethod::Jcbb && !out.fell_back;
 
 	mrpt::slam::TDataAssociationResults results;
 	mrpt::slam::data_association_full_covariance(
-		toMrpt(z), toMrpt(y), toMrpt(input.covariance), results,
-		method == AssociationMethod::Jcbb ? mrpt::slam::assocJCBB : mrpt::slam::assocNN, mrpt::slam::metricMaha,
-		gate_quantile, /*use_kdtree=*/false);
+		toMrpt(z), toMrpt(y), toMrpt(input.covariance), results, jcbb ? mrpt::slam::assocJCBB : mrpt::slam::assocNN,
+		mrpt::slam::metricMaha, gate_quantile, /*use_kdtree=*/false);
 
 	for (const auto& [obs, pred] : results.associations)
 		if (obs < static_cast<std::size_t>(M)) out.candidate_of[obs] = static_cast<int>(pred);
-	out.min_distance2 = minimumDistances(z, y, input.covariance);
 	out.jcbb_nodes = results.nNodesExploredInJCBB;
+	if (out.fell_back)
+		out.pairs_dropped = enforceJointCompatibility(z, y, input.covariance, d2, gate_quantile, out.candidate_of);
 	return out;
 }
 

@@ -142,8 +142,8 @@ void improveByExchange(const PointSets& s, double gate, std::vector<int>& candid
 }
 }  // namespace
 
-PointAssociation associatePointSets(
-	const PointSets& sets, AssociationMethod method, double gate_quantile, double joint_quantile)
+PointAssociation associatePointSets(const PointSets& sets, AssociationMethod method, double gate_quantile,
+									double joint_quantile, const SearchBounds& bounds)
 {
 	checkSizes(sets);
 	PointAssociation out;
@@ -152,11 +152,20 @@ PointAssociation associatePointSets(
 	out.min_distance2.assign(M, std::numeric_limits<double>::infinity());
 	if (M == 0 || N == 0) return out;  // MRPT asserts both are non-empty
 
-	for (Eigen::Index i = 0; i < M; ++i)
-		for (Eigen::Index c = 0; c < N; ++c) out.min_distance2[i] = std::min(out.min_distance2[i], pairDistance2(sets, i, c));
-
-	out.candidate_of = mrptHypothesis(sets, method, gate_quantile, out.jcbb_nodes);
 	const double individual_gate = chi2Quantile(gate_quantile, 2);
+	std::vector<int> compatible(M, 0);
+	for (Eigen::Index i = 0; i < M; ++i)
+		for (Eigen::Index c = 0; c < N; ++c)
+		{
+			const double d2 = pairDistance2(sets, i, c);
+			out.min_distance2[i] = std::min(out.min_distance2[i], d2);
+			compatible[i] += d2 <= individual_gate;
+		}
+	out.effort = searchEffort(compatible);
+	out.fell_back = method == AssociationMethod::Jcbb && !out.effort.within(bounds);
+
+	out.candidate_of =
+		mrptHypothesis(sets, out.fell_back ? AssociationMethod::NearestNeighbor : method, gate_quantile, out.jcbb_nodes);
 	improveByExchange(sets, individual_gate, out.candidate_of);
 	for (Eigen::Index i = 0; i < M; ++i)
 		if (out.candidate_of[i] >= 0 && pairDistance2(sets, i, out.candidate_of[i]) > individual_gate)

@@ -1,4 +1,7 @@
+#include <esif/association/Chi2.h>
 #include <esif/ekf/EkfAssociationParams.h>
+
+#include <limits>
 
 namespace esif
 {
@@ -24,6 +27,16 @@ void EkfAssociationParams::declare(ParamBinder& b)
 	b.real("min_range_m", min_range_m,
 		   "measurements of features closer than this are not used (their bearing is not linearisable) [m]",
 		   Bounds::nonNegative());
+	b.real("id_gate_chi2_quantile", id_gate_chi2_quantile,
+		   "a measurement associated by its landmark ID whose innovation fails this chi-square quantile is "
+		   "rejected (misread ID); 1 = no gate",
+		   Bounds{0, 1, true, false});
+	search.declare(b);
+}
+
+double EkfAssociationParams::idGateDistance2() const
+{
+	return id_gate_chi2_quantile >= 1 ? std::numeric_limits<double>::infinity() : chi2Quantile(id_gate_chi2_quantile, 2);
 }
 
 }  // namespace esif

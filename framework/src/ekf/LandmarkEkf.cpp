@@ -3,8 +3,10 @@
 #include <esif/core/Errors.h>
 #include <esif/ekf/LandmarkEkf.h>
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace esif
@@ -17,6 +19,7 @@ constexpr double kDeg = M_PI / 180.0;
 LandmarkEkf::LandmarkEkf(const EkfAssociationParams& params, LandmarkId first_own_id)
 	: params_(params),
 	  gate_distance2_new_(chi2Quantile(params.new_landmark_chi2_quantile, 2)),
+	  id_gate_distance2_(params.idGateDistance2()),
 	  next_own_id_(first_own_id)
 {
 }
@@ -26,12 +29,43 @@ StepReport LandmarkEkf::processStep(const StepInput& step)
 	if (step.odometry) core_.predict(*step.odometry);
 	if (!step.scan) return {};
 	if (params_.min_range_m > 0) return processUsableMeasurements(step);
+	return processScan(step);
+}
 
+StepReport LandmarkEkf::processScan(const StepInput& step)
+{
 	std::vector<EkfSlamCore::Match> matches;
+	unconfirmed_failing_.clear();
 	StepReport report = associateScan(step, matches);
 	core_.update(matches, toPose2(step.scan->sensor_on_robot));
+	for (const auto& m : matches) confirmed_.insert(ids_[m.landmark]);
+	dropLandmarks(unconfirmed_failing_);
 	addNewLandmarks(*step.scan, report);
 	return report;
+}
+
+void LandmarkEkf::dropLandmarks(std::vector<std::size_t> indices)
+{
+	if (indices.empty()) return;
+	std::sort(indices.begin(), indices.end());
+	std::vector<std::size_t> keep;
+	std::vector<LandmarkId> kept_ids;
+	for (std::size_t i = 0; i < ids_.size(); ++i)
+		if (!std::binary_search(indices.begin(), indices.end(), i)) keep.push_back(i), kept_ids.push_back(ids_[i]);
+	core_.retainLandmarks(keep);
+	ids_ = std::move(kept_ids);
+	index_of_.clear();
+	for (std::size_t i = 0; i < ids_.size(); ++i) index_of_[ids_[i]] = i;
+}
+
+double LandmarkEkf::innovationDistance2(std::size_t index, const RangeBearing& m, const Pose2& sensor) const
+{
+	const auto h = core_.predictMeasurement(index, sensor);
+	Eigen::Vector2d nu(m.range_m - h.z(0), wrapAngle(m.bearing_rad - h.z(1)));
+	const Eigen::Matrix2d S = core_.predictionCovariance({index}, sensor) + m.cov;
+	const Eigen::LLT<Eigen::Matrix2d> llt(S);
+	if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+	return nu.dot(llt.solve(nu));
 }
 
 StepReport LandmarkEkf::processUsableMeasurements(const StepInput& step)
@@ -49,10 +83,7 @@ StepReport LandmarkEkf::processUsableMeasurements(const StepInput& step)
 	usable.index = step.index;
 	usable.time_s = step.time_s;
 	usable.scan = std::move(kept);
-	std::vector<EkfSlamCore::Match> matches;
-	StepReport partial = associateScan(usable, matches);
-	core_.update(matches, toPose2(usable.scan->sensor_on_robot));
-	addNewLandmarks(*usable.scan, partial);
+	const StepReport partial = processScan(usable);
 
 	StepReport report;
 	std::size_t next = 0;
@@ -81,33 +112,50 @@ StepReport LandmarkEkf::associateScan(const StepInput& step, std::vector<EkfSlam
 	}
 }
 
-StepReport LandmarkEkf::associateByIds(const StepInput& step, std::vector<EkfSlamCore::Match>& matches) const
+StepReport LandmarkEkf::associateByIds(const StepInput& step, std::vector<EkfSlamCore::Match>& matches)
 {
-	StepReport report;
-	std::unordered_map<LandmarkId, bool> seen;
 	const auto& ms = step.scan->measurements;
+	const Pose2 sensor = toPose2(step.scan->sensor_on_robot);
+	// A second measurement of one landmark in one scan is not independent
+	// information about it: only the one closest to the landmark is used
+	// (the first when the landmark is new), so a misread ID cannot displace
+	// the correct measurement.
+	std::vector<double> d2(ms.size(), 0);
+	std::unordered_map<LandmarkId, std::size_t> used;
 	for (std::size_t i = 0; i < ms.size(); ++i)
 	{
 		if (!ms[i].id)
 			throw InputError(
 				"step " + std::to_string(step.index) + ", measurement " + std::to_string(i) +
 				": no landmark ID but association = known_ids");
+		if (const auto index = indexOf(*ms[i].id)) d2[i] = innovationDistance2(*index, ms[i], sensor);
+		if (const auto [it, first] = used.emplace(*ms[i].id, i); !first && d2[i] < d2[it->second]) it->second = i;
+	}
+
+	StepReport report;
+	for (std::size_t i = 0; i < ms.size(); ++i)
+	{
 		const LandmarkId id = *ms[i].id;
-		// A second measurement of one landmark in one scan is not independent
-		// information about it: use the first only.
-		if (seen[id])
-		{
+		const auto index = indexOf(id);
+		if (used.at(id) != i)
 			report.associations.push_back({Association::Kind::Rejected, id});
-			continue;
-		}
-		seen[id] = true;
-		const auto it = index_of_.find(id);
-		if (it == index_of_.end())
+		else if (!index)
 			report.associations.push_back({Association::Kind::New, id});
-		else
+		else if (d2[i] <= id_gate_distance2_)
 		{
 			report.associations.push_back({Association::Kind::Matched, id});
-			matches.push_back({it->second, Eigen::Vector2d(ms[i].range_m, ms[i].bearing_rad), ms[i].cov});
+			matches.push_back({*index, Eigen::Vector2d(ms[i].range_m, ms[i].bearing_rad), ms[i].cov});
+		}
+		else if (!confirmed_.count(id))
+		{
+			unconfirmed_failing_.push_back(*index);
+			++id_gate_drops_;
+			report.associations.push_back({Association::Kind::Rejected, id});
+		}
+		else
+		{
+			++id_gate_rejections_;
+			report.associations.push_back({Association::Kind::Rejected, id});
 		}
 	}
 	return report;
@@ -152,8 +200,9 @@ StepReport LandmarkEkf::associateByDistance(const Scan& scan, std::vector<EkfSla
 	const auto result = associate(
 		in, params_.association == EkfAssociation::NearestNeighbor ? AssociationMethod::NearestNeighbor
 																   : AssociationMethod::Jcbb,
-		params_.gate_chi2_quantile);
+		params_.gate_chi2_quantile, params_.search);
 	jcbb_nodes_ += result.jcbb_nodes;
+	jcbb_fallbacks_ += result.fell_back;
 
 	StepReport report;
 	std::vector<bool> taken(candidates.size(), false);

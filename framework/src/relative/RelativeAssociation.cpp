@@ -68,8 +68,9 @@ StepReport RelativeAssociation::associate(const Scan& scan, const Pose2& robot, 
 
 	const auto method = params_.association == AssociationMode::NearestNeighbor ? AssociationMethod::NearestNeighbor
 																			: AssociationMethod::Jcbb;
-	const auto result = esif::associate(in, method, params_.gate_chi2_quantile);
+	const auto result = esif::associate(in, method, params_.gate_chi2_quantile, params_.search);
 	jcbb_nodes_ += result.jcbb_nodes;
+	jcbb_fallbacks_ += result.fell_back;
 
 	std::vector<Match> matches;
 	std::vector<bool> taken(candidates.size(), false);

@@ -23,6 +23,7 @@ void RelativeAssociationParams::declare(ParamBinder& b)
 		   Bounds::nonNegative());
 	b.real("candidate_margin_deg", candidate_margin_deg, "bearing margin for association candidates [deg]",
 		   Bounds::closed(0, 180));
+	search.declare(b);
 }
 
 }  // namespace esif::relative

@@ -15,6 +15,7 @@
 
 #include <esif/io/RawlogReader.h>
 #include <esif/localmap/LocalMapBuilder.h>
+#include <esif/models/LocalMapObservation.h>
 #include <esif/plugin/LocalMapJoiner.h>
 #include <esif/relative/FeatureMap.h>
 #include <esif/relative/RelativeGeometry.h>
@@ -137,6 +138,60 @@ TEST(LmjUnits, TwoLocalFeaturesGivenOneGlobalFeatureAreNeitherKnown)
 	EXPECT_FALSE(known[1]);
 	ASSERT_TRUE(known[2]);
 	EXPECT_EQ(*known[2], 101);
+}
+
+/// A global map of six features 3 m apart (ids 1-6) and a local map of the
+/// same six seen from another frame with 2 cm of noise, except that the
+/// local feature of id `misread` lies where no mapped feature is (a misread
+/// ID: its position belongs to an unmapped beacon at (6, 6)).
+struct MisreadCase
+{
+	relative::FeatureMap global{SparseRecoveryParams{}};
+	LocalMap map;
+	Eigen::MatrixXd local_cov;
+};
+
+void buildMisreadCase(MisreadCase& c, LandmarkId misread)
+{
+	const std::vector<Eigen::Vector2d> truth = {{0, 0}, {3, 0}, {6, 0}, {0, 3}, {3, 3}, {6, 3}};
+	Eigen::VectorXd xy(12);
+	for (int i = 0; i < 6; ++i) xy.segment<2>(2 * i) = truth[i];
+	c.global.updateAnchor({1, 2, 3, 4, 5, 6}, {xy, 0.02 * 0.02 * Eigen::MatrixXd::Identity(12, 12)});
+	const Pose2 frame(1, 2, 0.3);
+	std::mt19937 rng(11);
+	std::normal_distribution<double> noise(0, 0.02);
+	c.map.index = 2;
+	for (int i = 0; i < 6; ++i)
+	{
+		const Eigen::Vector2d p = (i + 1 == misread) ? Eigen::Vector2d(6, 6) : truth[i];
+		const Eigen::Vector2d local = pointInFrame(frame, p).value + Eigen::Vector2d(noise(rng), noise(rng));
+		c.map.features.push_back({i + 1, local, false});
+	}
+	c.local_cov = 0.02 * 0.02 * Eigen::MatrixXd::Identity(12, 12);
+}
+
+TEST(LmjUnits, IdMatchedFeatureFailingTheGateIsLeftOut)
+{
+	// Feature 5 (inside the grid) misread, and feature 3, whose misplaced
+	// position makes the widest baseline: the reference pair is then the
+	// misread one, most others fail, and the pair is chosen again without it.
+	for (const LandmarkId misread : {5, 3})
+	{
+		MisreadCase c;
+		buildMisreadCase(c, misread);
+		lmj::DslamLmjParams params;
+		const auto out = lmj::associateByIds(c.map, c.local_cov, c.global, params);
+		ASSERT_EQ(out.decisions.associations.size(), 6u);
+		EXPECT_EQ(out.id_gate_rejected, 1u) << misread;
+		for (int i = 0; i < 6; ++i)
+			EXPECT_EQ(out.decisions.associations[i].kind,
+					  i + 1 == misread ? Association::Kind::Rejected : Association::Kind::Matched)
+				<< "misread " << misread << ", feature " << i + 1;
+		// Disabled gate: IDs trusted, everything matched.
+		params.id_gate_chi2_quantile = 1;
+		const auto trusted = lmj::associateByIds(c.map, c.local_cov, c.global, params);
+		EXPECT_EQ(trusted.id_gate_rejected, 0u);
+	}
 }
 
 /// grid196's local maps of `steps` steps (IDs known, features closer than

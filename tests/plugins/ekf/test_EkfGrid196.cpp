@@ -21,6 +21,7 @@ struct Scored
 {
 	ReplayResult result;
 	Accuracy accuracy;
+	std::map<std::string, double> counters;
 };
 
 Scored runOnGrid196(const std::string& ekf_section, bool hide_ids)
@@ -29,7 +30,8 @@ Scored runOnGrid196(const std::string& ekf_section, bool hide_ids)
 	opts.hide_landmark_ids = hide_ids;
 	const Rawlog log = readRawlog(kGrid196, opts);
 	auto ekf = test::makePlugin("EkfSlam", ekf_section);
-	Scored s{replay(*ekf, log, {0, false}), {}};
+	Scored s{replay(*ekf, log, {0, false}), {}, {}};
+	for (const auto& [name, value] : ekf->costFigures().counters) s.counters[name] = value;
 	const auto truth = loadGroundTruth(groundTruthPrefixFor(kGrid196))->inInitialPoseFrame();
 	s.accuracy = evaluate(truth, s.result.record.trajectory, s.result.record.final_estimate, s.result.audit.filterToTrue());
 	return s;
@@ -95,6 +97,11 @@ TEST(EkfGrid196, JcbbWithoutIdsMakesNoWrongAssociation)
 	std::cout << "grid196 EKF JCBB: " << audit.newCount() << " new, " << audit.matchedCount() << " matched, "
 			  << audit.rejectedCount() << " rejected, " << audit.wrongCount() << " wrong\n";
 	EXPECT_EQ(audit.wrongCount(), 0u);
+	// The grid's features are 2.9 m apart: no scan is ambiguous enough for
+	// the JCBB effort bound (SearchBounds) to replace the search.
+	std::cout << "grid196 EKF JCBB: " << s.counters.at("jcbb_nodes") << " nodes, " << s.counters.at("jcbb_fallbacks")
+			  << " fallbacks\n";
+	EXPECT_EQ(s.counters.at("jcbb_fallbacks"), 0);
 	// Every feature seen gets exactly one landmark.
 	EXPECT_EQ(s.result.record.final_estimate.landmarks.size(), audit.filterToTrue().size());
 	// Few measurements may be left unused as ambiguous, never most of them.

@@ -4,7 +4,11 @@
 /// data_association_full_covariance (nearest neighbour or JCBB, Mahalanobis
 /// metric, chi-square gate), with the two things it leaves to the caller:
 /// bearing wrap-around (it subtracts angles plainly) and telling a new
-/// feature from an ambiguous measurement.
+/// feature from an ambiguous measurement. JCBB runs only while the problem
+/// is within SearchBounds; beyond them, nearest neighbour with the joint
+/// compatibility test (SearchBounds.h explains why and how).
+
+#include <esif/association/SearchBounds.h>
 
 #include <Eigen/Core>
 #include <string>
@@ -33,10 +37,19 @@ struct AssociationResult
 	/// candidate (infinity when there are none): tells "new" from "ambiguous".
 	std::vector<double> min_distance2;
 	std::size_t jcbb_nodes = 0;
+	/// Ambiguity measured before the search (SearchBounds.h).
+	SearchEffort effort;
+	/// JCBB was asked for but the problem exceeded the bounds: nearest
+	/// neighbour with the joint compatibility test was used instead.
+	bool fell_back = false;
+	/// Pairs the joint compatibility test of the fallback removed.
+	std::size_t pairs_dropped = 0;
 };
 
 /// Associates observations to candidates; `gate_quantile` in (0, 1) is the
-/// individual-compatibility chi-square confidence (2 dof).
-AssociationResult associate(const AssociationInput& input, AssociationMethod method, double gate_quantile);
+/// individual-compatibility chi-square confidence (2 dof), also that of the
+/// fallback's joint test (2 dof per pair).
+AssociationResult associate(
+	const AssociationInput& input, AssociationMethod method, double gate_quantile, const SearchBounds& bounds = {});
 
 }  // namespace esif

@@ -19,6 +19,10 @@
 /// exact joint covariance (joint compatibility,
 /// Neira & Tardos 2001); while it fails, the pair with the largest exact
 /// individual distance is dropped.
+///
+/// JCBB runs only while the problem is within SearchBounds (counted on the
+/// exact individual distances); beyond them MRPT's nearest neighbour gives
+/// the hypothesis, which the same exchange and joint test then refine.
 
 #include <esif/association/DataAssociation.h>
 
@@ -48,13 +52,17 @@ struct PointAssociation
 	/// Pairs MRPT proposed that the exact joint test removed.
 	std::size_t pairs_dropped = 0;
 	std::size_t jcbb_nodes = 0;
+	/// Ambiguity measured before the search (SearchBounds.h).
+	SearchEffort effort;
+	/// JCBB was asked for but exceeded the bounds: nearest neighbour instead.
+	bool fell_back = false;
 };
 
 /// Associates `sets.observed` with `sets.candidates`. `gate_quantile` is the
 /// individual-compatibility confidence (2 dof), `joint_quantile` that of the
 /// exact joint test (2 dof per pair); both in (0, 1). Throws
 /// std::invalid_argument on inconsistent sizes.
-PointAssociation associatePointSets(
-	const PointSets& sets, AssociationMethod method, double gate_quantile, double joint_quantile);
+PointAssociation associatePointSets(const PointSets& sets, AssociationMethod method, double gate_quantile,
+									double joint_quantile, const SearchBounds& bounds = {});
 
 }  // namespace esif

@@ -6,6 +6,7 @@
 /// the EKF plugin, a joining plugin's section for its local-map builder), with
 /// the same keys everywhere.
 
+#include <esif/association/SearchBounds.h>
 #include <esif/config/ParamBinder.h>
 
 namespace esif
@@ -34,6 +35,17 @@ struct EkfAssociationParams
 	/// with it can turn the heading; a local map built with such updates is
 	/// inconsistent, and the error stays frozen in it. 0 = use every one.
 	double min_range_m = 0;
+	/// Outlier gate of measurements associated by their landmark ID: one
+	/// whose innovation against the prior fails this chi-square quantile
+	/// (2 dof) is not fused (a misread ID moves the robot by the distance
+	/// between the two landmarks). 0.9999 (18.4) rejects 1 in 10^4 correct
+	/// measurements of a consistent filter, while a wrong ID on a map whose
+	/// landmarks are metres apart gives distances of hundreds. 1 disables it.
+	double id_gate_chi2_quantile = 0.9999;
+	SearchBounds search;  ///< when JCBB falls back to nearest neighbour
+
+	/// The chi-square value of id_gate_chi2_quantile (+inf when disabled).
+	double idGateDistance2() const;
 
 	void declare(ParamBinder& b);
 };

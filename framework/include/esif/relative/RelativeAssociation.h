@@ -35,6 +35,9 @@ class RelativeAssociation
 	StepReport associate(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov, FeatureMap& map);
 
 	std::size_t jcbbNodes() const { return jcbb_nodes_; }
+	/// Scans too ambiguous for JCBB (SearchBounds): their hypotheses came from
+	/// nearest neighbour with the joint compatibility test, then eq. (3.45).
+	std::size_t jcbbFallbacks() const { return jcbb_fallbacks_; }
 	/// Matches dropped because the relative test, eq. (3.45), failed.
 	std::size_t droppedByRelativeTest() const { return dropped_; }
 
@@ -56,6 +59,7 @@ class RelativeAssociation
 	ReferenceRules reference_rules_;
 	double new_gate_ = 0;
 	std::size_t jcbb_nodes_ = 0;
+	std::size_t jcbb_fallbacks_ = 0;
 	std::size_t dropped_ = 0;
 };
 

@@ -8,6 +8,7 @@
 /// runs the association ([dslam] for the D-SLAM plugin), with the same keys
 /// everywhere.
 
+#include <esif/association/SearchBounds.h>
 #include <esif/config/ParamBinder.h>
 
 namespace esif::relative
@@ -37,6 +38,9 @@ struct RelativeAssociationParams
 	double new_landmark_chi2_quantile = 0.9999;
 	double candidate_margin_m = 2.0;	 ///< candidates: predicted range <= max range + this [m]
 	double candidate_margin_deg = 10.0;	 ///< ... and bearing within half the field of view + this [deg]
+	/// When the JCBB hypotheses give way to nearest neighbour with the joint
+	/// test (keys jcbb_max_candidates, jcbb_max_hypotheses).
+	SearchBounds search;
 
 	void declare(ParamBinder& b);
 };
