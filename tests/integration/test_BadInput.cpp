@@ -2,6 +2,7 @@
 // file, key or step, with a non-zero exit, and leaves no half-written output.
 
 #include <EsifTestSupport.h>
+#include <LocalMapTestSupport.h>
 
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileOutputStream.h>
@@ -10,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 namespace
 {
@@ -86,6 +88,50 @@ TEST(BadInput, TruncatedRawlogIsProcessedWithAWarning)
 	for (const char* f : {"map.simplemap", "landmarks.gz", "landmarks.txt", "trajectory.tum", "scene.3Dscene",
 						  "map.png", "stats.json"})
 		EXPECT_TRUE(std::filesystem::exists(dir.file(std::string("out/") + f))) << f;
+}
+
+/// grid196.rawlog copied into `dir` with its landmark ground truth and the
+/// first `path_rows` rows of its robot path (none: no path file).
+std::string grid196With(const TempDir& dir, std::optional<std::size_t> path_rows)
+{
+	const auto log = dir.file("g.rawlog");
+	std::filesystem::copy_file(kRawlog, log);
+	std::filesystem::copy_file(sourcePath("rawlogs/grid196_ground_truth.txt"), dir.file("g_ground_truth.txt"));
+	if (path_rows)
+	{
+		std::ifstream in(sourcePath("rawlogs/grid196_ground_truth_robot_path.txt"));
+		std::ofstream out(dir.file("g_ground_truth_robot_path.txt"));
+		std::size_t kept = 0;
+		for (std::string line; std::getline(in, line) && kept < *path_rows;)
+		{
+			out << line << "\n";
+			kept += !line.empty() && line[0] != '%';
+		}
+	}
+	return log;
+}
+
+TEST(BadInput, GroundTruthInAnUnknownFrameOrOfTheWrongLengthGivesNullMetricsAndAWarning)
+{
+	// Without a robot path the landmarks cannot be put in the initial-pose
+	// frame (the RMSE was 5.96 m instead of 0.090); a path that does not have
+	// one pose per step pairs poses with the wrong steps.
+	for (const std::optional<std::size_t> rows : {std::optional<std::size_t>(), std::optional<std::size_t>(1500)})
+	{
+		TempDir dir;
+		const auto r = runEsif(runArgs(kConfig, grid196With(dir, rows), dir.file("out")));
+		ASSERT_EQ(r.exit_code, 0) << r.out;
+		EXPECT_NE(r.out.find(rows ? "1500 poses for 3000 steps" : "no robot-path ground truth"), std::string::npos)
+			<< r.out;
+		const auto stats = esif::test::readStatsJson(dir.file("out"));
+		EXPECT_FALSE(stats.number("landmark_rmse_m")) << r.out;
+		EXPECT_FALSE(stats.number("ate_rmse_m")) << r.out;
+	}
+	TempDir dir;  // the whole path: scored
+	const auto r = runEsif(runArgs(kConfig, grid196With(dir, 1u << 20), dir.file("out")));
+	ASSERT_EQ(r.exit_code, 0) << r.out;
+	EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+	EXPECT_LT(*esif::test::readStatsJson(dir.file("out")).number("landmark_rmse_m"), 0.2);
 }
 
 TEST(BadInput, UnknownPlugin)

@@ -90,6 +90,18 @@ GroundTruth GroundTruth::inInitialPoseFrame() const
 	return out;
 }
 
+std::optional<std::string> groundTruthProblem(const GroundTruth& truth, std::size_t steps, bool log_truncated)
+{
+	if (truth.path.empty())
+		return std::string("no robot-path ground truth (*_ground_truth_robot_path.txt): the landmarks' frame "
+						   "relative to the initial pose is unknown");
+	const bool one_per_step = truth.path.size() == steps || truth.path.size() + 1 == steps;
+	if (!one_per_step && !(log_truncated && truth.path.size() > steps))
+		return "the robot-path ground truth has " + std::to_string(truth.path.size()) + " poses for " +
+			   std::to_string(steps) + " steps (one per step expected): its poses cannot be paired with the steps";
+	return std::nullopt;
+}
+
 std::string groundTruthPrefixFor(const std::string& rawlog_path)
 {
 	std::string p = rawlog_path;

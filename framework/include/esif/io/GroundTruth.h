@@ -26,6 +26,16 @@ struct GroundTruth
 	GroundTruth inInitialPoseFrame() const;
 };
 
+/// Why `truth` cannot score a run of `steps` steps, or nullopt when it can.
+/// Errors are measured in the frame of the initial robot pose, so without a
+/// robot path the landmarks are in an unknown frame; a path must have one
+/// pose per step, or one fewer (MRPT's simul-landmarks, e.g.
+/// kf-slam_demo.rawlog, records no pose for the last step, which is then
+/// left unscored), or more when the rawlog was cut short (`log_truncated`:
+/// its steps are a prefix of the path's); any other length pairs poses with
+/// the wrong steps.
+std::optional<std::string> groundTruthProblem(const GroundTruth& truth, std::size_t steps, bool log_truncated);
+
 /// "DIR/NAME.rawlog" -> "DIR/NAME" (also strips ".rawlog.gz").
 std::string groundTruthPrefixFor(const std::string& rawlog_path);
 
