@@ -12,6 +12,7 @@
 #include <esif/run/Replay.h>
 #include <esif/run/RunPipeline.h>
 #include <esif/run/RunSetup.h>
+#include <esif/sim/MeasurementTruth.h>
 
 #include <chrono>
 #include <filesystem>
@@ -21,6 +22,25 @@ namespace esif
 {
 namespace
 {
+/// A simulated rawlog with misread IDs or clutter has its measurements'
+/// true landmarks beside it (MeasurementTruth.h): data association is then
+/// scored against those, not against the rawlog's own (partly wrong) IDs.
+void scoreAgainstMeasurementTruth(Rawlog& log, const std::string& prefix)
+{
+	auto truth = loadMeasurementTruth(prefix);
+	if (!truth) return;
+	const std::string file = measurementTruthFileOf(prefix);
+	if (truth->size() > log.true_ids.size())
+		throw InputError(file + ": lists step " + std::to_string(truth->size() - 1) + " but the rawlog has " +
+						 std::to_string(log.true_ids.size()) + " steps");
+	truth->resize(log.true_ids.size());
+	for (std::size_t k = 0; k < truth->size(); ++k)
+		if ((*truth)[k].size() != log.true_ids[k].size())
+			throw InputError(file + ": step " + std::to_string(k) + " lists " + std::to_string((*truth)[k].size()) +
+							 " measurements, the rawlog has " + std::to_string(log.true_ids[k].size()));
+	log.true_ids = std::move(*truth);
+}
+
 Stats collectStats(
 	const HostParams& host, const RunRequest& request, const Rawlog& log, const ReplayResult& result,
 	const FilterPlugin& plugin, const std::optional<Accuracy>& accuracy, double total_wall_s)
@@ -62,8 +82,16 @@ Stats runPipeline(const RunRequest& request, PluginLoader& loader)
 	Rawlog log = readRawlog(request.rawlog_path, readOptionsOf(host));
 	if (log.truncation_warning) std::cerr << "esif: warning: " << *log.truncation_warning << "\n";
 	if (associations) applyAssociations(log, readAssociationFile(*associations), *associations);
+	scoreAgainstMeasurementTruth(
+		log, request.ground_truth_prefix.value_or(groundTruthPrefixFor(request.rawlog_path)));
 	requireLandmarkIds(*plugin, log, {cfg.origin(), host.hide_landmark_ids, associations.value_or("")});
-	const auto truth = findGroundTruth(request.ground_truth_prefix, request.rawlog_path);
+	auto truth = findGroundTruth(request.ground_truth_prefix, request.rawlog_path);
+	if (truth)
+		if (const auto problem = groundTruthProblem(*truth, log.steps.size(), log.truncation_warning.has_value()))
+		{
+			std::cerr << "esif: warning: " << *problem << "; accuracy and consistency figures left null\n";
+			truth.reset();
+		}
 	ensureDirectory(request.out_dir);
 
 	ReplayResult result = replay(*plugin, log, {host.keyframe_min_distance_m, request.progress_bar});
