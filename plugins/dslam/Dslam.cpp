@@ -351,6 +351,7 @@ CostFigures Dslam::costFigures() const
 	if (association_)
 	{
 		add("jcbb_nodes", static_cast<double>(association_->jcbbNodes()));
+		add("jcbb_fallbacks", static_cast<double>(association_->jcbbFallbacks()));
 		add("relative_test_drops", static_cast<double>(association_->droppedByRelativeTest()));
 	}
 	return c;

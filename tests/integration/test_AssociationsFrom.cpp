@@ -59,12 +59,13 @@ class AssociationsFrom : public ::testing::Test
 	static void TearDownTestSuite() { dir_.reset(); }
 
 	/// An EKF using IDs only, with the rawlog's hidden: it needs associations_from.
+	/// Its ID gate is off like the source's, so that both make the same decisions.
 	static std::string writeKnownIds(const std::string& name, const std::string& associations_from)
 	{
 		std::ofstream(dir_->file(name)) << "[esif]\nplugin = EkfSlam\nlabel = " << name.substr(0, name.find('.'))
 										<< "\nhide_landmark_ids = true\n"
 										<< (associations_from.empty() ? "" : "associations_from = " + associations_from + "\n")
-										<< "[ekf]\nassociation = known_ids\n";
+										<< "[ekf]\nassociation = known_ids\nid_gate_chi2_quantile = 1\n";
 		return dir_->file(name);
 	}
 
