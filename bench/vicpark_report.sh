@@ -60,13 +60,13 @@ print("| run | " + " | ".join(c[0] for c in cols) + " |")
 print("|---" * (len(cols) + 1) + "|")
 for r in rows:
     print("| " + r.get("label", "?") + " | " + " | ".join(cell(r, k, f) for _, k, f in cols) + " |")
-for r in rows:
-    stats = os.path.join(out, r.get("label", ""), "stats.json")
+for name in sorted(os.listdir(out)):  # run folders are named after their configs
+    stats = os.path.join(out, name, "stats.json")
     if os.path.exists(stats):
         s = json.load(open(stats))
-        if "plugin_chi2" in s or "plugin_chi2_per_dof" in s:
-            print(f"\noptimum '{r['label']}': chi2 {s.get('plugin_chi2', 'n/a')}, chi2/dof {s.get('plugin_chi2_per_dof', 'n/a')}"
-                  f" (GTSAM's batch optimum: 7930)")
+        if "plugin_chi2" in s:
+            print(f"\noptimum '{s.get('label', name)}': chi2 {s['plugin_chi2']:.1f} for {s.get('plugin_chi2_dof', 'n/a')} dof,"
+                  f" plausible {s.get('plugin_optimum_plausible', 'n/a')} (GTSAM's batch optimum: 7930)")
 PY
 echo "figure: $out/maps_overlay.png"
 exit $status
