@@ -24,15 +24,7 @@ trap 'rm -rf "$work"' EXIT
 # Victoria Park is third-party data: neither it nor a rawlog made from it is
 # committed, so import it here (importer defaults, as README.md "Real data").
 # The importer writes atomically: an interrupted run leaves no partial file.
-vicpark_rawlog() {
-  local out=out/data/vicpark.rawlog txt=${VICPARK_TXT:-../shared/data/victoria_park/victoria_park.txt}
-  if [ ! -f "$out" ]; then
-    [ -f "$txt" ] || { echo "bench/ceres_full.sh: $(realpath -m "$txt") not present (the Victoria Park dataset; set VICPARK_TXT)" >&2; exit 1; }
-    mkdir -p out/data
-    "$esif" import victoria-park --in "$txt" --out "$out" >&2
-  fi
-  echo "$out"
-}
+source bench/vicpark_data.sh
 rawlog_for() {
   if [ "$1" = vicpark ]; then vicpark_rawlog; return; fi
   [ -f "$cache/$1.rawlog" ] || "$esif" simulate --config "configs/sim/$1.ini" --out "$cache/$1.rawlog" >&2

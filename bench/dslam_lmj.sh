@@ -39,15 +39,7 @@ grid1225_rawlog() {
   [ -f "$cache/grid1225_large.rawlog" ] || "$esif" simulate --config configs/sim/grid1225_large.ini --out "$cache/grid1225_large.rawlog" >&2
   echo "$cache/grid1225_large.rawlog"
 }
-vicpark_rawlog() {
-  local out=out/data/vicpark.rawlog txt=${VICPARK_TXT:-../shared/data/victoria_park/victoria_park.txt}
-  if [ ! -f "$out" ]; then
-    [ -f "$txt" ] || { echo "bench/dslam_lmj.sh: $(realpath -m "$txt") not present (the Victoria Park dataset; set VICPARK_TXT)" >&2; exit 1; }
-    mkdir -p out/data
-    "$esif" import victoria-park --in "$txt" --out "$out" >&2
-  fi
-  echo "$out"
-}
+source bench/vicpark_data.sh
 
 join_part() {
   local log maps=$cache/grid1225_large_lmj_maps

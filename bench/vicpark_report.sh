@@ -23,15 +23,7 @@ cd "$(dirname "$0")/.."
 esif=$(realpath build/bin/esif)
 out=out/bench/vicpark_report
 
-vicpark_rawlog() {
-  local log=out/data/vicpark.rawlog txt=${VICPARK_TXT:-../shared/data/victoria_park/victoria_park.txt}
-  if [ ! -f "$log" ]; then
-    [ -f "$txt" ] || { echo "bench/vicpark_report.sh: $(realpath -m "$txt") not present (the Victoria Park dataset; set VICPARK_TXT)" >&2; exit 1; }
-    mkdir -p out/data
-    "$esif" import victoria-park --in "$txt" --out "$log" >&2
-  fi
-  echo "$log"
-}
+source bench/vicpark_data.sh
 
 log=$(vicpark_rawlog)
 configs=$(ls configs/vicpark/*.ini | grep -v ceres_full | tr '\n' ',')configs/vicpark/ceres_full.ini
