@@ -2,7 +2,6 @@
 
 #include <esif/association/Chi2.h>
 
-#include <limits>
 
 namespace esif::lmj
 {
@@ -42,7 +41,7 @@ void DslamLmjParams::declare(ParamBinder& b)
 
 double DslamLmjParams::idGateDistance2() const
 {
-	return id_gate_chi2_quantile >= 1 ? std::numeric_limits<double>::infinity() : chi2Quantile(id_gate_chi2_quantile, 2);
+	return chi2GateBound(id_gate_chi2_quantile, 2);
 }
 
 LocalMapBuilderParams DslamLmjParams::defaultBuilder()

@@ -1,6 +1,7 @@
 #include <esif/association/Chi2.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace esif
@@ -45,6 +46,11 @@ double chi2Quantile(double p, int dof)
 		(chi2Cdf(mid, dof) < p ? lo : hi) = mid;
 	}
 	return 0.5 * (lo + hi);
+}
+
+double chi2GateBound(double p, int dof)
+{
+	return p >= 1 ? std::numeric_limits<double>::infinity() : chi2Quantile(p, dof);
 }
 
 }  // namespace esif

@@ -1,7 +1,6 @@
 #include <esif/association/Chi2.h>
 #include <esif/ekf/EkfAssociationParams.h>
 
-#include <limits>
 
 namespace esif
 {
@@ -36,7 +35,7 @@ void EkfAssociationParams::declare(ParamBinder& b)
 
 double EkfAssociationParams::idGateDistance2() const
 {
-	return id_gate_chi2_quantile >= 1 ? std::numeric_limits<double>::infinity() : chi2Quantile(id_gate_chi2_quantile, 2);
+	return chi2GateBound(id_gate_chi2_quantile, 2);
 }
 
 }  // namespace esif

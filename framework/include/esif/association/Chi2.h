@@ -12,4 +12,8 @@ double chi2Cdf(double x, int dof);
 /// The `p` quantile (0 < p < 1) of the chi-square with `dof` degrees of freedom.
 double chi2Quantile(double p, int dof);
 
+/// The squared-distance bound of an outlier gate set by its confidence `p`
+/// in (0, 1]: chi2Quantile(p, dof), or +infinity for p = 1 (the gate is off).
+double chi2GateBound(double p, int dof);
+
 }  // namespace esif
