@@ -2,7 +2,10 @@
 #include <esif/io/RawlogReader.h>
 #include <esif/models/Se2.h>
 
-#include <mrpt/io/CFileGZInputStream.h>
+#include "GzipInflate.h"
+#include "Sandbox.h"
+
+#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -16,6 +19,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
@@ -30,6 +34,28 @@ using mrpt::obs::CObservationBearingRange;
 constexpr double kMaxRangeM = 1e4;
 /// No odometry increment between two steps moves further [m].
 constexpr double kMaxIncrementM = 1e4;
+
+/// MRPT's exception texts carry a stack trace after the first line.
+std::string firstLine(const std::string& text)
+{
+	return text.substr(0, text.find('\n'));
+}
+
+/// The reason inside an MRPT exception text: MRPT frames its message with a
+/// "==== MRPT exception ====" banner and a "Message:" label, and appends a
+/// stack trace; one line is kept.
+std::string mrptReason(const std::string& text)
+{
+	std::istringstream lines(text);
+	for (std::string line; std::getline(lines, line);)
+	{
+		line.erase(0, line.find_first_not_of(" \t"));
+		if (line.empty() || line.rfind("====", 0) == 0) continue;
+		if (line.rfind("Message:", 0) == 0) line.erase(0, line.find_first_not_of(" \t", 8));
+		if (!line.empty()) return line;
+	}
+	return firstLine(text);
+}
 
 std::string numberText(double v)
 {
@@ -111,6 +137,10 @@ class StepBuilder
 			throw InputError(where + ": sensor pose on the robot is not finite");
 		scan.max_range_m = obs.maxSensorDistance;
 		scan.fov_rad = obs.fieldOfView_yaw;
+		if (obs.sensedData.size() > options_.max_measurements_per_scan)
+			throw InputError(where + ": one scan holds " + std::to_string(obs.sensedData.size()) +
+							 " measurements, more than max_measurements_per_scan = " +
+							 std::to_string(options_.max_measurements_per_scan));
 		std::vector<std::optional<LandmarkId>> ids;
 		for (std::size_t i = 0; i < obs.sensedData.size(); ++i)
 		{
@@ -267,15 +297,14 @@ void normaliseTimes(std::vector<StepInput>& steps)
 	if (!usable)
 		for (auto& s : steps) s.time_s = static_cast<double>(s.index);
 }
-}  // namespace
-
-Rawlog readRawlog(const std::string& path, const RawlogReadOptions& options)
+/// Reads every entry of an inflated rawlog into steps. `progress` tells a
+/// sandbox which entry is being read when MRPT's deserialiser fails on it.
+Rawlog parseRawlog(const std::string& path, const InflatedFile& file, const RawlogReadOptions& options,
+				   SandboxProgress* progress)
 {
-	if (!std::filesystem::exists(path)) throw InputError(path + ": rawlog file not found");
-	if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": not a regular file");
-	mrpt::io::CFileGZInputStream file;
-	if (!file.open(path)) throw InputError(path + ": cannot open rawlog");
-	auto archive = mrpt::serialization::archiveFrom(file);
+	mrpt::io::CMemoryStream stream;
+	stream.assignMemoryNotOwn(file.bytes.data(), file.bytes.size());
+	auto archive = mrpt::serialization::archiveFrom(stream);
 
 	Rawlog out;
 	out.path = path;
@@ -283,7 +312,9 @@ Rawlog readRawlog(const std::string& path, const RawlogReadOptions& options)
 	EntryVisitor visitor(builder, path);
 	for (std::size_t entry = 0;; ++entry)
 	{
-		const auto before = file.getPosition();
+		if (progress) progress->position = entry;
+		const auto before = stream.getPosition();
+		if (before == file.bytes.size()) break;	 // clean end between entries
 		mrpt::serialization::CSerializable::Ptr obj;
 		try
 		{
@@ -291,22 +322,32 @@ Rawlog readRawlog(const std::string& path, const RawlogReadOptions& options)
 		}
 		catch (const mrpt::serialization::CExceptionEOF&)
 		{
-			if (file.getPosition() == before) break;  // clean end between entries
 			if (entry == 0) throw InputError(path + ": not an MRPT rawlog (empty or unreadable first entry)");
 			out.truncation_warning = path + ": file ends inside entry " + std::to_string(entry) +
 				"; read up to step " + std::to_string(out.steps.size());
 			break;
 		}
+		catch (const std::bad_alloc&)
+		{
+			throw;	// the sandbox reports it as a declared size beyond the file
+		}
 		catch (const std::exception& e)
 		{
 			if (entry == 0) throw InputError(path + ": not an MRPT rawlog (first entry is not a serialized MRPT object)");
-			out.truncation_warning = path + ": unreadable entry " + std::to_string(entry) +
-				" (truncated or corrupt); read up to step " + std::to_string(out.steps.size());
+			// MRPT wraps an end of data met inside a nested object in its own
+			// exception: a failure that consumed every byte left is a cut file,
+			// one that stopped before the end is a corrupt entry.
+			if (stream.getPosition() < file.bytes.size())
+				throw InputError(path + ": entry " + std::to_string(entry) + " is corrupt: " + mrptReason(e.what()));
+			out.truncation_warning = path + ": file ends inside entry " + std::to_string(entry) +
+				"; read up to step " + std::to_string(out.steps.size());
 			break;
 		}
 		visitor.visit(obj, entry);
 	}
 	builder.finish();
+	if (file.stream_truncated && !out.truncation_warning)
+		out.truncation_warning = path + ": gzip stream is cut after entry " + std::to_string(out.steps.size());
 	// A cut at the very end may leave a final odometry without its scan: keep
 	// it only if the file ended cleanly.
 	if (out.truncation_warning && !out.steps.empty() && !out.steps.back().scan)
@@ -323,6 +364,72 @@ Rawlog readRawlog(const std::string& path, const RawlogReadOptions& options)
 		throw InputError(path + ": rawlog holds no range-bearing observations (CObservationBearingRange)");
 	normaliseTimes(out.steps);
 	return out;
+}
+
+/// Memory a rawlog's entries may take while read: a fixed allowance plus a
+/// multiple of the inflated size. Reading keeps every entry twice (as MRPT
+/// objects for the maps and as plugin input); grid1225_large, 9.5 MB
+/// inflated, takes about 110 MB (12 bytes per file byte). An allocation
+/// beyond the budget is a count the file cannot back.
+constexpr std::size_t kReadAllowanceBytes = std::size_t{256} << 20;
+constexpr std::size_t kReadBytesPerFileByte = 64;
+/// CPU time allowed for reading: MRPT reads well over 10 MB/s, so this is
+/// reached only by a corrupt count that keeps its reader looping.
+constexpr unsigned kReadCpuSeconds = 60;
+constexpr unsigned kReadCpuSecondsPerMiB = 2;
+
+SandboxLimits readLimitsFor(std::size_t bytes)
+{
+	SandboxLimits limits;
+	limits.address_space_bytes = kReadAllowanceBytes + kReadBytesPerFileByte * bytes;
+	limits.cpu_seconds = kReadCpuSeconds + kReadCpuSecondsPerMiB * static_cast<unsigned>(bytes >> 20);
+	return limits;
+}
+
+/// Reads the rawlog once in a sandboxed child. A fault there becomes one
+/// line naming the entry; success proves the same bytes read safely here.
+void checkInSandbox(const std::string& path, const InflatedFile& file, const RawlogReadOptions& options)
+{
+	const SandboxLimits limits = readLimitsFor(file.bytes.size());
+	const SandboxOutcome outcome = runInSandbox(
+		[&](SandboxProgress& progress) { parseRawlog(path, file, options, &progress); }, limits);
+	const std::string entry = path + ": entry " + std::to_string(outcome.position);
+	switch (outcome.kind)
+	{
+		case SandboxOutcome::Kind::kSucceeded:
+			return;
+		case SandboxOutcome::Kind::kFailed:
+			throw InputError(firstLine(outcome.message));
+		case SandboxOutcome::Kind::kOutOfMemory:
+			throw InputError(entry + " declares more data than the file holds: reading it needs over " +
+							 std::to_string(limits.address_space_bytes >> 20) + " MiB, the limit for " +
+							 std::to_string(file.bytes.size()) + " bytes of rawlog");
+		case SandboxOutcome::Kind::kCpuLimit:
+			throw InputError(entry + " is corrupt: reading it took over " + std::to_string(limits.cpu_seconds) +
+							 " s of CPU");
+		case SandboxOutcome::Kind::kCrashed:
+			break;
+	}
+	throw InputError(entry + " is corrupt: MRPT's deserialiser crashed on it (" +
+					 strsignal(outcome.signal_number) + ")");
+}
+}  // namespace
+
+Rawlog readRawlogFromMemory(const std::string& name, std::string bytes, const RawlogReadOptions& options)
+{
+	if (bytes.empty()) throw InputError(name + ": file holds no data");
+	const InflatedFile file{std::move(bytes), false};
+	checkInSandbox(name, file, options);
+	return parseRawlog(name, file, options, nullptr);
+}
+
+Rawlog readRawlog(const std::string& path, const RawlogReadOptions& options)
+{
+	if (!std::filesystem::exists(path)) throw InputError(path + ": rawlog file not found");
+	if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": not a regular file");
+	const InflatedFile file = inflateFile(path);
+	checkInSandbox(path, file, options);
+	return parseRawlog(path, file, options, nullptr);
 }
 
 }  // namespace esif

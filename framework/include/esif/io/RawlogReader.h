@@ -34,6 +34,10 @@ struct RawlogReadOptions
 	/// Strip landmark IDs from the plugin's input (they are still kept in
 	/// Rawlog::true_ids for scoring data association).
 	bool hide_landmark_ids = false;
+	/// A scan with more measurements is refused: every filter's cost grows
+	/// with it (the EKF's quadratically), and no landmark detector returns
+	/// thousands per scan; a larger count is a corrupt or hostile file.
+	std::size_t max_measurements_per_scan = 1000;
 };
 
 struct Rawlog
@@ -50,11 +54,22 @@ struct Rawlog
 	bool has_odometry = false;
 };
 
-/// Reads a whole rawlog. Throws InputError (naming the file, and the entry
-/// where relevant) when the file is missing, unreadable, not a rawlog, holds
-/// no odometry or no bearing-range observation, or holds a non-finite or
-/// negative range. A file cut inside an entry is read up to its last complete
-/// step and `truncation_warning` says where it stopped.
+/// Reads a whole rawlog. Throws InputError (one line naming the file, and the
+/// entry where relevant) when the file is missing, empty, not a rawlog, fails
+/// its gzip checks, holds a corrupt entry, holds no odometry or no
+/// bearing-range observation, or holds an invalid value (see the checks in
+/// RawlogReader.cpp). MRPT's deserialisers trust the bytes they read (a
+/// corrupt count is allocated as declared, a corrupt type byte can make them
+/// dereference null), so the file is first read in a forked child under a
+/// memory limit proportional to its inflated size and a CPU limit; a crash or
+/// an allocation beyond the limit there is reported as a corrupt entry, and
+/// only a file the child read completely is read again here. A file cut
+/// inside an entry (a recording that stopped) is read up to its last
+/// complete step and `truncation_warning` says where it stopped.
 Rawlog readRawlog(const std::string& path, const RawlogReadOptions& options = {});
+
+/// The same for a rawlog already inflated in memory; `name` stands for the
+/// file in messages (used by the fuzz target).
+Rawlog readRawlogFromMemory(const std::string& name, std::string bytes, const RawlogReadOptions& options = {});
 
 }  // namespace esif

@@ -1,0 +1,48 @@
+#pragma once
+/// \file Sandbox.h
+/// Runs a function in a forked child under an address-space and a CPU limit,
+/// so that a fault in third-party code it calls (a null dereference inside
+/// MRPT's deserialisers, an allocation sized by a corrupt count, an endless
+/// loop) ends the child, not the caller, and can be reported as one line.
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace esif
+{
+struct SandboxLimits
+{
+	std::size_t address_space_bytes = 0;  ///< extra address space the child may map beyond its start
+	unsigned cpu_seconds = 0;			  ///< CPU time the child may use
+};
+
+/// Shared with the child: it writes where it is so the parent can say where it stopped.
+struct SandboxProgress
+{
+	volatile std::size_t position = 0;
+};
+
+struct SandboxOutcome
+{
+	enum class Kind
+	{
+		kSucceeded,	   ///< the function returned
+		kFailed,	   ///< it threw: `message` is what()
+		kOutOfMemory,  ///< an allocation failed against the address-space limit
+		kCpuLimit,	   ///< it used up its CPU time
+		kCrashed,	   ///< it was ended by a signal: `signal_number`
+	};
+	Kind kind = Kind::kSucceeded;
+	std::string message;
+	int signal_number = 0;
+	std::size_t position = 0;  ///< the last SandboxProgress::position the child wrote
+};
+
+/// Calls `work(progress)` in a forked child under `limits` and waits for it.
+/// The child never returns into the caller's code: it leaves with _exit, so
+/// no destructor, atexit handler or stdio buffer of the parent runs twice.
+/// Throws InputError only when the child cannot be started at all.
+SandboxOutcome runInSandbox(const std::function<void(SandboxProgress&)>& work, const SandboxLimits& limits);
+
+}  // namespace esif
