@@ -43,6 +43,7 @@ RawlogReadOptions readOptionsOf(const HostParams& host)
 {
 	RawlogReadOptions options;
 	options.hide_landmark_ids = host.hide_landmark_ids;
+	options.max_measurements_per_scan = static_cast<std::size_t>(host.max_measurements_per_scan);
 	options.sensor_std_range_m = host.sensor_std_range_m;
 	options.sensor_std_bearing_rad = host.sensor_std_bearing_deg * M_PI / 180.0;
 	options.odometry_obs_std_xy_m = host.odometry_obs_std_xy_m;

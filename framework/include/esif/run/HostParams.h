@@ -20,6 +20,7 @@ struct HostParams
 	double odometry_obs_std_phi_deg = 1.0;	///< per-step heading noise of CObservationOdometry increments
 	double keyframe_min_distance_m = 0;	 ///< map.simplemap keeps a scan every this many metres; 0 = all
 	int image_size_px = 1000;  ///< map.png size
+	int max_measurements_per_scan = 1000;  ///< a scan with more is refused as corrupt or hostile input
 	/// Run folder whose associations.txt replaces the rawlog's landmark IDs
 	/// (relative to the current directory; in `esif compare` also the label of
 	/// another compared config); empty = the rawlog's own IDs.
@@ -41,6 +42,9 @@ struct HostParams
 			   "heading noise per CObservationOdometry step [deg]", Bounds::positive());
 		b.real("keyframe_min_distance_m", keyframe_min_distance_m,
 			   "distance between keyframes of map.simplemap [m], 0 = every scan", Bounds::nonNegative());
+		b.integer("max_measurements_per_scan", max_measurements_per_scan,
+				  "a rawlog scan with more range-bearing measurements is refused (a corrupt or hostile file)",
+				  Bounds::closed(1, 1000000));
 		b.integer("image_size_px", image_size_px, "map.png width and height [px]", Bounds::closed(200, 8000));
 		b.text("associations_from", associations_from,
 			   "run folder whose associations.txt gives the landmark IDs of every measurement (in esif compare "
