@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <csignal>
+#include <fcntl.h>
 #include <cstdio>
 #include <cstring>
 #include <new>
@@ -39,6 +40,25 @@ std::size_t mappedBytes()
 	return static_cast<std::size_t>(pages) * static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
 }
 
+/// A fault in the child must end it by its signal, which the parent turns
+/// into a message: handlers inherited from the parent (a sanitizer's, a
+/// fuzzer's, a crash reporter's) would instead treat it as the parent's own.
+void restoreDefaultFaultHandlers()
+{
+	for (const int sig : {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT, SIGXCPU}) std::signal(sig, SIG_DFL);
+}
+
+/// What the work prints (MRPT writes its own complaints about corrupt
+/// entries to stderr) would add lines to the one the parent reports.
+void silenceOutput()
+{
+	const int null = open("/dev/null", O_WRONLY);
+	if (null < 0) return;
+	dup2(null, STDOUT_FILENO);
+	dup2(null, STDERR_FILENO);
+	close(null);
+}
+
 void applyLimits(const SandboxLimits& limits)
 {
 	// The child must not outlive the parent (e.g. `esif run` stopped by SIGTERM).
@@ -67,6 +87,8 @@ void report(SharedReport& shared, SandboxOutcome::Kind kind, const char* message
 [[noreturn]] void runChild(const std::function<void(SandboxProgress&)>& work, const SandboxLimits& limits,
 						   SharedReport& shared)
 {
+	restoreDefaultFaultHandlers();
+	silenceOutput();
 	applyLimits(limits);
 	try
 	{
