@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build pkg-config
   libmrpt-dev mrpt-apps mrpt-common   # MRPT 2.5: libraries, kf-slam app, demo datasets
-  libeigen3-dev libsuitesparse-dev libceres-dev libgtest-dev libboost-dev zlib1g-dev
+  libeigen3-dev libsuitesparse-dev libceres-dev libgtest-dev libboost-dev zlib1g-dev libopencv-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -9,6 +9,8 @@
 #include <esif/eval/RunDifference.h>
 #include <esif/io/AtomicFile.h>
 #include <esif/io/MapOverlay.h>
+#include <esif/io/RunFolder.h>
+#include <esif/io/TerminationCleanup.h>
 #include <esif/io/RunOutputReader.h>
 #include <esif/io/StatsJson.h>
 #include <esif/run/LocalMapRunPipeline.h>
@@ -56,6 +58,19 @@ std::string firstErrorLine(const std::string& text)
 	return last.empty() ? "(nothing on stderr)" : last;
 }
 
+std::string withoutTrailingSeparator(const std::string& dir)
+{
+	const fs::path p = fs::path(dir).lexically_normal();
+	return (p.has_filename() ? p : p.parent_path()).string();
+}
+
+std::string replaceAll(std::string text, const std::string& from, const std::string& to)
+{
+	for (std::size_t at = 0; !from.empty() && (at = text.find(from, at)) != std::string::npos; at += to.size())
+		text.replace(at, from.size(), to);
+	return text;
+}
+
 /// Each config runs as its own `esif run` process: its wall time and peak
 /// memory are then its own, and one plugin cannot disturb the next (a crash
 /// included). Its stderr comes through a pipe: passed on to ours as it
@@ -73,6 +88,9 @@ ChildResult runChild(const std::vector<std::string>& args)
 	if (pid < 0) throw InputError("compare: cannot start a run: fork failed");
 	if (pid == 0)
 	{
+		// The child is an esif run with its own signal watcher; until its
+		// main() blocks them again, a signal may end it by default.
+		termination::unblockSignals();
 		close(pipe_fds[0]);
 		dup2(pipe_fds[1], STDERR_FILENO);
 		close(pipe_fds[1]);
@@ -81,6 +99,8 @@ ChildResult runChild(const std::vector<std::string>& args)
 		(void)!write(STDERR_FILENO, message, sizeof(message) - 1);
 		_exit(127);
 	}
+	// A signal to compare is passed on to this child and waited for.
+	termination::setChild(pid);
 	close(pipe_fds[1]);
 	std::string captured;
 	char buffer[4096];
@@ -96,6 +116,7 @@ ChildResult runChild(const std::vector<std::string>& args)
 	while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
 	{
 	}
+	termination::setChild(0);
 	ChildResult result;
 	if (WIFEXITED(status))
 		result.exit_code = WEXITSTATUS(status);
@@ -212,6 +233,9 @@ struct ChildSettings
 	std::optional<std::string> ground_truth;
 	std::optional<std::string> reference_result;
 	std::optional<std::string> plugin_dir;
+	/// The partial folder the runs write into and --out: a failed run's error
+	/// line is shown with the folder it will have.
+	std::pair<std::string, std::string> staging_to_out;
 };
 
 /// What checking a config found out before any run.
@@ -276,7 +300,9 @@ Stats runConfig(
 	{
 		std::cerr << "esif compare: the run of " << config << " failed (exit " << child.exit_code
 				  << "); the others go on\n";
-		return failedRunStats(label, checked.plugin, child.exit_code, child.error_line);
+		return failedRunStats(
+			label, checked.plugin, child.exit_code,
+			replaceAll(child.error_line, settings.staging_to_out.first, settings.staging_to_out.second));
 	}
 	try
 	{
@@ -461,37 +487,42 @@ int compareCommand(int argc, char** argv)
 	const auto order = runOrder(planned, sources);
 	if (ref) warnAboutUnrelatedIds(planned, sources, *ref);
 	const auto checked = checkConfigs(config_list, plugin_folder, local_maps.isSet());
-	ensureDirectory(out.getValue());
 
-	const std::string input = rawlog.isSet() ? rawlog.getValue() : local_maps.getValue();
-	const ChildSettings settings{
-		rawlog.isSet() ? "--rawlog" : "--local-maps", input,
-		ground_truth.isSet() ? std::optional<std::string>(ground_truth.getValue()) : std::nullopt,
-		reference_result.isSet() ? std::optional<std::string>(reference_result.getValue()) : std::nullopt,
-		plugin_folder};
-	std::vector<Stats> runs = runAll(config_list, checked, planned, sources, order, dirs, settings);
-	markSucceededRuns(runs);
+	// The comparison's folder is all-or-nothing like a run's; the runs are
+	// written inside its partial folder.
+	const auto [exit_code, text] = writeRunFolder(out.getValue(), {"comparison.csv", "comparison.md"}, [&](const std::string& staging) {
+		const auto run_dirs = runFolders(config_list, staging);
+		const std::string input = rawlog.isSet() ? rawlog.getValue() : local_maps.getValue();
+		const ChildSettings settings{
+			rawlog.isSet() ? "--rawlog" : "--local-maps", input,
+			ground_truth.isSet() ? std::optional<std::string>(ground_truth.getValue()) : std::nullopt,
+			reference_result.isSet() ? std::optional<std::string>(reference_result.getValue()) : std::nullopt,
+			plugin_folder, {staging, withoutTrailingSeparator(out.getValue())}};
+		std::vector<Stats> runs = runAll(config_list, checked, planned, sources, order, run_dirs, settings);
+		markSucceededRuns(runs);
 
-	std::string note = measureAgainstBaseline(
-		runs, dirs, planned, sources, checked,
-		ref ? std::optional<std::pair<std::size_t, std::string>>({*ref, reference.getValue()}) : std::nullopt,
-		out.getValue());
-	if (reference_result.isSet())
-		note += "refres_*: difference from the reference result " + reference_result.getValue() +
-				" (landmarks by the files' feature IDs, end poses by map k, headings modulo 2 pi)\n";
+		std::string note = measureAgainstBaseline(
+			runs, run_dirs, planned, sources, checked,
+			ref ? std::optional<std::pair<std::size_t, std::string>>({*ref, reference.getValue()}) : std::nullopt,
+			staging);
+		if (reference_result.isSet())
+			note += "refres_*: difference from the reference result " + reference_result.getValue() +
+					" (landmarks by the files' feature IDs, end poses by map k, headings modulo 2 pi)\n";
 
-	note += failureNote(runs);
-	// Table 5.1 is about the estimators: failed runs have nothing to show there.
-	std::vector<Stats> succeeded;
-	for (const auto& run : runs)
-		if (!isFailedRun(run)) succeeded.push_back(run);
-	const std::string text = comparisonText(runs) + note + "\n" + bookTable51Text(succeeded);
-	writeTextAtomically((fs::path(out.getValue()) / "comparison.csv").string(), comparisonCsv(runs));
-	writeTextAtomically((fs::path(out.getValue()) / "comparison.md").string(),
-						"# esif compare on " + input + "\n\n" + comparisonMarkdown(runs) +
-							(note.empty() ? "" : "\n" + note) + "\n" + bookTable51Markdown(succeeded));
-	std::cout << text;
-	return comparisonExitCode(runs);
+		note += failureNote(runs);
+		// Table 5.1 is about the estimators: failed runs have nothing to show there.
+		std::vector<Stats> succeeded;
+		for (const auto& run : runs)
+			if (!isFailedRun(run)) succeeded.push_back(run);
+		const std::string text = comparisonText(runs) + note + "\n" + bookTable51Text(succeeded);
+		writeTextAtomically((fs::path(staging) / "comparison.csv").string(), comparisonCsv(runs));
+		writeTextAtomically((fs::path(staging) / "comparison.md").string(),
+							"# esif compare on " + input + "\n\n" + comparisonMarkdown(runs) +
+								(note.empty() ? "" : "\n" + note) + "\n" + bookTable51Markdown(succeeded));
+		return std::make_pair(comparisonExitCode(runs), text);
+	});
+	std::cout << text;  // once the folder is in place
+	return exit_code;
 }
 
 }  // namespace esif::app

@@ -5,6 +5,7 @@
 #include "Commands.h"
 
 #include <esif/core/Errors.h>
+#include <esif/io/TerminationCleanup.h>
 
 #include <cstring>
 #include <iostream>
@@ -65,6 +66,11 @@ int dispatch(int argc, char** argv)
 
 int main(int argc, char** argv)
 {
+	// Before any thread exists (plugins and libraries start theirs later),
+	// so that only the watcher receives SIGINT/SIGTERM/SIGHUP and can remove
+	// partial output before exiting with 128 + the signal.
+	esif::termination::blockSignals();
+	esif::termination::startWatcher();
 	try
 	{
 		return dispatch(argc, argv);

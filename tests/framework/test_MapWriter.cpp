@@ -19,6 +19,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +31,9 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <unistd.h>
 #include <vector>
 
@@ -407,6 +413,59 @@ TEST(MapWriter, BinaryOutputsAreGzipAndPngWhateverTheTemporaryName)
 	for (const char* gz : {"map.simplemap", "landmarks.gz", "scene.3Dscene"})
 		EXPECT_EQ(magic(gz).substr(0, 2), std::string("\x1f\x8b")) << gz;
 	EXPECT_EQ(magic("map.png"), std::string("\x89PNG"));
+}
+
+/// Runs `write` in a forked child whose files may not exceed `limit_bytes`
+/// (RLIMIT_FSIZE, SIGXFSZ ignored: writes beyond fail with EFBIG, as on a
+/// full disk). Exit 0: it threw an InputError naming `path` and the
+/// system's reason and left no file; 1: it reported success; 2: another message.
+int writeUnderFileSizeLimit(const std::function<void()>& write, const std::string& path, rlim_t limit_bytes)
+{
+	const pid_t pid = ::fork();
+	if (pid == 0)
+	{
+		::signal(SIGXFSZ, SIG_IGN);
+		const rlimit limit{limit_bytes, limit_bytes};
+		::setrlimit(RLIMIT_FSIZE, &limit);
+		try
+		{
+			write();
+		}
+		catch (const esif::InputError& e)
+		{
+			const std::string what = e.what();
+			const bool named = what.rfind(path + ": ", 0) == 0 && what.find(std::strerror(EFBIG)) != std::string::npos;
+			::_exit(named && !fs::exists(path) ? 0 : 2);
+		}
+		::_exit(1);
+	}
+	int status = 0;
+	::waitpid(pid, &status, 0);
+	return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(MapWriter, FullDiskIsAnErrorNamingTheFileForEveryOutput)
+{
+	// MRPT's gz streams and imwrite report success when the disk is full, and
+	// a truncated map was renamed into place. 64 bytes is below every output
+	// of makeRun() (landmarks.txt's header line alone is longer; a gzip of a
+	// serialized MRPT object has a 10-byte header and the class name), so
+	// each write must fail, and say so.
+	TempDir dir;
+	const esif::RunRecord run = makeRun();
+	const std::vector<std::pair<std::string, std::function<void(const std::string&)>>> writers = {
+		{"map.simplemap", [&](const std::string& p) { esif::writeSimpleMap(run, p); }},
+		{"scene.3Dscene", [&](const std::string& p) { esif::writeScene(run, p, {}); }},
+		{"landmarks.gz", [&](const std::string& p) { esif::writeLandmarksGz(run.final_estimate, p); }},
+		{"landmarks.txt", [&](const std::string& p) { esif::writeLandmarksTxt(run.final_estimate, p); }},
+		{"map.png", [&](const std::string& p) { esif::writeMapImage(run, p, {}); }},
+	};
+	for (const auto& [name, write] : writers)
+	{
+		const std::string path = dir.file(name);
+		EXPECT_EQ(writeUnderFileSizeLimit([&] { write(path); }, path, 64), 0) << name;
+	}
+	EXPECT_TRUE(dir.entries().empty()) << "no temporary file left";
 }
 
 TEST(MapWriter, NonFiniteLandmarkIsKeptInTextAndLeftOutOfMrptMap)

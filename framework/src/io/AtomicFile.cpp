@@ -1,8 +1,9 @@
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
+#include <esif/io/CheckedWrite.h>
+#include <esif/io/TerminationCleanup.h>
 
 #include <filesystem>
-#include <fstream>
 #include <system_error>
 #include <unistd.h>
 
@@ -20,50 +21,62 @@ std::string temporaryNameFor(const std::string& path)
 	return (p.parent_path() / ("." + p.filename().string() + "." + std::to_string(::getpid()) + ".tmp"))
 		.string();
 }
+
+/// Removes the temporary file; never throws, so that the error that made
+/// the write fail is the one reported (e.g. on a read-only file system).
+void discard(const std::string& tmp)
+{
+	std::error_code ec;
+	fs::remove(tmp, ec);
+	termination::removePath(tmp);
+}
+
+void writeThenRename(const std::string& path, const std::string& tmp, const std::function<void(const std::string&)>& write)
+{
+	write(tmp);
+	std::error_code ec;
+	fs::rename(tmp, path, ec);
+	if (ec) throw InputError(path + ": cannot write output: " + ec.message());
+}
 }  // namespace
 
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write)
 {
 	const std::string tmp = temporaryNameFor(path);
+	termination::addPath(tmp);
 	try
 	{
-		write(tmp);
-		std::error_code ec;
-		fs::rename(tmp, path, ec);
-		if (ec) throw InputError(path + ": cannot write output: " + ec.message());
+		writeThenRename(path, tmp, write);
+		termination::removePath(tmp);
 	}
 	catch (const ConfigError&)
 	{
-		fs::remove(tmp);
+		discard(tmp);
 		throw;
 	}
 	catch (const InputError&)
 	{
-		fs::remove(tmp);
+		discard(tmp);
 		throw;
 	}
 	catch (const NumericalError&)
 	{
-		fs::remove(tmp);
+		discard(tmp);
 		throw;
 	}
 	catch (const std::exception& e)
 	{
-		fs::remove(tmp);
+		discard(tmp);
 		throw InputError(path + ": cannot write output: " + e.what());
 	}
 }
 
-void writeTextAtomically(const std::string& path, const std::string& text)
+void writeBytesAtomically(const std::string& path, const std::string& bytes)
 {
-	writeAtomically(path, [&](const std::string& tmp) {
-		std::ofstream out(tmp, std::ios::binary);
-		if (!out) throw InputError(path + ": cannot open for writing");
-		out << text;
-		out.close();
-		if (!out) throw InputError(path + ": write failed");
-	});
+	writeAtomically(path, [&](const std::string& tmp) { writeBytesChecked(tmp, bytes, path); });
 }
+
+void writeTextAtomically(const std::string& path, const std::string& text) { writeBytesAtomically(path, text); }
 
 void ensureDirectory(const std::string& dir)
 {

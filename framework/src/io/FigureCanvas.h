@@ -12,6 +12,8 @@
 #include <mrpt/img/CImage.h>
 #include <mrpt/img/TColor.h>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -141,23 +143,13 @@ inline std::string tickLabel(double v)
 /// Saves `img` as PNG at `path` atomically; throws InputError naming `path`.
 inline void savePngAtomically(const mrpt::img::CImage& img, const std::string& path)
 {
-	writeAtomically(path, [&](const std::string& tmp) {
-		// OpenCV picks the format from the extension and the temporary name
-		// ends in ".tmp": encode to a ".png" sibling, then move it onto the
-		// temporary name that writeAtomically renames into place.
-		const std::string png_tmp = tmp + ".png";
-		try
-		{
-			if (!img.saveToFile(png_tmp)) throw InputError(path + ": cannot write PNG image");
-			std::filesystem::rename(png_tmp, tmp);
-		}
-		catch (...)
-		{
-			std::error_code ec;
-			std::filesystem::remove(png_tmp, ec);
-			throw;
-		}
-	});
+	// Encoded in memory by OpenCV (what CImage::saveToFile calls with the
+	// file name), then written with every step checked: imwrite leaves a
+	// truncated file on a full disk without saying so.
+	std::vector<uchar> png;
+	if (!cv::imencode(".png", img.asCvMatRef(), png) || png.empty())
+		throw InputError(path + ": cannot encode PNG image");
+	writeBytesAtomically(path, std::string(png.begin(), png.end()));
 }
 
 }  // namespace esif::figure_canvas

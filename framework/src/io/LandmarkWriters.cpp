@@ -5,11 +5,11 @@
 
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
+#include <esif/io/GzArchive.h>
 #include <esif/io/MapWriter.h>
 
 #include "NumberText.h"
 
-#include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/maps/CLandmark.h>
 #include <mrpt/maps/CLandmarksMap.h>
 #include <mrpt/serialization/CArchive.h>
@@ -91,12 +91,7 @@ void writeLandmarksGz(const Estimate& estimate, const std::string& path)
 		map.landmarks.push_back(l);
 	}
 
-	writeAtomically(path, [&](const std::string& tmp) {
-		mrpt::io::CFileGZOutputStream out;
-		if (!out.open(tmp)) throw InputError(path + ": cannot open for writing");
-		mrpt::serialization::archiveFrom(out) << map;
-		out.close();
-	});
+	writeGzArchiveAtomically(path, [&](mrpt::serialization::CArchive& out) { out << map; });
 }
 
 void writeLandmarksTxt(const Estimate& estimate, const std::string& path)

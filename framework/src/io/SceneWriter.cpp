@@ -5,7 +5,7 @@
 /// truth. Every object is named so that scripts and tests can find it.
 
 #include <esif/core/Errors.h>
-#include <esif/io/AtomicFile.h>
+#include <esif/io/GzArchive.h>
 #include <esif/io/MapWriter.h>
 
 #include "MapGeometry.h"
@@ -196,11 +196,9 @@ void writeScene(const RunRecord& run, const std::string& path, const MapWriterOp
 	camera.setElevationDegrees(75.0f);
 	scene.enableFollowCamera(true);
 
-	writeAtomically(path, [&](const std::string& tmp) {
-		// saveToFile always writes gz through CFileGZOutputStream, whatever the
-		// extension; loadFromFile reads it back from the final ".3Dscene" name.
-		if (!scene.saveToFile(tmp)) throw InputError(path + ": cannot write 3D scene");
-	});
+	// The gzip of the serialized scene, as COpenGLScene::saveToFile writes
+	// and loadFromFile reads it, but with every write checked (GzArchive.h).
+	writeGzArchiveAtomically(path, [&](mrpt::serialization::CArchive& out) { out << scene; });
 }
 
 }  // namespace esif

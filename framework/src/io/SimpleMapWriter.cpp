@@ -3,7 +3,7 @@
 /// by MRPT's own tools (e.g. simplemap-viewer, map building from keyframes).
 
 #include <esif/core/Errors.h>
-#include <esif/io/AtomicFile.h>
+#include <esif/io/GzArchive.h>
 #include <esif/io/MapWriter.h>
 
 #include <mrpt/maps/CSimpleMap.h>
@@ -29,12 +29,9 @@ void writeSimpleMap(const RunRecord& run, const std::string& path)
 		map.insert(mrpt::poses::CPosePDF::Ptr(pdf), frame);
 	}
 
-	writeAtomically(path, [&](const std::string& tmp) {
-		// CSimpleMap::saveToFile always writes through CFileGZOutputStream,
-		// whatever the extension, and loadFromFile reads gz, so the temporary
-		// name's ".tmp" suffix does not change the format of the final file.
-		if (!map.saveToFile(tmp)) throw InputError(path + ": cannot write simple map");
-	});
+	// The gzip of the serialized object, as CSimpleMap::saveToFile writes
+	// and loadFromFile reads it, but with every write checked (GzArchive.h).
+	writeGzArchiveAtomically(path, [&](mrpt::serialization::CArchive& out) { out << map; });
 }
 
 }  // namespace esif

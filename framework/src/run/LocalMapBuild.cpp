@@ -2,6 +2,7 @@
 #include <esif/eval/AssociationAudit.h>
 #include <esif/io/AssociationFile.h>
 #include <esif/io/ProgressBar.h>
+#include <esif/io/RunFolder.h>
 #include <esif/localmap/LocalMapBuilder.h>
 #include <esif/run/LocalMapBuild.h>
 #include <esif/run/RunSetup.h>
@@ -79,7 +80,10 @@ void attachLocalMapGroundTruth(LocalMapFolder& folder, const Rawlog& log, const 
 	if (!end_poses.empty()) folder.truth_end_poses = std::move(end_poses);
 }
 
-LocalMapBuildResult runLocalMapBuild(const LocalMapBuildRequest& request, PluginLoader& loader)
+namespace
+{
+/// The whole build, writing into `out_dir` (the partial folder).
+LocalMapBuildResult buildInto(const LocalMapBuildRequest& request, const std::string& out_dir, PluginLoader& loader)
 {
 	const ConfigFile cfg = ConfigFile::load(request.config_path);
 	const HostParams host = loadHostParams(cfg);
@@ -97,8 +101,17 @@ LocalMapBuildResult runLocalMapBuild(const LocalMapBuildRequest& request, Plugin
 	out.folder.maps = buildLocalMaps(log, joiner->localMapBuilderParams(), request.progress_bar);
 	out.id_offset = makeFeatureIdsPositive(out.folder.maps);
 	if (truth) attachLocalMapGroundTruth(out.folder, log, truth->inInitialPoseFrame());
-	writeLocalMapFolder(out.folder, request.out_dir);
+	writeLocalMapFolder(out.folder, out_dir);
 	return out;
+}
+}  // namespace
+
+LocalMapBuildResult runLocalMapBuild(const LocalMapBuildRequest& request, PluginLoader& loader)
+{
+	// Locked, written aside and swapped into place like a run's folder.
+	return writeRunFolder(request.out_dir, {"localmap_1.txt"}, [&](const std::string& staging) {
+		return buildInto(request, staging, loader);
+	});
 }
 
 }  // namespace esif

@@ -5,6 +5,7 @@
 #include <esif/io/AtomicFile.h>
 #include <esif/io/FigureWriter.h>
 #include <esif/io/MapWriter.h>
+#include <esif/io/RunFolder.h>
 #include <esif/localmap/LocalMapFiles.h>
 #include <esif/run/LocalMapReplay.h>
 #include <esif/run/LocalMapRunPipeline.h>
@@ -17,6 +18,11 @@ namespace esif
 {
 namespace
 {
+/// What every local-map run writes, checked before the folder is put in place.
+const std::vector<std::string> kLocalMapRunOutputFiles = {
+	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "landmarks.gz",
+	"localmap_times.png", "params.ini", kAssociationFileName, "stats.json"};
+
 /// What the run was given, read before any output is written.
 struct LocalMapInput
 {
@@ -100,7 +106,10 @@ LocalMapJoiner& requireLocalMapJoiner(FilterPlugin& plugin, const std::string& c
 		config + ": plugin " + name + " cannot join local maps (--local-maps needs a local-map joining plugin)");
 }
 
-Stats runLocalMapPipeline(const LocalMapRunRequest& request, PluginLoader& loader)
+namespace
+{
+/// The whole run, writing into request.out_dir (the partial folder).
+Stats runInto(const LocalMapRunRequest& request, PluginLoader& loader)
 {
 	const auto t0 = std::chrono::steady_clock::now();
 	const ConfigFile cfg = ConfigFile::load(request.config_path);
@@ -109,7 +118,6 @@ Stats runLocalMapPipeline(const LocalMapRunRequest& request, PluginLoader& loade
 	auto plugin = createConfiguredPlugin(cfg, host, loader);
 	requireLocalMapJoiner(*plugin, cfg.origin(), host.plugin);
 	const LocalMapInput in = readInput(request);
-	ensureDirectory(request.out_dir);
 
 	LocalMapReplayResult result = replayLocalMaps(
 		*plugin, in.folder.maps, request.local_maps_dir, {host.hide_landmark_ids, request.progress_bar});
@@ -127,6 +135,16 @@ Stats runLocalMapPipeline(const LocalMapRunRequest& request, PluginLoader& loade
 	Stats stats = collectStats(host, request, in, result, *plugin, accuracy, difference, total_wall_s);
 	writeTextAtomically((std::filesystem::path(request.out_dir) / "stats.json").string(), stats.toJson());
 	return stats;
+}
+}  // namespace
+
+Stats runLocalMapPipeline(const LocalMapRunRequest& request, PluginLoader& loader)
+{
+	return writeRunFolder(request.out_dir, kLocalMapRunOutputFiles, [&](const std::string& staging) {
+		LocalMapRunRequest staged = request;
+		staged.out_dir = staging;
+		return runInto(staged, loader);
+	});
 }
 
 }  // namespace esif

@@ -7,6 +7,7 @@
 #include <esif/io/GroundTruth.h>
 #include <esif/io/MapWriter.h>
 #include <esif/io/RawlogReader.h>
+#include <esif/io/RunFolder.h>
 #include <esif/run/HostParams.h>
 #include <esif/run/LandmarkIdRequirement.h>
 #include <esif/run/Replay.h>
@@ -22,6 +23,11 @@ namespace esif
 {
 namespace
 {
+/// What every run writes, checked before the folder is put in place.
+const std::vector<std::string> kRunOutputFiles = {
+	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "landmarks.gz",
+	"step_times.png", "params.ini", kAssociationFileName, "stats.json"};
+
 /// A simulated rawlog with misread IDs or clutter has its measurements'
 /// true landmarks beside it (MeasurementTruth.h): data association is then
 /// scored against those, not against the rawlog's own (partly wrong) IDs.
@@ -68,9 +74,9 @@ Stats collectStats(
 	setPluginCounters(s, cost);
 	return s;
 }
-}  // namespace
 
-Stats runPipeline(const RunRequest& request, PluginLoader& loader)
+/// The whole run, writing into request.out_dir (the partial folder).
+Stats runInto(const RunRequest& request, PluginLoader& loader)
 {
 	const auto t0 = std::chrono::steady_clock::now();
 	const ConfigFile cfg = ConfigFile::load(request.config_path);
@@ -92,8 +98,6 @@ Stats runPipeline(const RunRequest& request, PluginLoader& loader)
 			std::cerr << "esif: warning: " << *problem << "; accuracy and consistency figures left null\n";
 			truth.reset();
 		}
-	ensureDirectory(request.out_dir);
-
 	ReplayResult result = replay(*plugin, log, {host.keyframe_min_distance_m, request.progress_bar});
 
 	std::optional<Accuracy> accuracy;
@@ -119,6 +123,16 @@ Stats runPipeline(const RunRequest& request, PluginLoader& loader)
 	Stats stats = collectStats(host, request, log, result, *plugin, accuracy, total_wall_s);
 	writeTextAtomically((dir / "stats.json").string(), stats.toJson());
 	return stats;
+}
+}  // namespace
+
+Stats runPipeline(const RunRequest& request, PluginLoader& loader)
+{
+	return writeRunFolder(request.out_dir, kRunOutputFiles, [&](const std::string& staging) {
+		RunRequest staged = request;
+		staged.out_dir = staging;
+		return runInto(staged, loader);
+	});
 }
 
 }  // namespace esif

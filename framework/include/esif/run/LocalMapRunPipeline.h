@@ -34,7 +34,8 @@ LocalMapJoiner& requireLocalMapJoiner(FilterPlugin& plugin, const std::string& c
 /// map.png and scene.3Dscene (the end poses as the path), associations.txt
 /// ("step" = map k, "measurement" = feature index), info_matrix.png when the
 /// plugin gives a pattern, localmap_times.png (Fig. 5.7-5.8), params.ini and
-/// stats.json. Returns the stats.
+/// stats.json. Returns the stats. The folder is all-or-nothing, as a
+/// rawlog run's (RunFolder.h).
 ///
 /// Config errors (not a joining plugin, `[esif] associations_from` set,
 /// which only applies to rawlogs), an unreadable folder or reference result

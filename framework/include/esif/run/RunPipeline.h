@@ -30,6 +30,9 @@ struct RunRequest
 /// associations.txt (the plugin's decision for every measurement, see
 /// AssociationFile.h), stats.json and params.ini (the effective parameters).
 /// Returns the stats. Warnings (e.g. a truncated rawlog) go to stderr.
+/// The folder is all-or-nothing (RunFolder.h): locked while written, filled
+/// aside and swapped into place only when complete, so a failure or a
+/// signal leaves the previous folder (or none) as it was.
 ///
 /// With `associations_from` (INI key or request override) set, the landmark
 /// IDs of every measurement come from that folder's associations.txt before

@@ -1,0 +1,35 @@
+#pragma once
+/// \file FolderLock.h
+/// An exclusive lock on an output folder for as long as one esif process
+/// writes it, so a second run into the same --out fails at once instead of
+/// both succeeding with a folder of mixed files. The lock is flock() on
+/// `<parent>/.<name>.lock`, beside the folder rather than in it, because
+/// the folder itself is replaced by a rename while locked.
+
+#include <filesystem>
+#include <string>
+
+namespace esif
+{
+class FolderLock
+{
+   public:
+	/// Takes the lock of `folder` without waiting. Throws InputError naming
+	/// `folder` when another process holds it, or naming the lock file and
+	/// the system's reason when it cannot be created (e.g. a read-only parent).
+	explicit FolderLock(const std::filesystem::path& folder);
+	/// Removes the lock file and releases the lock; never throws.
+	~FolderLock();
+
+	FolderLock(const FolderLock&) = delete;
+	FolderLock& operator=(const FolderLock&) = delete;
+
+	/// `<parent>/.<name>.lock` for `folder`.
+	static std::filesystem::path lockFileOf(const std::filesystem::path& folder);
+
+   private:
+	std::string path_;
+	int fd_ = -1;
+};
+
+}  // namespace esif

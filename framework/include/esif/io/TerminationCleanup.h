@@ -1,0 +1,43 @@
+#pragma once
+/// \file TerminationCleanup.h
+/// What happens on SIGINT, SIGTERM and SIGHUP: the signals are blocked in
+/// every thread and taken by one watcher thread (sigwait), which forwards
+/// the signal to a running child run and waits for it, removes the
+/// temporary files, folders and locks registered here, and ends the process
+/// with 128 + the signal number. A handler that ran inside an arbitrary
+/// thread could not safely remove folders; a watcher thread can, and a
+/// mutex keeps it from doing so halfway through a folder swap.
+
+#include <mutex>
+#include <string>
+#include <sys/types.h>
+
+namespace esif::termination
+{
+/// Blocks the termination signals in the calling thread. Call first in
+/// main(), before any thread starts, so that every thread inherits the mask
+/// and only the watcher receives them.
+void blockSignals();
+
+/// Restores an empty signal mask: for a forked child before exec (the mask
+/// survives exec).
+void unblockSignals();
+
+/// Starts the watcher thread once (later calls do nothing). Without it the
+/// blocked signals would stay pending forever.
+void startWatcher();
+
+/// Registers `path` (file or folder) to be removed if a signal ends the
+/// process; paths are removed in the reverse order of registration.
+void addPath(const std::string& path);
+/// Unregisters `path` (it was moved into place or removed already).
+void removePath(const std::string& path);
+
+/// The child process to forward a signal to and wait for (0: none).
+void setChild(pid_t pid);
+
+/// Held over steps that must not be cut in two by the cleanup (the swap of
+/// a finished folder into place): the watcher waits for it.
+std::unique_lock<std::mutex> holdOff();
+
+}  // namespace esif::termination
