@@ -1,5 +1,6 @@
 #include "PoseRefiner.h"
 
+#include "QuietCeresLogging.h"
 #include "Residuals.h"
 
 namespace esif::ceres_full
@@ -53,7 +54,12 @@ Pose2 refineNewPose(
 		problem.SetParameterBlockConstant(landmarks.back().data());
 	}
 	ceres::Solver::Summary summary;
-	ceres::Solve(threeUnknowns(), &problem, &summary);
+	{
+		// A start on a landmark evaluates to NaN: the fallback below is the
+		// answer, glog's dump of the residual block would only be noise.
+		const QuietCeresLogging quiet;
+		ceres::Solve(threeUnknowns(), &problem, &summary);
+	}
 	if (summary.termination_type == ceres::FAILURE || !pose.allFinite()) return initial;
 	pose.z() = esif::wrapAngle(pose.z());
 	return pose;

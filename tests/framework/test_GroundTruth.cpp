@@ -48,19 +48,61 @@ TEST(GroundTruth, InitialPoseFrameStartsAtOrigin)
 	EXPECT_NEAR((rel.landmarks.at(0) - Eigen::Vector2d(2, 0)).norm(), 0, 1e-12);
 }
 
-TEST(GroundTruth, MalformedFileNamesFileAndLine)
+/// The error loading ground truth whose landmark file is `landmarks` (and
+/// path file `path`, when given), from the file name on.
+std::string loadError(const std::string& landmarks, const std::string& path = "")
 {
 	test::TempDir dir;
-	std::ofstream(dir.file("g_ground_truth.txt")) << "1 2 0 5 0 0 1\n1 2 zero 5 0 0 2\n";
+	std::ofstream(dir.file("g_ground_truth.txt")) << landmarks;
+	if (!path.empty()) std::ofstream(dir.file("g_ground_truth_robot_path.txt")) << path;
 	try
 	{
 		loadGroundTruth(dir.file("g"));
-		FAIL();
 	}
 	catch (const InputError& e)
 	{
-		EXPECT_NE(std::string(e.what()).find("g_ground_truth.txt:2:"), std::string::npos) << e.what();
+		const std::string what = e.what();
+		const auto at = what.find("g_ground_truth");
+		return at == std::string::npos ? "(no file name) " + what : what.substr(at);
 	}
+	return "(no error)";
+}
+
+const std::string kLandmark1 = "1 2 0 5 0 0 1\n";  // a valid landmark, ID 1
+
+TEST(GroundTruth, MalformedFileNamesFileLineAndColumn)
+{
+	EXPECT_EQ(
+		loadError(kLandmark1 + "1 2 zero 5 0 0 2\n"), "g_ground_truth.txt:2: column 3 (z) = 'zero': not a number");
+	// A fractional ID was rounded into a "duplicate" of ID 1.
+	EXPECT_EQ(
+		loadError(kLandmark1 + "3 4 0 5 0 0 1.4\n"),
+		"g_ground_truth.txt:2: column 7 (ID) = 1.4: a landmark ID must be an integer, not fractional");
+	EXPECT_EQ(
+		loadError(kLandmark1 + "3 4 0 5 0 0 -2\n"),
+		"g_ground_truth.txt:2: column 7 (ID) = -2: a landmark ID must be in [0, 2147483647]");
+	EXPECT_EQ(
+		loadError(kLandmark1 + "3 4 0 5 0 0 1\n"),
+		"g_ground_truth.txt:2: column 7 (ID) = 1: duplicate landmark ID (first on line 1)");
+	EXPECT_EQ(
+		loadError(kLandmark1 + "inf 4 0 5 0 0 2\n"), "g_ground_truth.txt:2: column 1 (x) = 'inf': not a finite number");
+	EXPECT_EQ(
+		loadError(kLandmark1 + "3 1e300 0 5 0 0 2\n"),
+		"g_ground_truth.txt:2: column 2 (y) = 1e+300: must be within +-1e+07 m");
+	EXPECT_EQ(
+		loadError(kLandmark1 + "3 4 0 5 0 2\n"),
+		"g_ground_truth.txt:2: expected 7 columns 'x y z type seenCount tLastSeen ID', found 6");
+	// The robot path: the same rules for its columns.
+	EXPECT_EQ(
+		loadError(kLandmark1, "% comment\n1 2 0 0.5 0 0\n1 2 0 nan 0 0\n"),
+		"g_ground_truth_robot_path.txt:3: column 4 (yaw) = 'nan': not a finite number");
+	EXPECT_EQ(
+		loadError(kLandmark1, "1 2 0 0.5 0\n"),
+		"g_ground_truth_robot_path.txt:1: expected 6 columns 'x y z yaw pitch roll', found 5");
+	EXPECT_EQ(
+		loadError(kLandmark1, "-2e7 2 0 0.5 0 0\n"),
+		"g_ground_truth_robot_path.txt:1: column 1 (x) = -2e+07: must be within +-1e+07 m");
+	EXPECT_EQ(loadError(kLandmark1, "1 2 0 0.5 0 0\n"), "(no error)");
 }
 
 }  // namespace

@@ -8,11 +8,13 @@
 #include <LocalMapTestSupport.h>
 
 #include <esif/config/ConfigFile.h>
+#include <esif/core/Errors.h>
 #include <esif/run/LocalMapReplay.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <new>
 
 namespace
 {
@@ -138,6 +140,54 @@ TEST(LocalMapReplay, ReportOfWrongSizeNamesThePlugin)
 		EXPECT_NE(what.find("plugin esif::test::DeadReckoningJoiner"), std::string::npos) << what;
 		EXPECT_NE(what.find("0 associations for the 1 features of local map 1"), std::string::npos) << what;
 	}
+}
+
+/// A joiner that runs out of memory joining map `fail_at_map` (0: in finish()).
+class StarvedJoiner : public DeadReckoningJoiner
+{
+   public:
+	explicit StarvedJoiner(std::size_t fail_at_map) : fail_at_map_(fail_at_map) {}
+	void joinLocalMap(const esif::LocalMap& map) override
+	{
+		if (map.index == fail_at_map_) throw std::bad_alloc();
+		DeadReckoningJoiner::joinLocalMap(map);
+	}
+	void finish() override
+	{
+		if (fail_at_map_ == 0) throw std::bad_alloc();
+		DeadReckoningJoiner::finish();
+	}
+
+   private:
+	std::size_t fail_at_map_;
+};
+
+std::string numericalErrorOf(DeadReckoningJoiner& joiner)
+{
+	try
+	{
+		esif::replayLocalMaps(joiner, twoMaps(), "maps", kShown);
+	}
+	catch (const esif::NumericalError& e)
+	{
+		return e.what();
+	}
+	return "(no NumericalError)";
+}
+
+TEST(LocalMapReplay, OutOfMemoryNamesTheMapThePluginAndItsStateSize)
+{
+	// After map 1 the state holds its end pose and one landmark: 3 + 2.
+	StarvedJoiner at_map_2(2);
+	EXPECT_EQ(
+		numericalErrorOf(at_map_2),
+		"maps: out of memory at local map 2 in plugin esif::test::DeadReckoningJoiner (state of dimension 5)");
+	// Both maps joined: two end poses, landmarks 1 and 2 (3 x 2 + 2 x 2).
+	StarvedJoiner in_finish(0);
+	EXPECT_EQ(
+		numericalErrorOf(in_finish),
+		"maps: out of memory after the last local map in plugin esif::test::DeadReckoningJoiner (state of "
+		"dimension 10)");
 }
 
 TEST(LocalMapReplay, PluginThatCannotJoinIsRefused)

@@ -83,20 +83,97 @@ TEST(VictoriaParkImporter, NoIdsReallyStripsIds)
 	EXPECT_EQ(n, 3640u);
 }
 
+/// The error for `text`, from its file name on ("vp.txt:LINE: ...").
+std::string errorFrom(const std::string& text)
+{
+	const std::string e = importError(text);
+	const auto at = e.find("vp.txt");
+	return at == std::string::npos ? "(no file name) " + e : e.substr(at);
+}
+
+const std::string kFirst = "ODOMETRY 0 1 0.1 0 0 1 0 0 1 0 1\n";  // a valid first record
+
 TEST(VictoriaParkImporter, MalformedLinesNameFileAndLine)
 {
-	EXPECT_NE(importError("ODOMETRY 0 1 0.1 0 0 1 0 0 1 0 1\nODOMETRY 1 2 0.1 0 zero 1 0 0 1 0 1\n").find("vp.txt:2: expected 'ODOMETRY"),
-			  std::string::npos);
-	EXPECT_NE(importError("ODOMETRY 0 1 0.1 0 0 1 0 0 1 0 1\nLANDMARK 1 5 3.0\n").find("vp.txt:2: expected 'LANDMARK"),
-			  std::string::npos);
-	EXPECT_NE(importError("ODOMETRY 0 1 0.1 0 0 1 0 0 1 0 1\nPOSE 1 2\n").find("vp.txt:2: unknown record 'POSE'"),
-			  std::string::npos);
-	EXPECT_NE(importError("ODOMETRY 0 1 0.1 0 0 1 0 0 1 0 1\nLANDMARK 7 5 3 1 0.4 0 0.4\n").find("vp.txt:2: pose 7 not defined"),
-			  std::string::npos);
-	EXPECT_NE(importError("ODOMETRY 0 1 0.1 0 0 1 0 0 1 0 1\nODOMETRY 5 6 0.1 0 0 1 0 0 1 0 1\n").find("vp.txt:2: odometry must start at the latest pose"),
-			  std::string::npos);
-	EXPECT_NE(importError("ODOMETRY 0 1 nan 0 0 1 0 0 1 0 1\n").find("vp.txt:1:"), std::string::npos);
-	EXPECT_NE(importError("").find("no ODOMETRY records"), std::string::npos);
+	EXPECT_EQ(
+		errorFrom(kFirst + "ODOMETRY 1 2 0.1 0 zero 1 0 0 1 0 1\n"), "vp.txt:2: ODOMETRY dtheta = 'zero': not a number");
+	EXPECT_EQ(
+		errorFrom(kFirst + "LANDMARK 1 5 3.0\n"),
+		"vp.txt:2: expected 'LANDMARK i l x y c11 c12 c22' (7 numbers), found 3");
+	EXPECT_EQ(errorFrom(kFirst + "POSE 1 2\n"), "vp.txt:2: unknown record 'POSE' (expected ODOMETRY or LANDMARK)");
+	EXPECT_EQ(errorFrom(kFirst + "LANDMARK 7 5 3 1 0.4 0 0.4\n"), "vp.txt:2: LANDMARK i = 7: pose not defined yet");
+	EXPECT_EQ(
+		errorFrom(kFirst + "ODOMETRY 5 6 0.1 0 0 1 0 0 1 0 1\n"),
+		"vp.txt:2: ODOMETRY i = 5: odometry must start at the latest pose (1)");
+	EXPECT_EQ(errorFrom(kFirst + "ODOMETRY 1 1 0.1 0 0 1 0 0 1 0 1\n"), "vp.txt:2: ODOMETRY j = 1: pose already exists");
+	EXPECT_EQ(errorFrom("ODOMETRY 0 1 nan 0 0 1 0 0 1 0 1\n"), "vp.txt:1: ODOMETRY dx = 'nan': not a finite number");
+	EXPECT_EQ(errorFrom(""), "vp.txt: no ODOMETRY records");
+}
+
+TEST(VictoriaParkImporter, ImplausibleNumbersAreRejectedAtTheBorder)
+{
+	// Each line differs from a valid record in one field.
+	EXPECT_EQ(
+		errorFrom(kFirst + "ODOMETRY 1 2 0.1 0 0 -1 0 0 1 0 1\n"),
+		"vp.txt:2: ODOMETRY c11 = -1: a variance must be in (0, 1e+06]");
+	EXPECT_EQ(
+		errorFrom(kFirst + "ODOMETRY 1 2 1e300 0 0 1 0 0 1 0 1\n"),
+		"vp.txt:2: ODOMETRY dx = 1e+300: must be within +-100 m (longest plausible odometry step)");
+	EXPECT_EQ(
+		errorFrom(kFirst + "ODOMETRY 1 2 0.1 0 90 1 0 0 1 0 1\n"),
+		"vp.txt:2: ODOMETRY dtheta = 90: must be within +-6.283 rad (one full turn; degrees instead of radians?)");
+	EXPECT_EQ(
+		errorFrom(kFirst + "LANDMARK 1 5 1e300 1 0.4 0 0.4\n"),
+		"vp.txt:2: LANDMARK x = 1e+300: must be within +-1000 m (farthest plausible landmark)");
+	EXPECT_EQ(
+		errorFrom(kFirst + "LANDMARK 1 5 0 0 0.4 0 0.4\n"),
+		"vp.txt:2: LANDMARK x, y = 0, 0: 0 m from the sensor, nearer than 0.001 m (bearing undefined)");
+	EXPECT_EQ(
+		errorFrom(kFirst + "LANDMARK 1 5 40 0 0.4 0 0.4\n"),
+		"vp.txt:2: LANDMARK x, y = 40, 0: range 40 m beyond the sensor range --max-range-m = 30 m");
+	// Positive variances, but c12 makes the 2x2 matrix indefinite
+	// (eigenvalues 0.4 -+ 1).
+	EXPECT_EQ(
+		errorFrom(kFirst + "LANDMARK 1 5 3 1 0.4 1 0.4\n"),
+		"vp.txt:2: LANDMARK covariance (c11 c12 c22) = (0.4 1 0.4): eigenvalues -0.6 to 1.4, must be in [1e-12, "
+		"1e+06] (positive definite, finite)");
+	EXPECT_EQ(
+		errorFrom(kFirst + "ODOMETRY 1 2 0.1 0 0 1 0 0 1 0 1e-300\n"),
+		"vp.txt:2: ODOMETRY covariance (c11 c12 c13 c22 c23 c33) = (1 0 0 1 0 1e-300): eigenvalues 1e-300 to 1, must "
+		"be in [1e-12, 1e+06] (positive definite, finite)");
+	// Node IDs: fractional, negative, beyond MRPT's int32 landmark IDs.
+	EXPECT_EQ(
+		errorFrom(kFirst + "ODOMETRY 1 2.5 0.1 0 0 1 0 0 1 0 1\n"),
+		"vp.txt:2: ODOMETRY j = 2.5: a node ID must be an integer in [0, 2147483647]");
+	EXPECT_EQ(
+		errorFrom(kFirst + "LANDMARK 1 -5 3 1 0.4 0 0.4\n"),
+		"vp.txt:2: LANDMARK l = -5: a node ID must be an integer in [0, 2147483647]");
+	EXPECT_EQ(
+		errorFrom(kFirst + "LANDMARK 1 3e9 3 1 0.4 0 0.4\n"),
+		"vp.txt:2: LANDMARK l = 3e+09: a node ID must be an integer in [0, 2147483647]");
+}
+
+TEST(VictoriaParkImporter, ImplausibleOptionsNameTheOption)
+{
+	test::TempDir dir;
+	std::ofstream(dir.file("vp.txt")) << kFirst;
+	VictoriaParkImportOptions options;
+	options.std_range_m = 1e300;
+	try
+	{
+		importVictoriaPark(dir.file("vp.txt"), dir.file("vp.rawlog"), options);
+		ADD_FAILURE() << "no error";
+	}
+	catch (const ConfigError& e)
+	{
+		EXPECT_STREQ(
+			e.what(),
+			"import victoria-park: --std-range-m = 1e+300: must be in (0, 100] (beyond it a measurement carries no "
+			"information)");
+	}
+	// A valid file still imports (the bounds leave the dataset's values alone).
+	const auto summary = importVictoriaPark(dir.file("vp.txt"), dir.file("vp.rawlog"), {});
+	EXPECT_EQ(summary.poses, 2u);
 }
 
 }  // namespace

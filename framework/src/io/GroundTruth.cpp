@@ -1,3 +1,4 @@
+#include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
 #include <esif/io/GroundTruth.h>
@@ -15,21 +16,13 @@ namespace
 std::string landmarkFileOf(const std::string& prefix) { return prefix + "_ground_truth.txt"; }
 std::string pathFileOf(const std::string& prefix) { return prefix + "_ground_truth_robot_path.txt"; }
 
-/// Reads the numbers of one data line; false if a token is not a finite number.
-bool readNumbers(const std::string& line, std::vector<double>& out)
-{
-	out.clear();
-	std::istringstream ss(line);
-	std::string tok;
-	while (ss >> tok)
-	{
-		char* end = nullptr;
-		const double v = std::strtod(tok.c_str(), &end);
-		if (end == tok.c_str() || *end != '\0' || !std::isfinite(v)) return false;
-		out.push_back(v);
-	}
-	return true;
-}
+/// Positions beyond an Earth-sized map (1e7 m) are a corrupt file or the
+/// wrong units, not a SLAM experiment: the errors scored against them would
+/// mean nothing.
+constexpr double kMaxCoordinate_m = 1e7;
+/// Largest landmark ID: the rawlogs carry MRPT's int32 landmark IDs, so a
+/// larger one can never match a measurement.
+constexpr double kMaxLandmarkId = 2147483647.0;
 
 bool isBlankOrComment(const std::string& line)
 {
@@ -37,24 +30,91 @@ bool isBlankOrComment(const std::string& line)
 	return first == std::string::npos || line[first] == '%' || line[first] == '#';
 }
 
+/// The columns of one data line, each a finite number, known by name for
+/// the errors ("FILE:LINE: column K (NAME) = VALUE: rule").
+class Row
+{
+   public:
+	Row(const std::string& line, const std::vector<const char*>& names, const std::string& where)
+		: names_(names), where_(where)
+	{
+		std::istringstream ss(line);
+		std::vector<std::string> tokens;
+		for (std::string t; ss >> t;) tokens.push_back(t);
+		if (tokens.size() != names.size())
+		{
+			std::string list;
+			for (const char* n : names) list += (list.empty() ? "" : " ") + std::string(n);
+			throw InputError(
+				where + ": expected " + std::to_string(names.size()) + " columns '" + list + "', found " +
+				std::to_string(tokens.size()));
+		}
+		for (std::size_t i = 0; i < tokens.size(); ++i)
+		{
+			char* end = nullptr;
+			const double v = std::strtod(tokens[i].c_str(), &end);
+			if (end == tokens[i].c_str() || *end != '\0') fail(i, "'" + tokens[i] + "'", "not a number");
+			if (!std::isfinite(v)) fail(i, "'" + tokens[i] + "'", "not a finite number");
+			values_.push_back(v);
+		}
+	}
+
+	/// Column `i` as a coordinate [m], within +-kMaxCoordinate_m.
+	double coordinate(std::size_t i) const
+	{
+		if (std::abs(values_[i]) > kMaxCoordinate_m)
+			fail(i, formatNumber(values_[i]), "must be within +-" + formatNumber(kMaxCoordinate_m) + " m");
+		return values_[i];
+	}
+
+	double number(std::size_t i) const { return values_[i]; }
+
+	/// Column `i` as a landmark ID: an integer in [0, kMaxLandmarkId].
+	LandmarkId landmarkId(std::size_t i) const
+	{
+		const double v = values_[i];
+		if (v != std::floor(v)) fail(i, formatNumber(v), "a landmark ID must be an integer, not fractional");
+		if (v < 0 || v > kMaxLandmarkId)
+			fail(i, formatNumber(v), "a landmark ID must be in [0, " + formatNumber(kMaxLandmarkId) + "]");
+		return static_cast<LandmarkId>(v);
+	}
+
+   private:
+	[[noreturn]] void fail(std::size_t i, const std::string& value, const std::string& rule) const
+	{
+		throw InputError(
+			where_ + ": column " + std::to_string(i + 1) + " (" + names_[i] + ") = " + value + ": " + rule);
+	}
+
+	const std::vector<const char*>& names_;
+	const std::string where_;
+	std::vector<double> values_;
+};
+
+// CLandmarksMap::saveToTextFile's columns, and simul-landmarks' robot path.
+const std::vector<const char*> kLandmarkColumns{"x", "y", "z", "type", "seenCount", "tLastSeen", "ID"};
+const std::vector<const char*> kPathColumns{"x", "y", "z", "yaw", "pitch", "roll"};
+
 std::map<LandmarkId, Eigen::Vector2d> readLandmarks(const std::string& file)
 {
 	std::ifstream in(file);
 	if (!in) throw InputError(file + ": cannot open ground-truth landmarks");
 	std::map<LandmarkId, Eigen::Vector2d> out;
+	std::map<LandmarkId, int> line_of;
 	std::string line;
-	std::vector<double> v;
 	for (int lineno = 1; std::getline(in, line); ++lineno)
 	{
 		if (isBlankOrComment(line)) continue;
-		// CLandmarksMap::saveToTextFile: x y z type seenCount tLastSeen ID
-		if (!readNumbers(line, v) || v.size() != 7)
+		const std::string where = file + ":" + std::to_string(lineno);
+		const Row row(line, kLandmarkColumns, where);
+		const LandmarkId id = row.landmarkId(6);
+		const Eigen::Vector2d p(row.coordinate(0), row.coordinate(1));
+		if (const auto first = line_of.find(id); first != line_of.end())
 			throw InputError(
-				file + ":" + std::to_string(lineno) +
-				": expected 7 numbers 'x y z type seenCount tLastSeen ID'");
-		const auto id = static_cast<LandmarkId>(std::llround(v[6]));
-		if (!out.emplace(id, Eigen::Vector2d(v[0], v[1])).second)
-			throw InputError(file + ":" + std::to_string(lineno) + ": duplicate landmark ID " + std::to_string(id));
+				where + ": column 7 (ID) = " + std::to_string(id) + ": duplicate landmark ID (first on line " +
+				std::to_string(first->second) + ")");
+		line_of[id] = lineno;
+		out.emplace(id, p);
 	}
 	return out;
 }
@@ -65,14 +125,11 @@ std::vector<Pose2> readPath(const std::string& file)
 	if (!in) throw InputError(file + ": cannot open ground-truth robot path");
 	std::vector<Pose2> out;
 	std::string line;
-	std::vector<double> v;
 	for (int lineno = 1; std::getline(in, line); ++lineno)
 	{
 		if (isBlankOrComment(line)) continue;
-		if (!readNumbers(line, v) || v.size() != 6)
-			throw InputError(
-				file + ":" + std::to_string(lineno) + ": expected 6 numbers 'x y z yaw pitch roll'");
-		out.emplace_back(v[0], v[1], v[3]);
+		const Row row(line, kPathColumns, file + ":" + std::to_string(lineno));
+		out.emplace_back(row.coordinate(0), row.coordinate(1), row.number(3));
 	}
 	return out;
 }

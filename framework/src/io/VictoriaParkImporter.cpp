@@ -1,3 +1,6 @@
+#include "VictoriaParkRecord.h"
+
+#include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
 #include <esif/io/RawlogWriter.h>
@@ -10,7 +13,6 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <sstream>
 #include <unordered_map>
 #include <vector>
 
@@ -19,24 +21,6 @@ namespace esif
 namespace
 {
 constexpr double kDeg = M_PI / 180.0;
-
-/// Parses the numbers after the record keyword; false unless exactly `n`
-/// finite numbers follow.
-bool readFields(std::istringstream& in, std::size_t n, std::vector<double>& out)
-{
-	out.clear();
-	std::string tok;
-	while (in >> tok)
-	{
-		char* end = nullptr;
-		const double v = std::strtod(tok.c_str(), &end);
-		if (end == tok.c_str() || *end != '\0' || !std::isfinite(v)) return false;
-		out.push_back(v);
-	}
-	return out.size() == n;
-}
-
-bool isNodeId(double v) { return v >= 0 && v == std::floor(v) && v < 2147483647.0; }
 
 /// The steps of the dataset: one per pose, odometry from the previous pose.
 class StepTable
@@ -49,39 +33,45 @@ class StepTable
 		step_of_node_[0] = 0;
 	}
 
-	void addOdometry(const std::vector<double>& f, const std::string& where)
+	void addOdometry(const victoria_park::OdometryRecord& r, const std::string& where)
 	{
-		if (!isNodeId(f[0]) || !isNodeId(f[1])) throw InputError(where + ": pose ids must be non-negative integers");
-		const auto from = static_cast<long>(f[0]), to = static_cast<long>(f[1]);
-		const auto it = step_of_node_.find(from);
+		const auto it = step_of_node_.find(r.from);
 		if (it == step_of_node_.end() || it->second != steps_.size() - 1)
-			throw InputError(where + ": odometry must start at the latest pose (" + std::to_string(last_node_) + ")");
-		if (step_of_node_.count(to)) throw InputError(where + ": pose " + std::to_string(to) + " already exists");
+			throw InputError(
+				where + ": ODOMETRY i = " + std::to_string(r.from) + ": odometry must start at the latest pose (" +
+				std::to_string(last_node_) + ")");
+		if (step_of_node_.count(r.to))
+			throw InputError(where + ": ODOMETRY j = " + std::to_string(r.to) + ": pose already exists");
 		StepInput step;
 		step.index = steps_.size();
 		step.time_s = options_.dt_s * static_cast<double>(step.index);
 		OdometryIncrement odo;
-		odo.delta = {f[2], f[3], wrapAngle(f[4])};
-		odo.cov << f[5], f[6], f[7],  //
-			f[6], f[8], f[9],  //
-			f[7], f[9], f[10];
+		odo.delta = {r.delta.x(), r.delta.y(), wrapAngle(r.delta.z())};
+		odo.cov = r.cov;
 		step.odometry = odo;
 		step.scan = makeScan();
-		step_of_node_[to] = steps_.size();
-		last_node_ = to;
+		step_of_node_[r.to] = steps_.size();
+		last_node_ = r.to;
 		steps_.push_back(step);
 	}
 
-	void addLandmark(const std::vector<double>& f, const std::string& where)
+	void addLandmark(const victoria_park::LandmarkRecord& r, const std::string& where)
 	{
-		if (!isNodeId(f[0]) || !isNodeId(f[1])) throw InputError(where + ": pose and landmark ids must be non-negative integers");
-		const auto it = step_of_node_.find(static_cast<long>(f[0]));
-		if (it == step_of_node_.end()) throw InputError(where + ": pose " + std::to_string(static_cast<long>(f[0])) + " not defined yet");
+		const auto it = step_of_node_.find(r.pose);
+		if (it == step_of_node_.end())
+			throw InputError(where + ": LANDMARK i = " + std::to_string(r.pose) + ": pose not defined yet");
 		RangeBearing m;
-		m.range_m = std::hypot(f[2], f[3]);
-		m.bearing_rad = std::atan2(f[3], f[2]);
-		if (options_.keep_ids) m.id = static_cast<LandmarkId>(f[1]);
-		ids_.insert(static_cast<long>(f[1]));
+		m.range_m = r.point.norm();
+		// The scans store the sensor range: a filter predicting visibility
+		// from it must not meet a measurement beyond.
+		if (m.range_m > options_.max_range_m)
+			throw InputError(
+				where + ": LANDMARK x, y = " + formatNumber(r.point.x()) + ", " + formatNumber(r.point.y()) + ": range " +
+				formatNumber(m.range_m) + " m beyond the sensor range --max-range-m = " +
+				formatNumber(options_.max_range_m) + " m");
+		m.bearing_rad = std::atan2(r.point.y(), r.point.x());
+		if (options_.keep_ids) m.id = static_cast<LandmarkId>(r.landmark);
+		ids_.insert(r.landmark);
 		steps_[it->second].scan->measurements.push_back(m);
 		++measurements_;
 	}
@@ -106,38 +96,48 @@ class StepTable
 	long last_node_ = 0;
 	std::size_t measurements_ = 0;
 };
+
+/// Each option in (0, hi]: `hi` is the plausibility bound said in `why`.
+void checkOption(const char* flag, double value, double hi, const std::string& why)
+{
+	if (!(value > 0 && value <= hi))
+		throw ConfigError(
+			std::string("import victoria-park: ") + flag + " = " + formatNumber(value) + ": must be in (0, " +
+			formatNumber(hi) + "] (" + why + ")");
+}
+
+void validateOptions(const VictoriaParkImportOptions& o)
+{
+	using namespace victoria_park;
+	// A 100 m range noise (or 180 deg bearing noise) is no measurement: the
+	// tree positions would carry no information.
+	checkOption("--std-range-m", o.std_range_m, 100.0, "beyond it a measurement carries no information");
+	checkOption("--std-bearing-deg", o.std_bearing_deg, 180.0, "beyond it a bearing carries no information");
+	checkOption("--max-range-m", o.max_range_m, kMaxLandmarkRange_m, "farthest plausible landmark");
+	checkOption("--fov-deg", o.fov_deg, 360.0, "a full circle");
+	// One hour between poses: slower than any logged vehicle run.
+	checkOption("--dt-s", o.dt_s, 3600.0, "one hour between poses");
+}
 }  // namespace
 
 VictoriaParkImportSummary importVictoriaPark(
 	const std::string& in_path, const std::string& out_rawlog, const VictoriaParkImportOptions& options)
 {
-	if (!(options.std_range_m > 0) || !(options.std_bearing_deg > 0) || !(options.max_range_m > 0) ||
-		!(options.fov_deg > 0 && options.fov_deg <= 360) || !(options.dt_s > 0))
-		throw ConfigError("import victoria-park: noise, range, field of view and dt must be > 0 (fov <= 360 deg)");
+	validateOptions(options);
 	std::ifstream in(in_path);
 	if (!in) throw InputError(in_path + ": cannot open Victoria Park file");
 
 	StepTable table(options);
 	std::string line;
-	std::vector<double> fields;
 	for (std::size_t lineno = 1; std::getline(in, line); ++lineno)
 	{
-		std::istringstream ss(line);
-		std::string kind;
-		if (!(ss >> kind)) continue;  // blank line
 		const std::string where = in_path + ":" + std::to_string(lineno);
-		if (kind == "ODOMETRY")
-		{
-			if (!readFields(ss, 11, fields)) throw InputError(where + ": expected 'ODOMETRY i j dx dy dtheta c11 c12 c13 c22 c23 c33'");
-			table.addOdometry(fields, where);
-		}
-		else if (kind == "LANDMARK")
-		{
-			if (!readFields(ss, 7, fields)) throw InputError(where + ": expected 'LANDMARK i l x y c11 c12 c22'");
-			table.addLandmark(fields, where);
-		}
+		const auto record = victoria_park::parseRecord(line, where);
+		if (!record) continue;	// blank line
+		if (const auto* odometry = std::get_if<victoria_park::OdometryRecord>(&*record))
+			table.addOdometry(*odometry, where);
 		else
-			throw InputError(where + ": unknown record '" + kind + "' (expected ODOMETRY or LANDMARK)");
+			table.addLandmark(std::get<victoria_park::LandmarkRecord>(*record), where);
 	}
 	if (table.steps().size() < 2) throw InputError(in_path + ": no ODOMETRY records");
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <set>
 #include <sstream>
 #include <unistd.h>
@@ -30,6 +31,35 @@ std::string folderBesideExecutable()
 	return (exe.parent_path().parent_path() / "lib" / "esif").string();
 }
 
+/// The plugin files of `dir` (libesif_plugin_*.so), sorted; none when it is
+/// not a folder.
+std::vector<fs::path> pluginFilesIn(const std::string& dir)
+{
+	std::vector<fs::path> files;
+	std::error_code ec;
+	if (!fs::is_directory(dir, ec)) return files;
+	for (const auto& entry : fs::directory_iterator(dir, ec))
+	{
+		const auto name = entry.path().filename().string();
+		if (name.rfind(kPrefix, 0) == 0 && entry.path().extension() == ".so") files.push_back(entry.path());
+	}
+	std::sort(files.begin(), files.end());
+	return files;
+}
+
+/// The dynamic loader's reason on one line. MRPT's message is "Error loading
+/// 'PATH':" followed by dlerror()'s "PATH: reason" on the next line(s).
+std::string dlerrorText(const std::string& mrpt_message, const std::string& path)
+{
+	std::string text = mrpt_message;
+	const auto first_break = text.find('\n');
+	if (text.rfind("Error loading", 0) == 0 && first_break != std::string::npos) text.erase(0, first_break + 1);
+	if (text.rfind(path + ": ", 0) == 0) text.erase(0, path.size() + 2);
+	std::replace(text.begin(), text.end(), '\n', ' ');
+	while (!text.empty() && text.back() == ' ') text.pop_back();
+	return "dlerror: " + (text.empty() ? std::string("no reason given") : text);
+}
+
 std::vector<std::string> splitColons(const char* text)
 {
 	std::vector<std::string> out;
@@ -49,33 +79,35 @@ PluginLoader::PluginLoader(std::vector<std::string> dirs) : dirs_(std::move(dirs
 	if (!beside.empty()) dirs_.push_back(beside);
 }
 
-void PluginLoader::loadAll()
+void PluginLoader::loadAll(std::ostream& warnings)
 {
-	std::set<std::string> seen_names;
+	std::set<std::string> loaded_names;
+	for (const auto& path : loaded_) loaded_names.insert(fs::path(path).filename().string());
 	for (const auto& dir : dirs_)
-	{
-		std::error_code ec;
-		if (!fs::is_directory(dir, ec)) continue;
-		std::vector<fs::path> files;
-		for (const auto& entry : fs::directory_iterator(dir, ec))
+		for (const auto& file : pluginFilesIn(dir))
 		{
-			const auto name = entry.path().filename().string();
-			if (name.rfind(kPrefix, 0) == 0 && entry.path().extension() == ".so") files.push_back(entry.path());
-		}
-		std::sort(files.begin(), files.end());
-		for (const auto& file : files)
-		{
-			// A plugin of the same file name found earlier in the search path wins.
-			if (!seen_names.insert(file.filename().string()).second) continue;
+			// A plugin of the same file name loaded from earlier in the search
+			// path wins; a broken one does not hide a good one further on.
+			if (loaded_names.count(file.filename().string())) continue;
 			const auto path = fs::absolute(file).string();
-			if (std::find(loaded_.begin(), loaded_.end(), path) != loaded_.end()) continue;
+			if (isBroken(path)) continue;  // reported once, not on every call
 			std::string err;
-			if (!mrpt::system::loadPluginModule(path, err))
-				throw InputError(path + ": cannot load plugin: " + err);
-			loaded_.push_back(path);
+			if (mrpt::system::loadPluginModule(path, err))
+			{
+				loaded_.push_back(path);
+				loaded_names.insert(file.filename().string());
+				continue;
+			}
+			broken_.push_back({path, dlerrorText(err, path)});
+			warnings << "esif: warning: " << path << ": cannot load plugin, skipped (" << broken_.back().reason
+					 << ")\n";
 		}
-	}
 	mrpt::rtti::registerAllPendingClasses();
+}
+
+bool PluginLoader::isBroken(const std::string& path) const
+{
+	return std::any_of(broken_.begin(), broken_.end(), [&](const BrokenPlugin& b) { return b.path == path; });
 }
 
 std::vector<std::string> PluginLoader::available() const
@@ -106,8 +138,12 @@ FilterPlugin::Ptr PluginLoader::create(const std::string& class_name) const
 		if (list.empty()) list = "none found";
 		std::string dirs;
 		for (const auto& d : dirs_) dirs += (dirs.empty() ? "" : ":") + d;
+		// Any file that failed to load may have been the plugin asked for.
+		std::string broken;
+		for (const auto& b : broken_) broken += (broken.empty() ? "" : ", ") + b.path + " (" + b.reason + ")";
 		throw ConfigError(
-			"unknown plugin '" + class_name + "' (available: " + list + "; searched " + dirs + ")");
+			"unknown plugin '" + class_name + "' (available: " + list + "; searched " + dirs + ")" +
+			(broken.empty() ? "" : "; files that failed to load, one may be it: " + broken));
 	}
 	return plugin;
 }

@@ -3,6 +3,7 @@
 #include <esif/run/LocalMapReplay.h>
 
 #include <chrono>
+#include <new>
 #include <stdexcept>
 
 namespace esif
@@ -14,6 +15,17 @@ using Clock = std::chrono::steady_clock;
 double microsecondsSince(Clock::time_point t0)
 {
 	return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+}
+
+/// Out of memory in a plugin: a numerical failure (exit code 3), as in
+/// replay() (Replay.cpp says why). The joiner's landmark count is not at
+/// hand, its state dimension (costFigures(), before the failing map) is.
+NumericalError outOfMemory(
+	const std::string& origin, const std::string& when, const std::string& plugin, std::size_t state_dim)
+{
+	return NumericalError(
+		origin + ": out of memory " + when + " in plugin " + plugin + " (state of dimension " +
+		std::to_string(state_dim) + ")");
 }
 
 /// The files' feature IDs of one map: the truth its report is scored against.
@@ -101,13 +113,26 @@ LocalMapReplayResult replayLocalMaps(
 		{
 			throw NumericalError(origin + ": local map " + std::to_string(shown[i].index) + ": " + e.what());
 		}
+		catch (const std::bad_alloc&)
+		{
+			throw outOfMemory(
+				origin, "at local map " + std::to_string(shown[i].index), out.record.plugin,
+				state_dims.empty() ? 0 : state_dims.back());
+		}
 		out.join_us.push_back(microsecondsSince(t0));
 		// Outside the timed part: only needed when the plugin reports no costs.
 		state_dims.push_back(plugin.costFigures().state_dim);
 		progress.update(i + 1);
 	}
 	const auto t_finish = Clock::now();
-	plugin.finish();
+	try
+	{
+		plugin.finish();
+	}
+	catch (const std::bad_alloc&)
+	{
+		throw outOfMemory(origin, "after the last local map", out.record.plugin, state_dims.empty() ? 0 : state_dims.back());
+	}
 	out.finish_us = microsecondsSince(t_finish);
 	out.wall_s = microsecondsSince(t_start) * 1e-6;
 	progress.finish();

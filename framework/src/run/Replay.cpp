@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <new>
 #include <stdexcept>
 
 namespace esif
@@ -15,6 +16,18 @@ using Clock = std::chrono::steady_clock;
 double microsecondsSince(Clock::time_point t0)
 {
 	return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+}
+
+/// A plugin that runs out of memory fails the run like a numerical failure
+/// (exit code 3): the input is valid, but this estimator cannot carry on
+/// with it, at a step the message names; a bad-input code (1) would send
+/// the user looking for a fault in the rawlog or config.
+NumericalError outOfMemory(
+	const std::string& rawlog, const std::string& when, const std::string& plugin, std::size_t landmarks)
+{
+	return NumericalError(
+		rawlog + ": out of memory " + when + " in plugin " + plugin + " (state of " + std::to_string(landmarks) +
+		" landmarks)");
 }
 
 void checkReport(const StepReport& report, const StepInput& step, const std::string& plugin)
@@ -87,6 +100,10 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 		{
 			throw NumericalError(log.path + ": step " + std::to_string(k) + ": " + e.what());
 		}
+		catch (const std::bad_alloc&)
+		{
+			throw outOfMemory(log.path, "at step " + std::to_string(k), out.record.plugin, landmarks);
+		}
 		out.step_us.push_back(microsecondsSince(t0));
 		checkReport(report, step, out.record.plugin);
 		out.reports.push_back(report);
@@ -106,7 +123,14 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 		progress.update(k + 1);
 	}
 	const auto t_finish = Clock::now();
-	plugin.finish();
+	try
+	{
+		plugin.finish();
+	}
+	catch (const std::bad_alloc&)
+	{
+		throw outOfMemory(log.path, "after the last step", out.record.plugin, landmarks);
+	}
 	out.finish_us = microsecondsSince(t_finish);
 	out.wall_s = microsecondsSince(t_start) * 1e-6;
 	progress.finish();

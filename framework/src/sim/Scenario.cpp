@@ -4,7 +4,9 @@
 #include <esif/core/Errors.h>
 #include <esif/sim/Scenario.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -14,13 +16,15 @@ namespace esif
 void Scenario::declare(ParamBinder& b)
 {
 	b.integer("seed", seed, "seed of the simulator's random generators", Bounds::nonNegative());
-	b.integer("steps", steps, "number of steps (scans), the first one at the start pose", Bounds::atLeast(1));
-	b.real("dt_s", dt_s, "time between two steps [s]", Bounds::positive());
+	b.integer(
+		"steps", steps, "number of steps (scans), the first one at the start pose",
+		Bounds::closed(1, kMaxSteps));
+	b.real("dt_s", dt_s, "time between two steps [s]", Bounds{0, kMaxDt_s, true, false});
 
-	b.real("world_size_m", world_size_m, "side of the square world [m]", Bounds::positive());
+	b.real("world_size_m", world_size_m, "side of the square world [m]", Bounds{0, kMaxWorldSize_m, true, false});
 	b.integer(
 		"features_per_side", features_per_side,
-		"features form an n x n grid with a half-spacing margin to the sides", Bounds::atLeast(1));
+		"features form an n x n grid with a half-spacing margin to the sides", Bounds::closed(1, kMaxFeaturesPerSide));
 	b.real(
 		"featureless_x_min_m", featureless_x_min_m,
 		"grid features with featureless_x_min_m <= x <= featureless_x_max_m are removed; off when both are "
@@ -30,8 +34,10 @@ void Scenario::declare(ParamBinder& b)
 		"featureless_x_max_m", featureless_x_max_m,
 		"upper end of the featureless band; must be >= featureless_x_min_m [m]", Bounds::any());
 
-	b.real("speed_mps", speed_mps, "constant true forward speed [m/s]", Bounds::positive());
-	b.real("max_turn_rate_deg_s", max_turn_rate_deg_s, "bound on the true turn rate [deg/s]", Bounds::positive());
+	b.real("speed_mps", speed_mps, "constant true forward speed [m/s]", Bounds{0, kMaxSpeed_mps, true, false});
+	b.real(
+		"max_turn_rate_deg_s", max_turn_rate_deg_s, "bound on the true turn rate [deg/s]",
+		Bounds{0, kMaxTurnRate_deg_s, true, false});
 	b.real(
 		"waypoint_margin_m", waypoint_margin_m,
 		"waypoints are drawn uniformly inside the square shrunk by this margin [m]", Bounds::nonNegative());
@@ -42,17 +48,20 @@ void Scenario::declare(ParamBinder& b)
 	b.real("start_y_m", start_y_m, "start position from the bottom-left corner [m]", Bounds::any());
 	b.real("start_yaw_deg", start_yaw_deg, "start heading [deg]", Bounds::any());
 
-	b.real("std_speed_mps", std_speed_mps, "odometry speed noise, 1 sigma [m/s]", Bounds::nonNegative());
+	b.real(
+		"std_speed_mps", std_speed_mps, "odometry speed noise, 1 sigma [m/s]", Bounds::closed(0, kMaxSpeed_mps));
 	b.real(
 		"std_turn_rate_deg_s", std_turn_rate_deg_s, "odometry turn-rate noise, 1 sigma [deg/s]",
-		Bounds::nonNegative());
+		Bounds::closed(0, kMaxTurnRate_deg_s));
 
-	b.real("sensor_max_range_m", sensor_max_range_m, "maximum sensing range [m]", Bounds::positive());
+	b.real(
+		"sensor_max_range_m", sensor_max_range_m, "maximum sensing range [m]",
+		Bounds{0, kMaxSensorRange_m, true, false});
 	b.real(
 		"sensor_fov_deg", sensor_fov_deg, "full field of view centred on the sensor's x axis [deg]",
 		Bounds{0, 360, true, false});
-	b.real("std_range_m", std_range_m, "range noise, 1 sigma [m]", Bounds::nonNegative());
-	b.real("std_bearing_deg", std_bearing_deg, "bearing noise, 1 sigma [deg]", Bounds::nonNegative());
+	b.real("std_range_m", std_range_m, "range noise, 1 sigma [m]", Bounds::closed(0, kMaxSensorRange_m));
+	b.real("std_bearing_deg", std_bearing_deg, "bearing noise, 1 sigma [deg]", Bounds::closed(0, 180));
 	b.real("sensor_x_m", sensor_x_m, "sensor position on the robot [m]", Bounds::any());
 	b.real("sensor_y_m", sensor_y_m, "sensor position on the robot [m]", Bounds::any());
 	b.real("sensor_yaw_deg", sensor_yaw_deg, "sensor heading on the robot [deg]", Bounds::any());
@@ -103,6 +112,8 @@ void Scenario::validate() const
 			"must be less than half the feature spacing (world_size_m / features_per_side / 2 = " +
 				formatNumber(featureSpacing() / 2) + ") so each twin is nearest to its own feature");
 
+	validateSize();
+
 	const std::vector<Eigen::Vector2d> script = scriptedWaypoints();
 	if (script.empty())
 	{
@@ -140,6 +151,51 @@ void Scenario::validate() const
 				point(previous) + rule);
 		if (i == 0 && (p - start).norm() < spacing)
 			failWaypoints(name + " is " + formatNumber((p - start).norm()) + " m from the start" + rule);
+	}
+}
+
+std::size_t Scenario::landmarkCount() const
+{
+	std::size_t columns = 0;  // grid columns outside the featureless band
+	for (int col = 0; col < features_per_side; ++col) columns += !inFeaturelessBand((col + 0.5) * featureSpacing());
+	const std::size_t grid = columns * static_cast<std::size_t>(features_per_side);
+	return hasClusterPairs() ? 2 * grid : grid;
+}
+
+double Scenario::expectedMeasurementsPerScan() const
+{
+	const double landmarks = static_cast<double>(landmarkCount());
+	const double footprint_m2 = sensor_fov_deg / 360.0 * M_PI * sensor_max_range_m * sensor_max_range_m;
+	const double seen = std::min(landmarks, landmarks / (world_size_m * world_size_m) * footprint_m2);
+	return seen + spurious_rate;
+}
+
+void Scenario::validateSize() const
+{
+	const auto fail = [](const std::string& keys, const std::string& rule) {
+		throw ConfigError("[simulation] " + keys + ": " + rule);
+	};
+	const std::size_t landmarks = landmarkCount();
+	if (landmarks > kMaxLandmarks)
+		fail(
+			"features_per_side = " + std::to_string(features_per_side) +
+				", cluster_pair_distance_m = " + formatNumber(cluster_pair_distance_m),
+			std::to_string(landmarks) + " landmarks (grid features and their twins), above the cap of " +
+				std::to_string(kMaxLandmarks));
+	const double per_scan = expectedMeasurementsPerScan();
+	const double measurements = per_scan * steps;
+	if (measurements > kMaxMeasurements)
+	{
+		char figures[160];
+		std::snprintf(
+			figures, sizeof(figures), "about %.3g measurements expected (%.4g per scan x %d steps), above the cap of %.0f",
+			measurements, per_scan, steps, kMaxMeasurements);
+		fail(
+			"steps = " + std::to_string(steps) + ", features_per_side = " + std::to_string(features_per_side) +
+				", sensor_max_range_m = " + formatNumber(sensor_max_range_m),
+			std::string(figures) +
+				" (per scan: the landmarks within sensor_max_range_m and sensor_fov_deg at the grid's density, plus "
+				"spurious_rate)");
 	}
 }
 

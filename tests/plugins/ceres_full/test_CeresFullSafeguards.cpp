@@ -159,8 +159,9 @@ TEST(CeresFullSafeguards, APoseOnALandmarkIsFlaggedAndTheRunStillWritesEveryOutp
 	EXPECT_EQ(number(r.stats, "plugin_covariances_available"), 0);
 	EXPECT_EQ(number(r.stats, "plugin_converged"), 0);
 	// One line each: the failed final solve, the implausible optimum, the
-	// covariances (CHOLMOD may add a line of its own, past Ceres' logging).
+	// covariances; nothing else (glog and SuiteSparse are held back).
 	EXPECT_EQ(warningCount(r.command.out), 3u) << r.command.out;
+	EXPECT_EQ(lineCount(r.command.out), 3u) << r.command.out;
 	EXPECT_EQ(r.command.out.find("Logging before InitGoogleLogging"), std::string::npos) << r.command.out;
 	EXPECT_NE(r.command.out.find("1 pose(s) on a landmark"), std::string::npos) << r.command.out;
 	EXPECT_NE(r.command.out.find("without covariances"), std::string::npos) << r.command.out;

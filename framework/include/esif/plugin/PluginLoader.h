@@ -5,6 +5,7 @@
 
 #include <esif/plugin/FilterPlugin.h>
 
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -17,25 +18,43 @@ class PluginLoader
 	/// then the folder beside the host binary (../lib/esif).
 	explicit PluginLoader(std::vector<std::string> dirs = {});
 
-	/// Loads every libesif_plugin_*.so once; throws InputError if one fails to load.
-	void loadAll();
+	/// Loads every libesif_plugin_*.so once. A file that fails to load (not a
+	/// library, missing symbols, another architecture) is skipped with a
+	/// warning line on `warnings` naming it and the dynamic loader's reason,
+	/// and kept in brokenFiles(); the others are still loaded. Only asking
+	/// for a plugin that is then not found is an error (create()).
+	void loadAll(std::ostream& warnings = std::cerr);
 
 	/// Class names of all registered FilterPlugin classes (without "esif::").
 	std::vector<std::string> available() const;
 
 	/// Creates the plugin `class_name` ("EkfSlam" or "esif::EkfSlam"); throws
-	/// ConfigError listing the available plugins when it is unknown.
+	/// ConfigError listing the available plugins, and the files that failed
+	/// to load (any may have been it), when it is unknown.
 	FilterPlugin::Ptr create(const std::string& class_name) const;
 
 	/// Library files loaded so far.
 	const std::vector<std::string>& loadedFiles() const { return loaded_; }
 
+	/// A plugin file that failed to load, and why (dlerror's text).
+	struct BrokenPlugin
+	{
+		std::string path;
+		std::string reason;
+	};
+
+	/// Files that failed to load so far.
+	const std::vector<BrokenPlugin>& brokenFiles() const { return broken_; }
+
 	/// The folders searched, in order.
 	const std::vector<std::string>& searchDirs() const { return dirs_; }
 
    private:
+	bool isBroken(const std::string& path) const;
+
 	std::vector<std::string> dirs_;
 	std::vector<std::string> loaded_;
+	std::vector<BrokenPlugin> broken_;
 };
 
 }  // namespace esif

@@ -101,10 +101,22 @@ struct Scenario
 	static Scenario fromConfig(const ConfigFile& config);
 
 	/// Checks the rules that involve several fields (the start inside the
-	/// square, a non-empty waypoint area, an ordered featureless band) and the
-	/// waypoint list (see `waypoints`); throws ConfigError naming the
-	/// [simulation] key at fault. Per-field rules are checked by declare().
+	/// square, a non-empty waypoint area, an ordered featureless band), the
+	/// size caps (kMaxLandmarks landmarks, kMaxMeasurements expected
+	/// measurements) and the waypoint list (see `waypoints`); throws
+	/// ConfigError naming the [simulation] keys at fault. Per-field rules are
+	/// checked by declare().
 	void validate() const;
+
+	/// Landmarks of the world: grid features outside the featureless band,
+	/// and their twins.
+	std::size_t landmarkCount() const;
+
+	/// Expected measurements of one scan, for the size check before anything
+	/// is allocated: the landmarks in the sensor's footprint (a sector of
+	/// sensor_max_range_m and sensor_fov_deg) at the world's mean landmark
+	/// density, at most all of them, plus spurious_rate.
+	double expectedMeasurementsPerScan() const;
 
 	/// Whether grid features have twins (cluster_pair_distance_m > 0).
 	bool hasClusterPairs() const { return cluster_pair_distance_m > 0; }
@@ -151,6 +163,45 @@ struct Scenario
 	/// Upper bound of spurious_rate: more clutter per scan than a grid scan
 	/// has true returns by an order of magnitude is no longer a SLAM problem.
 	static constexpr double kMaxSpuriousRate = 100.0;
+
+	// ---- size bounds, checked before anything is allocated. The committed
+	// scenarios are far inside them (at most 35,188 steps, 10,000 landmarks
+	// and 236,000 expected measurements, booksim); beyond them a scenario is
+	// a typo (features_per_side = 1e6 asked for 1e12 landmarks and ended in
+	// std::bad_alloc) or more than any filter here could replay. Rawlog
+	// sizes measured on grid196 and booksim_2000 before compression: 458
+	// bytes a step plus 16 a measurement.
+
+	/// A million landmarks: every simulated step tests each for visibility,
+	/// and the filters' states grow with them (an EKF of 1e6 landmarks would
+	/// hold a 2e6 x 2e6 covariance, 32 TB).
+	static constexpr std::size_t kMaxLandmarks = 1'000'000;
+	/// So that the grid alone stays within kMaxLandmarks.
+	static constexpr double kMaxFeaturesPerSide = 1000;
+	/// Ten million measurements, 42 times booksim's: 160 MB of rawlog, and
+	/// 640 MB once a replay holds them in memory (64 bytes each with their
+	/// covariance).
+	static constexpr double kMaxMeasurements = 1e7;
+	/// A million steps: 28 hours of driving at dt_s = 0.1, 28 times booksim's;
+	/// 0.46 GB of rawlog records, and the true path kept in memory.
+	static constexpr double kMaxSteps = 1e6;
+	/// One minute between scans: the motion model holds the controls
+	/// constant over a step, which says nothing about a longer interval.
+	static constexpr double kMaxDt_s = 60.0;
+	/// A 100 km square: beyond any scenario of the book (300 m at most);
+	/// larger values are unit mistakes (millimetres for metres).
+	static constexpr double kMaxWorldSize_m = 1e5;
+	/// 100 m/s (360 km/h): no ground robot; also the bound of its noise.
+	static constexpr double kMaxSpeed_mps = 100.0;
+	/// Ten turns a second; also the bound of its noise.
+	static constexpr double kMaxTurnRate_deg_s = 3600.0;
+	/// A kilometre: beyond any range sensor the book models (an 80 m laser);
+	/// also the bound of the range noise, which beyond it drowns every range.
+	static constexpr double kMaxSensorRange_m = 1000.0;
+
+   private:
+	/// The landmark and measurement caps (validate()).
+	void validateSize() const;
 };
 
 }  // namespace esif
