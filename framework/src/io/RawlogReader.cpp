@@ -89,6 +89,17 @@ void checkOdometryPose(const mrpt::math::TPose2D& p, const std::string& what, co
 						 numberText(max_xy) + " m");
 }
 
+/// MRPT reads the validCovariances flag as a raw byte into a bool: any value
+/// but 0 or 1 is a corrupt entry (and reading it as a bool would be undefined).
+bool covariancesFlagOf(const CObservationBearingRange& obs, const std::string& what)
+{
+	unsigned char raw = 0;
+	static_assert(sizeof(obs.validCovariances) == 1);
+	std::memcpy(&raw, &obs.validCovariances, 1);
+	if (raw > 1) throw InputError(what + ": validCovariances flag is corrupt (byte " + std::to_string(raw) + ")");
+	return raw == 1;
+}
+
 /// Accumulates rawlog entries into steps: odometry opens a step, a scan
 /// closes it (see RawlogReader.h).
 class StepBuilder
@@ -180,7 +191,7 @@ class StepBuilder
 		const std::string& what) const
 	{
 		Eigen::Matrix2d cov;
-		if (obs.validCovariances)
+		if (covariancesFlagOf(obs, what))
 			cov = m.covariance.asEigen().topLeftCorner<2, 2>();
 		else
 			cov = Eigen::Vector2d(std::pow(obs.sensor_std_range, 2), std::pow(obs.sensor_std_yaw, 2)).asDiagonal();
@@ -411,7 +422,7 @@ void checkInSandbox(const std::string& path, const InflatedFile& file, const Raw
 			break;
 	}
 	throw InputError(entry + " is corrupt: MRPT's deserialiser crashed on it (" +
-					 strsignal(outcome.signal_number) + ")");
+					 (outcome.signal_number ? std::string(strsignal(outcome.signal_number)) : outcome.message) + ")");
 }
 }  // namespace
 

@@ -130,6 +130,13 @@ SandboxOutcome outcomeOf(int status, const SharedReport& shared)
 		out.message = shared.message;
 		return out;
 	}
+	if (status != -1 && WIFEXITED(status))
+	{
+		// The work ended the child itself (a sanitizer's report, a library's exit()).
+		out.kind = SandboxOutcome::Kind::kCrashed;
+		out.message = "it exited with status " + std::to_string(WEXITSTATUS(status));
+		return out;
+	}
 	const int sig = status != -1 && WIFSIGNALED(status) ? WTERMSIG(status) : 0;
 	// SIGKILL follows SIGXCPU when the hard CPU limit is reached.
 	out.kind = (sig == SIGXCPU || sig == SIGKILL) ? SandboxOutcome::Kind::kCpuLimit : SandboxOutcome::Kind::kCrashed;

@@ -31,7 +31,7 @@ struct SandboxOutcome
 		kFailed,	   ///< it threw: `message` is what()
 		kOutOfMemory,  ///< an allocation failed against the address-space limit
 		kCpuLimit,	   ///< it used up its CPU time
-		kCrashed,	   ///< it was ended by a signal: `signal_number`
+		kCrashed,	   ///< it was ended by a signal (`signal_number`) or ended itself (`message`)
 	};
 	Kind kind = Kind::kSucceeded;
 	std::string message;
