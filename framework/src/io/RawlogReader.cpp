@@ -418,6 +418,8 @@ void checkInSandbox(const std::string& path, const InflatedFile& file, const Raw
 		case SandboxOutcome::Kind::kCpuLimit:
 			throw InputError(entry + " is corrupt: reading it took over " + std::to_string(limits.cpu_seconds) +
 							 " s of CPU");
+		case SandboxOutcome::Kind::kInterrupted:
+			throw InputError(path + ": reading stopped by " + strsignal(outcome.signal_number));
 		case SandboxOutcome::Kind::kCrashed:
 			break;
 	}

@@ -1,6 +1,7 @@
 #include "Sandbox.h"
 
 #include <esif/core/Errors.h>
+#include <esif/io/TerminationCleanup.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -88,6 +89,9 @@ void report(SharedReport& shared, SandboxOutcome::Kind kind, const char* message
 						   SharedReport& shared)
 {
 	restoreDefaultFaultHandlers();
+	// The parent blocks SIGINT/SIGTERM for its watcher thread; here they must
+	// end the child (the watcher forwards them to it, and Ctrl-C reaches it).
+	termination::unblockSignals();
 	silenceOutput();
 	applyLimits(limits);
 	try
@@ -138,6 +142,12 @@ SandboxOutcome outcomeOf(int status, const SharedReport& shared)
 		return out;
 	}
 	const int sig = status != -1 && WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+	if (sig == SIGINT || sig == SIGTERM || sig == SIGHUP)
+	{
+		out.kind = SandboxOutcome::Kind::kInterrupted;
+		out.signal_number = sig;
+		return out;
+	}
 	// SIGKILL follows SIGXCPU when the hard CPU limit is reached.
 	out.kind = (sig == SIGXCPU || sig == SIGKILL) ? SandboxOutcome::Kind::kCpuLimit : SandboxOutcome::Kind::kCrashed;
 	out.signal_number = sig;
@@ -159,7 +169,10 @@ SandboxOutcome runInSandbox(const std::function<void(SandboxProgress&)>& work, c
 		throw InputError(std::string("cannot start the sandboxed reader: fork: ") + std::strerror(errno));
 	}
 	if (pid == 0) runChild(work, limits, *shared);
+	// A signal that ends esif meanwhile must end the child too, and reap it.
+	termination::setChild(pid);
 	const SandboxOutcome out = outcomeOf(waitFor(pid), *shared);
+	termination::setChild(0);
 	munmap(page, sizeof(SharedReport));
 	return out;
 }

@@ -31,6 +31,7 @@ struct SandboxOutcome
 		kFailed,	   ///< it threw: `message` is what()
 		kOutOfMemory,  ///< an allocation failed against the address-space limit
 		kCpuLimit,	   ///< it used up its CPU time
+		kInterrupted,  ///< SIGINT, SIGTERM or SIGHUP ended it (the user stopped esif)
 		kCrashed,	   ///< it was ended by a signal (`signal_number`) or ended itself (`message`)
 	};
 	Kind kind = Kind::kSucceeded;
