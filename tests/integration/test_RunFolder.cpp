@@ -101,6 +101,24 @@ TEST(RunFolder, FullDiskIsOneErrorLineNamingTheFileAndLeavesNoFolder)
 	EXPECT_TRUE(leftovers(dir.path()).empty());
 }
 
+// The simulator's and importer's gz rawlogs go through the same checked
+// writer: a full disk is one line naming the rawlog, and no file is left.
+TEST(RunFolder, FullDiskWhileSimulatingLeavesNoRawlog)
+{
+	TempDir dir;
+	const std::string rawlog = dir.file("sim.rawlog");
+	// 16 KiB: below the gzipped rawlog of configs/sim/small.ini (200 steps).
+	const auto [code, text] = finish(spawnEsif(
+		{"simulate", "--config", sourcePath("configs/sim/small.ini"), "--out", rawlog}, 16 * 1024));
+	EXPECT_EQ(code, 1) << text;
+	const auto errors = errorLines(text);
+	ASSERT_EQ(errors.size(), 1u) << text;
+	EXPECT_NE(errors[0].find(rawlog), std::string::npos) << text;
+	EXPECT_NE(errors[0].find(std::strerror(EFBIG)), std::string::npos) << text;
+	EXPECT_FALSE(fs::exists(rawlog));
+	EXPECT_TRUE(leftovers(dir.path()).empty());
+}
+
 TEST(RunFolder, FullDiskOnAReRunKeepsThePreviousFolder)
 {
 	TempDir dir;

@@ -3,11 +3,12 @@
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
+#include <esif/io/GzArchive.h>
 #include <esif/io/RawlogWriter.h>
 #include <esif/io/VictoriaParkImporter.h>
 #include <esif/models/Se2.h>
 
-#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/serialization/CArchive.h>
 
 #include <cmath>
 #include <filesystem>
@@ -144,12 +145,9 @@ VictoriaParkImportSummary importVictoriaPark(
 	const auto folder = std::filesystem::path(out_rawlog).parent_path();
 	if (!folder.empty()) ensureDirectory(folder.string());
 	const SensorNoise noise{options.std_range_m, options.std_bearing_deg * kDeg};
-	writeAtomically(out_rawlog, [&](const std::string& tmp) {
-		mrpt::io::CFileGZOutputStream out(tmp, mrpt::io::OpenMode::TRUNCATE, 9);
-		auto ar = mrpt::serialization::archiveFrom(out);
-		for (const auto& step : table.steps()) appendStep(ar, step, noise);
-		out.close();
-	});
+	writeGzArchiveAtomically(
+		out_rawlog, [&](mrpt::serialization::CArchive& ar) { for (const auto& step : table.steps()) appendStep(ar, step, noise); },
+		9);
 	return {table.steps().size(), table.measurements(), table.ids()};
 }
 

@@ -1,6 +1,7 @@
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
 #include <esif/io/GroundTruth.h>
+#include <esif/io/GzArchive.h>
 #include <esif/io/RawlogWriter.h>
 #include <esif/sim/MeasurementTruth.h>
 #include <esif/sim/Simulator.h>
@@ -8,7 +9,6 @@
 #include "MeasurementOutliers.h"
 
 #include <mrpt/core/Clock.h>
-#include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
@@ -309,18 +309,18 @@ SimulationSummary Simulator::writeRawlog(const std::string& rawlog_path) const
 
 	MeasurementTruth measurement_truth;  // kept only when the rawlog's IDs are not the truth
 	SimulationSummary summary;
-	writeAtomically(rawlog_path, [&](const std::string& tmp) {
-		// Best compression: committed rawlogs stay small, and writing is
-		// cheap next to any filter run.
-		mrpt::io::CFileGZOutputStream out(tmp, mrpt::io::OpenMode::TRUNCATE, 9);
-		auto ar = mrpt::serialization::archiveFrom(out);
-		summary = simulate([&](const SimulatedStep& step) {
-			appendStep(ar, step.input, {scenario_.std_range_m, scenario_.std_bearing_deg * kDegToRad});
-			truth.path.push_back(step.true_pose);
-			if (scenario_.hasOutliers()) measurement_truth.push_back(measurementIdsOf(step));
-		});
-		out.close();
-	});
+	// Best compression: committed rawlogs stay small, and writing is cheap
+	// next to any filter run. Written checked (a full disk is an error).
+	writeGzArchiveAtomically(
+		rawlog_path,
+		[&](mrpt::serialization::CArchive& ar) {
+			summary = simulate([&](const SimulatedStep& step) {
+				appendStep(ar, step.input, {scenario_.std_range_m, scenario_.std_bearing_deg * kDegToRad});
+				truth.path.push_back(step.true_pose);
+				if (scenario_.hasOutliers()) measurement_truth.push_back(measurementIdsOf(step));
+			});
+		},
+		9);
 	saveGroundTruth(truth, groundTruthPrefixFor(rawlog_path));
 	if (scenario_.hasOutliers()) saveMeasurementTruth(measurement_truth, groundTruthPrefixFor(rawlog_path));
 	return summary;
