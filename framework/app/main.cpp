@@ -92,11 +92,8 @@ int main(int argc, char** argv)
 	}
 	catch (const std::exception& e)
 	{
-		// MRPT exceptions carry a multi-line stack; keep the first line only.
-		std::string msg = e.what();
-		const auto nl = msg.find('\n');
-		if (nl != std::string::npos) msg.erase(nl);
-		std::cerr << "esif: internal error: " << msg << "\n";
+		// MRPT exceptions carry a banner and a multi-line stack: one line of reason.
+		std::cerr << "esif: internal error: " << esif::oneLineReason(e.what()) << "\n";
 		return 4;
 	}
 }

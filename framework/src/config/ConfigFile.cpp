@@ -55,7 +55,7 @@ ConfigFile ConfigFile::fromText(const std::string& text, const std::string& orig
 	}
 	catch (const std::exception& e)
 	{
-		throw ConfigError(origin + ": not a valid INI file: " + e.what());
+		throw ConfigError(origin + ": not a valid INI file: " + oneLineReason(e.what()));
 	}
 	return out;
 }

@@ -41,22 +41,6 @@ std::string firstLine(const std::string& text)
 	return text.substr(0, text.find('\n'));
 }
 
-/// The reason inside an MRPT exception text: MRPT frames its message with a
-/// "==== MRPT exception ====" banner and a "Message:" label, and appends a
-/// stack trace; one line is kept.
-std::string mrptReason(const std::string& text)
-{
-	std::istringstream lines(text);
-	for (std::string line; std::getline(lines, line);)
-	{
-		line.erase(0, line.find_first_not_of(" \t"));
-		if (line.empty() || line.rfind("====", 0) == 0) continue;
-		if (line.rfind("Message:", 0) == 0) line.erase(0, line.find_first_not_of(" \t", 8));
-		if (!line.empty()) return line;
-	}
-	return firstLine(text);
-}
-
 std::string numberText(double v)
 {
 	std::ostringstream s;
@@ -349,7 +333,7 @@ Rawlog parseRawlog(const std::string& path, const InflatedFile& file, const Rawl
 			// exception: a failure that consumed every byte left is a cut file,
 			// one that stopped before the end is a corrupt entry.
 			if (stream.getPosition() < file.bytes.size())
-				throw InputError(path + ": entry " + std::to_string(entry) + " is corrupt: " + mrptReason(e.what()));
+				throw InputError(path + ": entry " + std::to_string(entry) + " is corrupt: " + oneLineReason(e.what()));
 			out.truncation_warning = path + ": file ends inside entry " + std::to_string(entry) +
 				"; read up to step " + std::to_string(out.steps.size());
 			break;

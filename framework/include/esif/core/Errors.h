@@ -30,4 +30,9 @@ class NumericalError : public std::runtime_error
 	using std::runtime_error::runtime_error;
 };
 
+/// One line of reason from any exception text: MRPT frames its messages with
+/// a "==== MRPT exception ====" banner and a "Message:" label and appends a
+/// stack trace, which would break esif's one-line error promise.
+std::string oneLineReason(const std::string& exception_text);
+
 }  // namespace esif
