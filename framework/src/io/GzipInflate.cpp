@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <unistd.h>
 #include <zlib.h>
 
 namespace esif
@@ -26,6 +27,14 @@ std::string gzErrorText(gzFile f)
 	if (code == Z_ERRNO) return std::strerror(errno);
 	return text && *text ? text : "unknown zlib error";
 }
+/// A gzip bomb (a few kilobytes inflating to gigabytes) must not take the
+/// machine: the inflated bytes may fill at most a quarter of physical memory.
+std::size_t inflatedSizeCap()
+{
+	const long pages = sysconf(_SC_PHYS_PAGES), page_size = sysconf(_SC_PAGESIZE);
+	if (pages <= 0 || page_size <= 0) return std::size_t{1} << 32;
+	return static_cast<std::size_t>(pages) * static_cast<std::size_t>(page_size) / 4;
+}
 }  // namespace
 
 InflatedFile inflateFile(const std::string& path)
@@ -40,9 +49,14 @@ InflatedFile inflateFile(const std::string& path)
 
 	InflatedFile out;
 	constexpr unsigned kChunk = 1 << 20;
+	const std::size_t cap = inflatedSizeCap();
 	for (;;)
 	{
 		const std::size_t at = out.bytes.size();
+		if (at > cap)
+			throw InputError(path + ": inflates to over " + std::to_string(cap >> 20) +
+							 " MiB, a quarter of this machine's memory (reading a rawlog takes several times its "
+							 "inflated size)");
 		out.bytes.resize(at + kChunk);
 		const int n = gzread(file.get(), out.bytes.data() + at, kChunk);
 		if (n < 0)

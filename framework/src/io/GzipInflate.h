@@ -18,7 +18,8 @@ struct InflatedFile
 };
 
 /// Throws InputError naming `path` when it cannot be opened or read, is
-/// empty, or its gzip data fails zlib's checks (CRC, corrupt deflate data).
+/// empty, inflates to more than a quarter of physical memory, or its gzip
+/// data fails zlib's checks (CRC, corrupt deflate data).
 InflatedFile inflateFile(const std::string& path);
 
 }  // namespace esif
