@@ -26,12 +26,6 @@ std::vector<std::string> keptInputs(const std::string& reader)
 	for (const auto& entry : std::filesystem::directory_iterator(dir)) out.push_back(entry.path().string());
 	return out;
 }
-
-std::string bytesOf(const std::string& path)
-{
-	std::ifstream in(path, std::ios::binary);
-	return std::string(std::istreambuf_iterator<char>(in), {});
-}
 }  // namespace
 
 TEST(FuzzRegressions, RawlogInputsAreReadOrRefusedInOneLine)
@@ -42,7 +36,7 @@ TEST(FuzzRegressions, RawlogInputsAreReadOrRefusedInOneLine)
 	{
 		try
 		{
-			readRawlogFromMemory("kept.rawlog", bytesOf(path));
+			readRawlogFromMemory("kept.rawlog", test::readText(path));
 		}
 		catch (const InputError& e)
 		{
@@ -59,7 +53,7 @@ TEST(FuzzRegressions, IniInputsLoadOrAreRefusedInOneLine)
 	{
 		try
 		{
-			const auto cfg = ConfigFile::fromText(bytesOf(path), "kept.ini");
+			const auto cfg = ConfigFile::fromText(test::readText(path), "kept.ini");
 			HostParams host;
 			loadParams(host, cfg.section("esif"));
 		}

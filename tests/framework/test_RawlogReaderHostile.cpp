@@ -99,12 +99,6 @@ void writeGzip(const std::string& path, const std::string& bytes)
 	ASSERT_EQ(gzclose(f), Z_OK);
 }
 
-std::string readFile(const std::string& path)
-{
-	std::ifstream in(path, std::ios::binary);
-	return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 void writeFile(const std::string& path, const std::string& bytes)
 {
 	std::ofstream(path, std::ios::binary) << bytes;
@@ -198,7 +192,7 @@ TEST(RawlogReaderHostile, GzipStreamsAreCheckedBeforeMrptReadsThem)
 	const std::string gz = dir.file("log.rawlog");
 	writeGzip(gz, valid);
 	ASSERT_EQ(errorOf(gz), "");
-	const std::string packed = readFile(gz);
+	const std::string packed = test::readText(gz);
 
 	std::string bad_crc = packed;
 	bad_crc[bad_crc.size() - 6] ^= 0x01;  // gzip trailer: CRC32, then the size

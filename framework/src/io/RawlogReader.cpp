@@ -35,12 +35,6 @@ constexpr double kMaxRangeM = 1e4;
 /// No odometry increment between two steps moves further [m].
 constexpr double kMaxIncrementM = 1e4;
 
-/// MRPT's exception texts carry a stack trace after the first line.
-std::string firstLine(const std::string& text)
-{
-	return text.substr(0, text.find('\n'));
-}
-
 std::string numberText(double v)
 {
 	std::ostringstream s;
@@ -394,7 +388,7 @@ void checkInSandbox(const std::string& path, const InflatedFile& file, const Raw
 		case SandboxOutcome::Kind::kSucceeded:
 			return;
 		case SandboxOutcome::Kind::kFailed:
-			throw InputError(firstLine(outcome.message));
+			throw InputError(oneLineReason(outcome.message));
 		case SandboxOutcome::Kind::kOutOfMemory:
 			throw InputError(entry + " declares more data than the file holds: reading it needs over " +
 							 std::to_string(limits.address_space_bytes >> 20) + " MiB, the limit for " +
