@@ -5,12 +5,11 @@
 // line naming the step, the plugin and its landmark count, exit code 3);
 // configured as `plugin = test::OutOfMemoryFilter`.
 
-#include <esif/plugin/FilterPlugin.h>
+#include "FakePlugin.h"
 
 #include <mrpt/core/initializer.h>
 
 #include <new>
-#include <set>
 #include <string>
 
 namespace esif::test
@@ -27,7 +26,8 @@ struct OutOfMemoryFilterParams
 	}
 };
 
-class OutOfMemoryFilter : public FilterPlugin
+/// FakePlugin's dead reckoning and ID matching, with a failure on top.
+class OutOfMemoryFilter : public FakePlugin
 {
 	DEFINE_MRPT_OBJECT(OutOfMemoryFilter, esif::test)
 
@@ -39,36 +39,19 @@ class OutOfMemoryFilter : public FilterPlugin
 	{
 		if (params_.fail_in == "step" && step.index >= static_cast<std::size_t>(params_.fail_at_step))
 			throw std::bad_alloc();
-		if (step.odometry) pose_.mean = pose_.mean + step.odometry->delta;
-		StepReport report;
-		if (step.scan)
-			for (const auto& m : step.scan->measurements)
-			{
-				if (!m.id)
-				{
-					report.associations.push_back({Association::Kind::Rejected, -1});
-					continue;
-				}
-				const bool fresh = mapped_.insert(*m.id).second;
-				report.associations.push_back({fresh ? Association::Kind::New : Association::Kind::Matched, *m.id});
-			}
-		return report;
+		return FakePlugin::processStep(step);
 	}
 	void finish() override
 	{
 		if (params_.fail_in == "finish") throw std::bad_alloc();
+		FakePlugin::finish();
 	}
-	PoseEstimate robotPose() const override { return pose_; }
-	Estimate estimate() const override { return {pose_, {}}; }
-	CostFigures costFigures() const override { return {}; }
 
    private:
 	OutOfMemoryFilterParams params_;
-	PoseEstimate pose_;
-	std::set<LandmarkId> mapped_;
 };
 
-IMPLEMENTS_MRPT_OBJECT(OutOfMemoryFilter, FilterPlugin, esif::test)
+IMPLEMENTS_MRPT_OBJECT(OutOfMemoryFilter, FakePlugin, esif::test)
 
 }  // namespace esif::test
 
