@@ -41,4 +41,13 @@ void DivergenceGuard::check(const std::vector<LandmarkId>& ids, const Eigen::Vec
 	}
 }
 
+void DivergenceGuard::fusion(bool agreed)
+{
+	disagreeing_in_a_row_ = agreed ? 0 : disagreeing_in_a_row_ + 1;
+	if (max_disagreeing_scans_ > 0 && disagreeing_in_a_row_ >= max_disagreeing_scans_)
+		throw NumericalError("D-SLAM diverged: the map and the local SLAM disagreed on the robot pose at " +
+							 std::to_string(disagreeing_in_a_row_) +
+							 " admissible scans in a row (see [dslam] divergence_disagreeing_scans)");
+}
+
 }  // namespace esif::dslam

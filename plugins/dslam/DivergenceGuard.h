@@ -6,7 +6,12 @@
 /// the path travelled plus one sensor range of the map origin (the initial
 /// pose); an estimate `factor` times farther than that, a non-finite value
 /// in the map or the robot pose, is no estimate any more. (A singular
-/// information matrix is reported by the sparse core itself.)
+/// information matrix is reported by the sparse core itself.) And the map
+/// and the local SLAM must not disagree on the robot pose (the covariance
+/// intersection gate, Dslam::robotEstimatesAgree) at many admissible scans
+/// in a row: one disagreement is a bad match, a run of them is a map that
+/// no longer fits the measurements (configs/dslam_jcbb.ini on
+/// configs/sim/long_gap.ini: 724 disagreements, landmarks 72 m RMS off).
 
 #include <esif/core/StepInput.h>
 #include <esif/models/Se2.h>
@@ -21,7 +26,11 @@ class DivergenceGuard
    public:
 	/// `factor` <= 0 switches the distance check off (non-finite values are
 	/// always errors).
-	explicit DivergenceGuard(double factor = 0) : factor_(factor) {}
+	/// `max_disagreeing_scans` = 0 switches the second check off.
+	explicit DivergenceGuard(double factor = 0, int max_disagreeing_scans = 0)
+		: factor_(factor), max_disagreeing_scans_(max_disagreeing_scans)
+	{
+	}
 
 	/// Path length from the odometry increment's translation.
 	void travel(const OdometryIncrement& u);
@@ -37,8 +46,15 @@ class DivergenceGuard
 	/// bound(), or the robot pose is non-finite.
 	void check(const std::vector<LandmarkId>& ids, const Eigen::VectorXd& positions, const Pose2& robot) const;
 
+	/// Whether the map and the local SLAM agreed at this admissible scan;
+	/// throws NumericalError at the max_disagreeing_scans-th disagreement
+	/// in a row.
+	void fusion(bool agreed);
+
    private:
 	double factor_;
+	int max_disagreeing_scans_;
+	int disagreeing_in_a_row_ = 0;
 	double path_m_ = 0;
 	double max_range_m_ = 0;
 };

@@ -1,12 +1,17 @@
 #include "Dslam.h"
 
 #include "CovarianceIntersection.h"
+#include "HeldFeatureTracking.h"
 #include "KidnappedRobot.h"
 #include "OutlierGate.h"
 
+#include <esif/association/Chi2.h>
 #include <esif/core/Errors.h>
+#include <esif/models/RangeBearingModel.h>
 
+#include <Eigen/Cholesky>
 #include <algorithm>
+#include <cmath>
 
 IMPLEMENTS_MRPT_OBJECT(Dslam, FilterPlugin, esif)
 
@@ -20,7 +25,10 @@ void Dslam::configure(const ConfigSection& section)
 	loadParams(params_, section);
 	map_ = std::make_unique<FeatureMap>(params_.recovery);
 	association_ = std::make_unique<RelativeAssociation>(params_.association, params_.referenceRules());
-	guard_ = DivergenceGuard(params_.divergence_factor);
+	guard_ = DivergenceGuard(params_.divergence_factor, params_.divergence_disagreeing_scans);
+	if (params_.confirm_new_features)
+		confirmation_.emplace(chi2GateBound(params_.outlier_chi2_quantile, 2),
+							  static_cast<std::size_t>(params_.confirmation_window_steps));
 	map_->keepRelativeTerms(params_.relinearise_every_steps > 0);
 }
 
@@ -44,6 +52,8 @@ StepReport Dslam::processStep(const StepInput& step)
 		for (auto& a : report.associations)
 			if (a.kind == Association::Kind::New) a = {};
 	}
+	const bool anchoring = chain_.rootIsMapFrame() && chain_.scans() < params_.anchor_scans;
+	if (confirmation_ && !anchoring) holdFirstSightings(step, report);
 	nameNewFeatures(report);
 	if (params_.outlier_chi2_quantile < 1) rejectOutliers(*step.scan, report);
 	const Observed obs = observed(*step.scan, report);
@@ -79,7 +89,47 @@ StepReport Dslam::associateScan(const StepInput& step)
 	if (params_.association.association == AssociationMode::KnownIds ||
 		(params_.association.association == AssociationMode::Auto && all_have_ids))
 		return associateByIds(step);
-	return association_->associate(*step.scan, local_.robot(), local_.robotCov(), *map_);
+	return associateByTrackingThenMap(*step.scan);
+}
+
+StepReport Dslam::associateByTrackingThenMap(const Scan& scan)
+{
+	const auto& assoc = params_.association;
+	const auto tracked = trackHeldFeatures(local_, scan, assoc.association != AssociationMode::NearestNeighbor,
+										   assoc.gate_chi2_quantile, assoc.search);
+	Scan rest = scan;
+	rest.measurements.clear();
+	std::vector<std::size_t> rest_index;
+	std::unordered_set<LandmarkId> taken;
+	StepReport report;
+	report.associations.assign(scan.measurements.size(), {Association::Kind::Rejected, -1});
+	for (std::size_t i = 0; i < tracked.size(); ++i)
+	{
+		if (const auto id = tracked[i].feature)
+		{
+			// A held feature is usually mapped; one still waiting in the chain is not.
+			report.associations[i] = {map_->contains(*id) ? Association::Kind::Matched : Association::Kind::New, *id};
+			taken.insert(*id);
+			++tally_.tracked_matches;
+			continue;
+		}
+		rest.measurements.push_back(scan.measurements[i]);
+		rest_index.push_back(i);
+	}
+	if (rest.measurements.empty()) return report;
+
+	const StepReport from_map = association_->associate(rest, local_.robot(), local_.robotCov(), *map_);
+	const double new_gate = chi2Quantile(assoc.new_landmark_chi2_quantile, 2);
+	for (std::size_t j = 0; j < rest_index.size(); ++j)
+	{
+		const std::size_t i = rest_index[j];
+		const Association& a = from_map.associations[j];
+		const bool duplicate = a.kind == Association::Kind::Matched && taken.count(a.id);
+		// Close to a held feature it did not match: ambiguous, not new.
+		const bool ambiguous = a.kind == Association::Kind::New && tracked[i].min_distance2 <= new_gate;
+		if (!duplicate && !ambiguous) report.associations[i] = a;
+	}
+	return report;
 }
 
 StepReport Dslam::associateByIds(const StepInput& step) const
@@ -100,6 +150,25 @@ StepReport Dslam::associateByIds(const StepInput& step) const
 			report.associations.push_back({map_->contains(id) ? Association::Kind::Matched : Association::Kind::New, id});
 	}
 	return report;
+}
+
+void Dslam::holdFirstSightings(const StepInput& step, StepReport& report)
+{
+	const Pose2 sensor = toPose2(step.scan->sensor_on_robot);
+	for (std::size_t i = 0; i < report.associations.size(); ++i)
+	{
+		auto& a = report.associations[i];
+		if (a.kind != Association::Kind::New || (a.id >= 0 && local_.holds(a.id))) continue;
+		const auto& m = step.scan->measurements[i];
+		const LandmarkFromMeasurement p = landmarkFromRangeBearing(local_.robot(), sensor, m.range_m, m.bearing_rad);
+		Eigen::Matrix2d cov = p.d_robot * local_.robotCov() * p.d_robot.transpose() +
+			p.d_measurement * m.cov * p.d_measurement.transpose();
+		cov = 0.5 * (cov + cov.transpose()).eval();
+		const std::optional<LandmarkId> id = a.id >= 0 ? std::optional<LandmarkId>(a.id) : std::nullopt;
+		if (confirmation_->confirm(id, p.position, cov, step.index)) continue;
+		a = {Association::Kind::Rejected, a.id};
+		++tally_.unconfirmed_sightings;
+	}
 }
 
 void Dslam::nameNewFeatures(StepReport& report)
@@ -137,6 +206,7 @@ void Dslam::rejectOutliers(const Scan& scan, StepReport& report)
 		reject(where[k]);
 		++tally_.local_gate_rejections;
 	}
+	rejectReobservationOutliers(scan, report);
 
 	// Mapping: the scan's mapped features jointly against Map(k), eq. (3.43)-(3.45).
 	std::vector<LandmarkId> ids;
@@ -168,6 +238,24 @@ void Dslam::rejectOutliers(const Scan& scan, StepReport& report)
 	{
 		reject(index[k]);
 		++tally_.map_gate_rejections;
+	}
+}
+
+void Dslam::rejectReobservationOutliers(const Scan& scan, StepReport& report)
+{
+	const Pose2 sensor = toPose2(scan.sensor_on_robot);
+	const double gate = chi2GateBound(params_.id_gate_chi2_quantile, 2);
+	if (std::isinf(gate)) return;
+	for (std::size_t i = 0; i < report.associations.size(); ++i)
+	{
+		auto& a = report.associations[i];
+		if (a.kind != Association::Kind::Matched || local_.holds(a.id) || !map_->supported(a.id)) continue;
+		const auto& m = scan.measurements[i];
+		const double d2 = reobservationDistance2(local_.robot(), local_.robotCov(), sensor, map_->position(a.id),
+												 map_->covariance({a.id}), {a.id, {m.range_m, m.bearing_rad}, m.cov});
+		if (d2 <= gate) continue;
+		a = {Association::Kind::Rejected, a.id};
+		++tally_.reobservation_gate_rejections;
 	}
 }
 
@@ -234,28 +322,59 @@ void Dslam::fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor)
 	in.initial_robot = robotFromPair(in.features.segment<2>(0), in.features.segment<2>(2), z_rob);
 
 	local_.arrange(ids);
+	std::optional<GaussianState> from_map;
 	try
 	{
-		const GaussianState from_map = solveKidnappedRobot(in);
-		const GaussianState local{local_.state(), local_.covariance()};
+		from_map = solveKidnappedRobot(in);
+	}
+	catch (const NumericalError&)
+	{
+		++tally_.ci_failures;  // degenerate geometry: keep the local SLAM estimate (step D = C)
+		return;
+	}
+	const GaussianState local{local_.state(), local_.covariance()};
+	const bool agree = params_.fusion_gate_chi2_quantile >= 1 ||
+		robotEstimatesAgree(robotMarginal(local), robotMarginal(*from_map));
+	guard_.fusion(agree);
+	if (!agree)
+	{
+		++tally_.ci_disagreements;	// a wrong match or a poorly known pair: keep the local estimate
+		return;
+	}
+	try
+	{
 		CiResult ci;
 		if (params_.fusion == FusionScope::Robot)
 		{
 			// CI of the robot marginals; the local features follow through
 			// their conditional on the robot (see DslamParams::fusion).
-			ci = covarianceIntersection(robotMarginal(local), robotMarginal(from_map));
+			ci = covarianceIntersection(robotMarginal(local), robotMarginal(*from_map));
 			ci.fused = withRobotMarginal(local, ci.fused);
 		}
 		else
-			ci = covarianceIntersection(local, from_map);  // eq. (3.20)-(3.21) over [X_r, X_1..X_m1]
+			ci = covarianceIntersection(local, *from_map);	// eq. (3.20)-(3.21) over [X_r, X_1..X_m1]
 		local_.setState(ci.fused.mean, ci.fused.cov);
 		++tally_.ci_fusions;
 		tally_.omega_sum += ci.omega;
 	}
 	catch (const NumericalError&)
 	{
-		++tally_.ci_failures;  // degenerate geometry: keep the local SLAM estimate (step D = C)
+		++tally_.ci_failures;
 	}
+}
+
+bool Dslam::robotEstimatesAgree(const GaussianState& local, const GaussianState& from_map) const
+{
+	// Covariance intersection fuses any two estimates, even contradictory
+	// ones (eq. 3.20-3.21). Two estimates of one pose must agree within their
+	// combined uncertainty; the sum of the covariances bounds that of the
+	// difference for any correlation up to a factor 2, taken here as the
+	// outlier gate's quantile on 3 dof.
+	Eigen::Vector3d d = local.mean.head<3>() - from_map.mean.head<3>();
+	d(2) = wrapAngle(d(2));
+	const Eigen::Matrix3d S = 2.0 * (local.cov.topLeftCorner<3, 3>() + from_map.cov.topLeftCorner<3, 3>());
+	const Eigen::LDLT<Eigen::Matrix3d> ldlt(S);
+	return ldlt.info() == Eigen::Success && d.dot(ldlt.solve(d)) <= chi2GateBound(params_.fusion_gate_chi2_quantile, 3);
 }
 
 MapUpdate Dslam::updateFromPair(const std::vector<LandmarkId>& ids, const PointSet& points, std::pair<int, int> pair)
@@ -343,8 +462,12 @@ CostFigures Dslam::costFigures() const
 	add("anchor_updates", static_cast<double>(tally_.anchor_updates));
 	add("ci_fusions", static_cast<double>(tally_.ci_fusions));
 	add("ci_failures", static_cast<double>(tally_.ci_failures));
+	add("ci_disagreements", static_cast<double>(tally_.ci_disagreements));
 	add("local_gate_rejections", static_cast<double>(tally_.local_gate_rejections));
 	add("map_gate_rejections", static_cast<double>(tally_.map_gate_rejections));
+	add("reobservation_gate_rejections", static_cast<double>(tally_.reobservation_gate_rejections));
+	add("unconfirmed_sightings", static_cast<double>(tally_.unconfirmed_sightings));
+	add("tracked_matches", static_cast<double>(tally_.tracked_matches));
 	add("relinearisations", static_cast<double>(tally_.relinearisations));
 	add("relinearised_terms", static_cast<double>(tally_.relinearised_terms));
 	add("ci_omega_mean", tally_.ci_fusions ? tally_.omega_sum / static_cast<double>(tally_.ci_fusions) : 0.0);

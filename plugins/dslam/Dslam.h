@@ -24,7 +24,9 @@
 #include "AdmissibleChain.h"
 #include "DivergenceGuard.h"
 #include "DslamParams.h"
+#include "KidnappedRobot.h"
 #include "LocalSlam.h"
+#include "NewFeatureConfirmation.h"
 
 #include <esif/plugin/FilterPlugin.h>
 #include <esif/relative/FeatureMap.h>
@@ -64,12 +66,16 @@ class Dslam : public FilterPlugin
 
 	StepReport associateScan(const StepInput& step);
 	StepReport associateByIds(const StepInput& step) const;
+	StepReport associateByTrackingThenMap(const Scan& scan);
 	void nameNewFeatures(StepReport& report);
+	void holdFirstSightings(const StepInput& step, StepReport& report);
 	void rejectOutliers(const Scan& scan, StepReport& report);
+	void rejectReobservationOutliers(const Scan& scan, StepReport& report);
 	void relinearise();
 	Observed observed(const Scan& scan, const StepReport& report) const;
 	void localize(const Observed& obs, const Pose2& sensor);
 	void fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor);
+	bool robotEstimatesAgree(const dslam::GaussianState& local, const dslam::GaussianState& from_map) const;
 	void updateMap(const Observed& obs, const Pose2& sensor);
 	void applyVirtualObservation(const Pose2& sensor);
 	relative::MapUpdate updateFromPair(const std::vector<LandmarkId>& ids, const relative::PointSet& points,
@@ -82,6 +88,7 @@ class Dslam : public FilterPlugin
 	dslam::LocalSlam local_;
 	dslam::AdmissibleChain chain_;
 	dslam::DivergenceGuard guard_;
+	std::optional<dslam::NewFeatureConfirmation> confirmation_;
 	std::optional<relative::MapUpdate> pending_;  ///< last map update, withdrawn if the next scan is inadmissible
 	std::unordered_set<LandmarkId> started_;	  ///< features reported New so far
 	LandmarkId next_own_id_ = 0;
@@ -91,7 +98,9 @@ class Dslam : public FilterPlugin
 	{
 		std::size_t admissible = 0, inadmissible = 0, skipped = 0, withdrawals = 0, virtual_updates = 0,
 					anchor_updates = 0, ci_fusions = 0, ci_failures = 0, local_gate_rejections = 0,
-					map_gate_rejections = 0, relinearisations = 0;
+					map_gate_rejections = 0, reobservation_gate_rejections = 0, unconfirmed_sightings = 0, tracked_matches = 0,
+					ci_disagreements = 0,
+					relinearisations = 0;
 		double omega_sum = 0;
 		std::size_t relinearised_terms = 0;
 	} tally_;

@@ -27,10 +27,27 @@ void DslamParams::declare(ParamBinder& b)
 	b.real("outlier_chi2_quantile", outlier_chi2_quantile,
 		   "chi-square confidence of the localisation and mapping outlier gates (any association); 1 = off",
 		   Bounds{0, 1, true, false});
+	b.real("id_gate_chi2_quantile", id_gate_chi2_quantile,
+		   "chi-square confidence of the gate on re-observations of mapped features out of the local SLAM's view; "
+		   "1 = off",
+		   Bounds{0, 1, true, false});
+	b.real("fusion_gate_chi2_quantile", fusion_gate_chi2_quantile,
+		   "fuse the map's and the local SLAM's robot estimates only when they agree at this chi-square "
+		   "confidence; 1 = off (the book)",
+		   Bounds{0, 1, true, false});
+	b.flag("confirm_new_features", confirm_new_features,
+		   "map a feature only when a second sighting agrees with its first at the outlier gate; false = map it "
+		   "at its first sighting (the book)");
+	b.integer("confirmation_window_steps", confirmation_window_steps,
+			  "a first sighting waits this many steps for the sighting that confirms it", Bounds::atLeast(1));
 	b.real("divergence_factor", divergence_factor,
 		   "stop with a numerical error when a feature lies farther from the origin than this times (path + "
 		   "range); 0 = off",
 		   Bounds::nonNegative());
+	b.integer("divergence_disagreeing_scans", divergence_disagreeing_scans,
+			  "stop with a numerical error when the map and the local SLAM disagree on the robot pose at this many "
+			  "admissible scans in a row; 0 = off",
+			  Bounds::nonNegative());
 	b.integer("relinearise_every_steps", relinearise_every_steps,
 			  "every N steps, relinearise every map update at the current estimate; 0 = never (the book)",
 			  Bounds::nonNegative());

@@ -53,10 +53,39 @@ struct DslamParams
 	/// map jointly with the scan's others, is rejected (da_rejected). 1 = off.
 	/// 0.999: a correct measurement is rejected once in a thousand.
 	double outlier_chi2_quantile = 0.999;
+	/// Gate on an ID-matched re-observation of a mapped feature the local
+	/// SLAM no longer holds (OutlierGate.h: reobservationDistance2), at this
+	/// chi-square confidence; the same key and default as the EKF's gate on
+	/// known IDs. 1 = off. Like every gate on known IDs it assumes a
+	/// consistent filter: on Victoria Park, where the robot's heading
+	/// estimate is not, it rejected 2,785 valid loop-closing sightings, so
+	/// configs/vicpark/dslam.ini turns it off.
+	double id_gate_chi2_quantile = 0.9999;
+	/// Covariance intersection fuses the map's estimate of the robot pose
+	/// (kidnapped robot) with the local SLAM's only when the two agree at
+	/// this chi-square confidence (Dslam::robotEstimatesAgree); otherwise
+	/// the local estimate stands and the disagreement is counted. 1 = off
+	/// (the book fuses always). On configs/sim/long_gap.ini without IDs, a
+	/// wrong match after the gap moved the robot 30 m through the fusion.
+	/// Off in configs/vicpark/dslam.ini for the reason given above.
+	double fusion_gate_chi2_quantile = 0.9999;
+	/// A feature is mapped only once a second sighting agrees with its first
+	/// at the outlier gate's quantile (NewFeatureConfirmation.h); false maps
+	/// it at its first sighting, as the book. On configs/sim/wrong_ids.ini
+	/// (1% misread IDs) the first sighting of 24 features was a misread; each
+	/// then sat at its neighbour's place for good.
+	bool confirm_new_features = true;
+	/// ... within this many steps of the first sighting (later, the first
+	/// sighting is forgotten and the next one starts again).
+	int confirmation_window_steps = 50;
 	/// Divergence check (DivergenceGuard.h): a feature estimated farther from
 	/// the map origin than this many times (path travelled + largest range
 	/// measured) stops the run with a numerical error. 0 = off.
 	double divergence_factor = 2.0;
+	/// ... and so does a run of this many admissible scans in a row at which
+	/// the map's estimate of the robot pose (kidnapped-robot solution)
+	/// contradicts the local SLAM's (DivergenceGuard.h). 0 = off.
+	int divergence_disagreeing_scans = 20;
 	/// Every this many steps (and at the end), the map updates are evaluated
 	/// again at the current estimate (FeatureMap::relinearise). 0 = never, as
 	/// the book's EIF: then an update keeps the Jacobian of the map as it was

@@ -48,6 +48,17 @@ class LocalSlam
 	/// EKF (S = H P H^T + R), or nothing when its feature is not held.
 	std::optional<double> innovationDistance2(const IdentifiedMeasurement& m, const Pose2& sensor_on_robot) const;
 
+	/// Predicted measurements of every held feature (rows in order()) and
+	/// their joint covariance H P H^T + R, robot-feature correlations
+	/// included, for a measurement noise `R`: the association input of
+	/// the tracking stage (HeldFeatureTracking.h).
+	struct HeldPrediction
+	{
+		Eigen::MatrixXd predictions;  ///< k x 2 (range, bearing)
+		Eigen::MatrixXd covariance;	  ///< 2k x 2k
+	};
+	HeldPrediction predictHeld(const Pose2& sensor_on_robot, const Eigen::Matrix2d& R) const;
+
 	/// State [robot; features in order()] and its covariance (step C).
 	Eigen::VectorXd state() const { return ekf_.state(); }
 	Eigen::MatrixXd covariance() const { return ekf_.covariance(); }

