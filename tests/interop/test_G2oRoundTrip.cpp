@@ -16,6 +16,7 @@
 #include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <map>
@@ -218,6 +219,62 @@ TEST_F(G2oRoundTrip, BearingRangeFormForGtsamCarriesTheMeasurementsAndTheirSigma
 	const auto im =
 		runEsif("import g2o --g2o '" + g2o + "' --rawlog '" + rawlog_ + "' --out '" + dir_->file("br_imported") + "'");
 	EXPECT_EQ(im.exit_code, 0) << im.out;
+}
+
+/// The cell of `column` in the row of `label` of a comparison.csv ("" if absent).
+std::string csvCell(const std::string& path, const std::string& label, const std::string& column)
+{
+	std::istringstream in(readText(path));
+	std::string line;
+	std::getline(in, line);
+	std::vector<std::string> header;
+	std::stringstream hs(line);
+	for (std::string c; std::getline(hs, c, ',');) header.push_back(c);
+	const auto col = std::find(header.begin(), header.end(), column) - header.begin();
+	const auto label_col = std::find(header.begin(), header.end(), "label") - header.begin();
+	while (std::getline(in, line))
+	{
+		std::vector<std::string> cells;
+		std::stringstream ss(line);
+		for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+		if (label_col < static_cast<long>(cells.size()) && cells[label_col] == label && col < static_cast<long>(cells.size()))
+			return cells[col];
+	}
+	return "";
+}
+
+TEST_F(G2oRoundTrip, ImportedSolutionIsACompareReference)
+{
+	// Another solver's solution stands in as the imported ceres run: the same
+	// config compared against it differs by nothing.
+	const std::string g2o = dir_->file("ref.g2o");
+	ASSERT_EQ(runEsif("export g2o --rawlog '" + rawlog_ + "' --associations-from '" + dir_->file("ceres") +
+					  "' --out '" + g2o + "'")
+				  .exit_code,
+			  0);
+	ASSERT_EQ(
+		runEsif("import g2o --g2o '" + g2o + "' --rawlog '" + rawlog_ + "' --out '" + dir_->file("solver") + "'")
+			.exit_code,
+		0);
+	const auto r = runEsif(
+		"compare --configs '" + test::sourcePath("configs/ceres_full.ini") + "," + test::sourcePath("configs/ekf.ini") +
+		"' --rawlog '" + rawlog_ + "' --reference '" + dir_->file("solver") + "' --out '" + dir_->file("cmp") + "'");
+	ASSERT_EQ(r.exit_code, 0) << r.out;
+	const std::string csv = dir_->file("cmp/comparison.csv");
+	EXPECT_NE(r.out.find("ref_*: difference from the run folder " + dir_->file("solver")), std::string::npos) << r.out;
+	// ceres_full is deterministic: its run here is the one imported,
+	// positions exactly, headings to the few ulps of their trip through
+	// trajectory.tum's quaternions.
+	EXPECT_EQ(csvCell(csv, "ceres_full", "ref_traj_rms_m"), "0") << readText(csv);
+	EXPECT_LT(std::stod(csvCell(csv, "ceres_full", "ref_heading_rms_deg")), 1e-12) << readText(csv);
+	EXPECT_EQ(csvCell(csv, "ceres_full", "ref_landmark_rms_m"), "0") << readText(csv);
+	EXPECT_EQ(csvCell(csv, "ceres_full", "ref_landmarks_matched"), "16") << readText(csv);
+	// The EKF differs from the optimum by its estimation error: centimetres.
+	const std::string ekf_cell = csvCell(csv, "ekf", "ref_landmark_rms_m");
+	ASSERT_FALSE(ekf_cell.empty()) << readText(csv);
+	const double ekf = std::stod(ekf_cell);
+	EXPECT_GT(ekf, 0.0);
+	EXPECT_LT(ekf, 0.2);
 }
 
 /// Writes `text` as a g2o file and imports it: the exit code and output.
