@@ -65,7 +65,7 @@ void appendOdometry(std::string& text, const OdometryFactor& f, const VertexIds&
 {
 	text += "EDGE_SE2 " + std::to_string(ids.pose(f.from)) + ' ' + std::to_string(ids.pose(f.to));
 	appendNumbers(text, {f.delta.x(), f.delta.y(), f.delta.z()});
-	appendInformation<3>(text, f.cov);
+	appendInformation<3>(text, odometryErrorCovariance(f));
 	text += '\n';
 }
 
@@ -107,6 +107,21 @@ std::string header(const FullSlamProblem& p, G2oLandmarkEdge edge, const std::st
 		   ")\n";
 }
 }  // namespace
+
+Eigen::Matrix3d odometryErrorCovariance(const OdometryFactor& f)
+{
+	// The increment's noise w is added to the increment in the frame of pose
+	// `from` (eq. 1.19: Xi^-1 (+) Xj = u + w). g2o's EdgeSE2 error is
+	// Z^-1 (+) (Xi^-1 (+) Xj) = (R(-u_phi) w_xy, w_phi): the translation noise
+	// seen from the increment's end. Its covariance is J Q J^T with
+	// J = diag(R(-u_phi), 1), exactly; GTSAM's BetweenFactor<Pose2>
+	// (Logmap(Z^-1 Xi^-1 Xj)) agrees to first order.
+	Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
+	const double c = std::cos(f.delta.z()), s = std::sin(f.delta.z());
+	J.topLeftCorner<2, 2>() << c, s, -s, c;
+	const Eigen::Matrix3d cov = J * f.cov * J.transpose();
+	return 0.5 * (cov + cov.transpose());
+}
 
 PointInRobotFrame pointInRobotFrame(const RangeBearingFactor& m)
 {

@@ -13,10 +13,15 @@
 ///   VERTEX_SE2 i x y theta
 ///   VERTEX_XY  P+L x y
 ///   FIX 0
-///   EDGE_SE2 i j dx dy dtheta  I11 I12 I13 I22 I23 I33      (odometry, I = Q^-1)
+///   EDGE_SE2 i j dx dy dtheta  I11 I12 I13 I22 I23 I33      (odometry)
 /// and per measurement, one of
 ///   EDGE_SE2_XY i P+L px py  I11 I12 I22                    (G2oLandmarkEdge::PointXY)
 ///   BR i P+L bearing range sigma_bearing sigma_range        (G2oLandmarkEdge::BearingRange)
+///
+/// The odometry information is that of g2o's EdgeSE2 error, which sees the
+/// translation noise from the increment's end: (J Q J^T)^-1 with
+/// J = diag(R(-dtheta), 1) (odometryErrorCovariance); Q^-1 itself would
+/// weight a turning step's noise in the wrong directions.
 ///
 /// Why two landmark edges: g2o's slam2d types have no range-bearing edge;
 /// its EDGE_SE2_XY (EdgeSE2PointXY) is the landmark in the robot frame, so
@@ -52,6 +57,9 @@ struct PointInRobotFrame
 	Eigen::Matrix2d cov;
 };
 PointInRobotFrame pointInRobotFrame(const RangeBearingFactor& m);
+
+/// The covariance of g2o's EdgeSE2 error for odometry `f`: J Q J^T, J = diag(R(-dphi), 1).
+Eigen::Matrix3d odometryErrorCovariance(const OdometryFactor& f);
 
 /// The g2o text of `problem`; `source` goes into the header comment. Throws
 /// InputError when a landmark ID is negative, or (BearingRange) when a
