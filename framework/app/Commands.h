@@ -15,7 +15,7 @@ int importCommand(int argc, char** argv);
 int benchCommand(int argc, char** argv);
 int localMapsCommand(int argc, char** argv);
 int exportCommand(int argc, char** argv);
-/// `esif import g2o` (ExportCommand.cpp, beside its export).
+/// `esif import g2o`, which importCommand hands g2o input to.
 int importG2oCommand(int argc, char** argv);
 
 }  // namespace esif::app

@@ -3,7 +3,6 @@
 
 #include <esif/core/Errors.h>
 #include <esif/interop/G2oExport.h>
-#include <esif/interop/G2oImport.h>
 
 #include <iostream>
 
@@ -46,24 +45,6 @@ int exportCommand(int argc, char** argv)
 			  << s.odometry_edges << " odometry edges, " << s.landmark_edges << " landmark edges";
 	if (s.measurements_without_id) std::cout << " (" << s.measurements_without_id << " measurements without ID left out)";
 	std::cout << "\n";
-	return 0;
-}
-
-int importG2oCommand(int argc, char** argv)
-{
-	TCLAP::CmdLine cmd(
-		"Reads a g2o solution (the file `esif export g2o` wrote, or a solver's optimised output with the same "
-		"vertices) into a run folder's trajectory.tum and landmarks.txt, for esif compare --reference.",
-		' ', ESIF_VERSION);
-	TCLAP::ValueArg<std::string> g2o("", "g2o", "g2o file", true, "", "FILE", cmd);
-	TCLAP::ValueArg<std::string> rawlog(
-		"r", "rawlog", "the rawlog the file was exported from (gives each step's time and pose)", true, "", "FILE",
-		cmd);
-	TCLAP::ValueArg<std::string> out("o", "out", "run folder to write", true, "", "DIR", cmd);
-	if (!parseCommandLine(cmd, argc, argv)) return 0;
-	const auto s = importG2oSolution(g2o.getValue(), rawlog.getValue(), out.getValue());
-	std::cout << "esif import: " << out.getValue() << ": " << s.steps << " steps (" << s.poses << " poses), "
-			  << s.landmarks << " landmarks\n";
 	return 0;
 }
 
