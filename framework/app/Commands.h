@@ -14,5 +14,8 @@ int pluginsCommand(int argc, char** argv);
 int importCommand(int argc, char** argv);
 int benchCommand(int argc, char** argv);
 int localMapsCommand(int argc, char** argv);
+int exportCommand(int argc, char** argv);
+/// `esif import g2o`, which importCommand hands g2o input to.
+int importG2oCommand(int argc, char** argv);
 
 }  // namespace esif::app

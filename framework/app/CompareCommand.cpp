@@ -19,6 +19,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -317,20 +318,20 @@ Stats runConfig(
 
 std::string labelOf(const Stats& run) { return run.text("label").value_or("?"); }
 
-/// Adds the ref_* keys (difference from run `ref`) to every run that did
-/// not fail and draws their maps over the reference's into
+/// Adds the ref_* keys (difference from `reference_outputs`: run `ref`'s,
+/// or an outside run folder's when `ref` is none) to every run that did not
+/// fail and draws their maps over the reference's into
 /// OUT/maps_overlay.png; returns the note lines, which call the reference
 /// `who` (e.g. "run 'ekf'"), or says that the reference failed.
-std::string addReferenceColumns(std::vector<Stats>& runs, const std::vector<std::string>& dirs, std::size_t ref,
-								const std::string& who, const std::string& out_dir)
+std::string addReferenceColumns(std::vector<Stats>& runs, const std::vector<std::string>& dirs,
+								const std::optional<std::size_t>& ref, const RunOutputs& reference_outputs,
+								const std::string& reference_label, const std::string& who, const std::string& out_dir)
 {
-	if (isFailedRun(runs[ref])) return "ref_*: none, " + who + " failed\n";
-	const RunOutputs reference_outputs = readRunOutputs(dirs[ref]);
-	std::vector<MapOverlayLayer> layers{{labelOf(runs[ref]), reference_outputs}};
+	std::vector<MapOverlayLayer> layers{{reference_label, reference_outputs}};
 	for (std::size_t i = 0; i < runs.size(); ++i)
 	{
 		if (isFailedRun(runs[i])) continue;
-		if (i == ref)
+		if (ref && i == *ref)
 		{
 			setDifferenceStats(runs[i], referenceItself(reference_outputs));
 			continue;
@@ -345,6 +346,22 @@ std::string addReferenceColumns(std::vector<Stats>& runs, const std::vector<std:
 		   "ref_landmark_rms_aligned_m: the best-fit rigid transform of the landmarks and what is left after it; "
 		   "ref_landmarks_in_own95: share of landmarks whose reference position is inside the run's own 95% "
 		   "ellipse; maps_overlay.png draws them\n";
+}
+
+/// The same against compared run `ref`.
+std::string addReferenceColumns(std::vector<Stats>& runs, const std::vector<std::string>& dirs, std::size_t ref,
+								const std::string& who, const std::string& out_dir)
+{
+	if (isFailedRun(runs[ref])) return "ref_*: none, " + who + " failed\n";
+	return addReferenceColumns(runs, dirs, ref, readRunOutputs(dirs[ref]), labelOf(runs[ref]), who, out_dir);
+}
+
+/// A --reference that names no compared run but a run folder outside the
+/// comparison (e.g. another solver's solution made by `esif import g2o`).
+bool isOutsideRunFolder(const std::string& reference)
+{
+	return fs::is_regular_file(fs::path(reference) / "trajectory.tum") &&
+		   fs::is_regular_file(fs::path(reference) / "landmarks.txt");
 }
 
 /// Runs every config in run order; a failed run is a row of its own and
@@ -391,7 +408,8 @@ std::string failedBaselineNote(const std::vector<Stats>& runs, const std::vector
 std::string measureAgainstBaseline(
 	std::vector<Stats>& runs, const std::vector<std::string>& dirs, const std::vector<PlannedRun>& planned,
 	const std::vector<std::optional<std::size_t>>& sources, const std::vector<CheckedConfig>& checked,
-	const std::optional<std::pair<std::size_t, std::string>>& reference, const std::string& out_dir)
+	const std::optional<std::pair<std::size_t, std::string>>& reference,
+	const std::optional<std::string>& outside_reference, const std::string& out_dir)
 {
 	std::string note;
 	const BaselineChoice baseline = findBaseline(runs);
@@ -410,7 +428,11 @@ std::string measureAgainstBaseline(
 	}
 	else
 		note += failedBaselineNote(runs, checked);
-	if (reference)
+	if (outside_reference)
+		note += addReferenceColumns(
+			runs, dirs, std::nullopt, readRunOutputs(*outside_reference), fs::path(*outside_reference).filename().string(),
+			"the run folder " + *outside_reference, out_dir);
+	else if (reference)
 		note += addReferenceColumns(runs, dirs, reference->first, "run '" + reference->second + "'", out_dir);
 	else if (baseline.index && !with_truth)
 	{
@@ -420,7 +442,7 @@ std::string measureAgainstBaseline(
 			out_dir);
 	}
 	// Only where something was measured against the baseline.
-	if (implausible && (with_truth || !reference)) note += *implausible + "\n";
+	if (implausible && (with_truth || !(reference || outside_reference))) note += *implausible + "\n";
 	return note;
 }
 }  // namespace
@@ -453,13 +475,15 @@ int compareCommand(int argc, char** argv)
 											cmd);
 	TCLAP::ValueArg<std::string> reference(
 		"", "reference",
-		"label of the run the others are compared with (for data without ground truth): adds each run's "
+		"label of the run the others are compared with (for data without ground truth), or a run folder outside "
+		"the comparison holding trajectory.tum and landmarks.txt (e.g. another solver's solution read by esif "
+		"import g2o): adds each run's "
 		"difference from it, in the shared initial-pose frame without alignment, as ref_traj_rms_m, "
 		"ref_traj_max_m, ref_heading_rms_deg (poses of the same step), ref_landmark_rms_m, ref_landmark_max_m "
 		"and ref_landmarks_matched (landmarks with the same ID: the runs must use the rawlog's landmark IDs). "
 		"The reference's row shows zeros and its own landmark count. Default without ground truth: the "
 		"optimization baseline (the full-SLAM run), if any",
-		false, "", "LABEL", cmd);
+		false, "", "LABEL|DIR", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 	if (rawlog.isSet() == local_maps.isSet())
 		throw ConfigError("esif compare: give exactly one of --rawlog FILE and --local-maps DIR (see --help)");
@@ -477,11 +501,20 @@ int compareCommand(int argc, char** argv)
 	const auto dirs = runFolders(config_list, out.getValue());
 	const auto planned = planRuns(config_list);
 	std::optional<std::size_t> ref;
+	std::optional<std::string> outside_reference;
 	if (reference.isSet())
 	{
 		std::vector<std::string> labels;
 		for (const auto& p : planned) labels.push_back(p.label);
-		ref = referenceIndex(reference.getValue(), config_list, labels, dirs);
+		// A compared run's label or folder name first; else a run folder outside.
+		const bool names_a_run =
+			std::count(labels.begin(), labels.end(), reference.getValue()) > 0 ||
+			std::any_of(dirs.begin(), dirs.end(),
+						[&](const std::string& d) { return fs::path(d).filename().string() == reference.getValue(); });
+		if (!names_a_run && isOutsideRunFolder(reference.getValue()))
+			outside_reference = reference.getValue();
+		else
+			ref = referenceIndex(reference.getValue(), config_list, labels, dirs);
 	}
 	const auto sources = associationSources(planned);
 	const auto order = runOrder(planned, sources);
@@ -504,7 +537,7 @@ int compareCommand(int argc, char** argv)
 		std::string note = measureAgainstBaseline(
 			runs, run_dirs, planned, sources, checked,
 			ref ? std::optional<std::pair<std::size_t, std::string>>({*ref, reference.getValue()}) : std::nullopt,
-			staging);
+			outside_reference, staging);
 		if (reference_result.isSet())
 			note += "refres_*: difference from the reference result " + reference_result.getValue() +
 					" (landmarks by the files' feature IDs, end poses by map k, headings modulo 2 pi)\n";

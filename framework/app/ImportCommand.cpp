@@ -10,7 +10,14 @@ namespace esif::app
 {
 int importCommand(int argc, char** argv)
 {
-	TCLAP::CmdLine cmd("Converts a dataset into an MRPT rawlog. Datasets: victoria-park.", ' ', ESIF_VERSION);
+	// A g2o solution becomes a run folder, not a rawlog: its own options.
+	if (argc >= 2 && std::string(argv[1]) == "g2o")
+	{
+		std::string prog = "esif import g2o";
+		argv[1] = prog.data();
+		return importG2oCommand(argc - 1, argv + 1);
+	}
+	TCLAP::CmdLine cmd("Converts a dataset into an MRPT rawlog. Datasets: victoria-park. (`esif import g2o --help`: a g2o solution into a run folder.)", ' ', ESIF_VERSION);
 	TCLAP::UnlabeledValueArg<std::string> dataset("dataset", "dataset format: victoria-park", true, "", "DATASET", cmd);
 	TCLAP::ValueArg<std::string> in("i", "in", "dataset file (e.g. victoria_park.txt)", true, "", "FILE", cmd);
 	TCLAP::ValueArg<std::string> out("o", "out", "rawlog to write (gz)", true, "", "FILE", cmd);

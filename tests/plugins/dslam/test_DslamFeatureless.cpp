@@ -4,6 +4,7 @@
 // features. Combining those scans into virtual observations must keep
 // mapping going on the far side; skipping them must not.
 
+#include <ConsistencyCampaign.h>
 #include <EsifTestSupport.h>
 
 #include <esif/config/ConfigFile.h>
@@ -12,6 +13,8 @@
 #include <esif/sim/Simulator.h>
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 namespace
 {
@@ -87,6 +90,39 @@ TEST_F(DslamFeatureless, VirtualObservationsKeepMappingAcrossTheGap)
 	// Accuracy: both filters pay for the heading drift across the gaps (a
 	// few degrees of map rotation); D-SLAM no more than half again the EKF.
 	EXPECT_LE(*combine.accuracy.landmark_rmse_m, 1.5 * *ekf.accuracy.landmark_rmse_m);
+}
+
+TEST_F(DslamFeatureless, AccurateAndLandmarksConsistentFromBothSidesAcrossTheGaps)
+{
+	const auto dslam = run("Dslam", "association = known_ids\n");
+	const auto& a = dslam.accuracy;
+	ASSERT_TRUE(a.landmark_rmse_m && a.ate_rmse_m && a.landmark_nees_mean && a.pose_nees_mean);
+	std::cout << "featureless D-SLAM: landmark RMSE " << *a.landmark_rmse_m << " m, ATE " << *a.ate_rmse_m
+			  << " m, landmark NEES mean " << *a.landmark_nees_mean << ", pose NEES mean " << *a.pose_nees_mean
+			  << ", landmarks consistent " << *a.landmark_consistent_fraction << "\n";
+	// Absolute accuracy (measured: landmarks 0.18 m, trajectory 1.40 m; the
+	// EKF's map 1.23 m). Each of the 8 crossings is ~70 scans of dead
+	// reckoning at 3 deg/s turn-rate noise, a few degrees of heading and
+	// decimetres to a metre of position by the far side, which the first
+	// scans there correct in the map but not in the path already driven.
+	// The full-SLAM baseline is no reference here: from dead reckoning it
+	// stops in a local minimum on this rawlog (chi2/dof 7.1, flagged
+	// implausible; landmark RMSE 1.42 m). Bounds: 40 % above the measurements.
+	EXPECT_LT(*a.landmark_rmse_m, 0.25);
+	EXPECT_LT(*a.ate_rmse_m, 2.0);
+	// Landmark consistency, both sides. One run's landmark NEES mean is in
+	// the worst case (errors shared through the crossings) one chi-square(2)
+	// draw: its two-sided 99 % interval is [0.01, 10.6]; from below, D-SLAM
+	// is conservative by design but a covariance five times the error's
+	// (under 0.2 of the 2 dof) is a regression. Measured 1.48, with 99.3 %
+	// of the landmarks inside their 95 % ellipse.
+	const auto band = test::meanNeesBand(2, 1);
+	EXPECT_LT(*a.landmark_nees_mean, band.upper);
+	EXPECT_GT(*a.landmark_nees_mean, std::max(band.lower, 0.2 * 2));
+	EXPECT_GE(*a.landmark_consistent_fraction, 0.95);
+	// Not asserted: the pose NEES mean over steps, 16.1 measured, above even
+	// the single-draw bound chi2_3(0.995) = 12.8: D-SLAM's localisation is
+	// over-confident while it crosses the gaps (an open finding).
 }
 
 }  // namespace

@@ -47,26 +47,41 @@ double counter(const FilterPlugin& p, const std::string& name)
 	return -1;
 }
 
-TEST(DslamGrid196, KnownIdsAsAccurateAsEkfAndConsistent)
+TEST(DslamGrid196, KnownIdsNearTheOptimumAndConservativeFromBothSides)
 {
 	const auto ekf = run("EkfSlam", "association = known_ids\n", false);
 	const auto dslam = run("Dslam", "association = known_ids\n", false);
+	const auto optimum = run("CeresFullSlam", "", false);
 	const auto& a = dslam.accuracy;
-	ASSERT_TRUE(a.landmark_rmse_m && ekf.accuracy.landmark_rmse_m && a.pose_consistent_fraction);
-	std::cout << "grid196 known IDs: landmark RMSE D-SLAM " << *a.landmark_rmse_m << " m vs EKF "
-			  << *ekf.accuracy.landmark_rmse_m << " m; ATE " << *a.ate_rmse_m << " vs " << *ekf.accuracy.ate_rmse_m
-			  << " m; landmarks consistent " << *a.landmark_consistent_fraction << ", poses consistent "
-			  << *a.pose_consistent_fraction << ", pose NEES mean " << *a.pose_nees_mean << "\n";
+	ASSERT_TRUE(a.landmark_rmse_m && optimum.accuracy.landmark_rmse_m && a.pose_consistent_fraction &&
+				a.landmark_nees_mean && a.pose_nees_mean);
+	std::cout << "grid196 known IDs: landmark RMSE D-SLAM " << *a.landmark_rmse_m << " m vs optimum "
+			  << *optimum.accuracy.landmark_rmse_m << " m (EKF " << *ekf.accuracy.landmark_rmse_m << " m); ATE "
+			  << *a.ate_rmse_m << " vs " << *optimum.accuracy.ate_rmse_m << " m; landmarks consistent "
+			  << *a.landmark_consistent_fraction << ", landmark NEES mean " << *a.landmark_nees_mean
+			  << ", poses consistent " << *a.pose_consistent_fraction << ", pose NEES mean " << *a.pose_nees_mean
+			  << "\n";
 	EXPECT_EQ(dslam.result.record.final_estimate.landmarks.size(), ekf.result.record.final_estimate.landmarks.size());
-	// The bounds: D-SLAM loses the robot-map information of z_rob, so
-	// it may be somewhat worse than the EKF, never by more than half again.
-	EXPECT_LE(*a.landmark_rmse_m, 1.5 * *ekf.accuracy.landmark_rmse_m);
+	// Accuracy against the full-SLAM optimum on the same rawlog: D-SLAM
+	// drops the robot-map information of z_rob (Sec. 3.4) and relinearises
+	// only the map updates, so it is worse than the optimum; measured 1.91x
+	// (8.2 cm vs 4.3 cm; the EKF 10.1 cm, 2.3x). 2.5x leaves 30 % for
+	// changes of tuning; the former bound, 1.5x the EKF (0.151 m), allowed
+	// 3.5x the optimum.
+	EXPECT_LE(*a.landmark_rmse_m, 2.5 * *optimum.accuracy.landmark_rmse_m);
 	EXPECT_GE(*a.landmark_consistent_fraction, 0.95);
-	// The pose NEES below its 95% chi-square(3) bound in 90% of the steps;
-	// the book finds D-SLAM's localisation conservative, so the mean NEES
-	// must not exceed its expectation of 3 either.
+	// Consistency, both sides. One run cannot hold a mean NEES to a chi-square
+	// band (its landmarks, and its steps, share one error draw; the
+	// campaign tests in test_DslamCampaign.cpp do that), but it can bound a
+	// conservative filter: D-SLAM's CI localisation makes its pose NEES
+	// (measured 1.46, 0.49 of the 3 dof) lower than the expectation, and a
+	// mean above 3 would be over-confidence. From below: a covariance five
+	// times the error's (NEES under 0.2 of the dof) is no longer conservative
+	// but uninformative, the failure a two-sided check exists for.
 	EXPECT_GE(*a.pose_consistent_fraction, 0.90);
 	EXPECT_LT(*a.pose_nees_mean, 3.0);
+	EXPECT_GT(*a.pose_nees_mean, 0.2 * 3);
+	EXPECT_GT(*a.landmark_nees_mean, 0.2 * 2);
 	// Both localisation processes ran: CI fused at (almost) every admissible scan.
 	EXPECT_GT(counter(*dslam.plugin, "ci_fusions"), 0.9 * counter(*dslam.plugin, "admissible_scans"));
 	EXPECT_EQ(counter(*dslam.plugin, "ci_failures"), 0);

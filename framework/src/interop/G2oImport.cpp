@@ -1,0 +1,86 @@
+/// \file G2oImport.cpp
+/// A g2o solution written back as run outputs, with the writers `esif run` uses.
+
+#include <esif/core/Errors.h>
+#include <esif/interop/G2oImport.h>
+#include <esif/io/MapWriter.h>
+#include <esif/io/RunFolder.h>
+
+#include <filesystem>
+#include <limits>
+
+namespace esif
+{
+namespace
+{
+std::vector<Pose2> posesOf(const G2oGraph& graph, std::size_t count, const std::string& path)
+{
+	std::vector<Pose2> poses;
+	for (std::size_t i = 0; i < count; ++i)
+	{
+		const auto it = graph.poses.find(static_cast<long long>(i));
+		if (it == graph.poses.end())
+			throw InputError(
+				path + ": no VERTEX_SE2 " + std::to_string(i) + " (the rawlog's problem has poses 0.." +
+				std::to_string(count - 1) + ")");
+		poses.push_back(it->second);
+	}
+	if (!graph.poses.empty() && graph.poses.rbegin()->first >= static_cast<long long>(count))
+		throw InputError(
+			path + ": VERTEX_SE2 " + std::to_string(graph.poses.rbegin()->first) + ", but the rawlog's problem has " +
+			std::to_string(count) + " poses (a file of another rawlog?)");
+	return poses;
+}
+
+std::vector<LandmarkEstimate> landmarksOf(const G2oGraph& graph, std::size_t pose_count, const std::string& path)
+{
+	const double nan = std::numeric_limits<double>::quiet_NaN();
+	std::vector<LandmarkEstimate> out;
+	for (const auto& [vertex, position] : graph.points)
+	{
+		if (vertex < static_cast<long long>(pose_count))
+			throw InputError(
+				path + ": VERTEX_XY " + std::to_string(vertex) + " has a pose's ID (landmark vertices are " +
+				std::to_string(pose_count) + " + landmark ID)");
+		LandmarkEstimate l;
+		l.id = vertex - static_cast<long long>(pose_count);
+		l.mean = position;
+		l.cov << nan, nan, nan, nan;
+		out.push_back(l);
+	}
+	return out;
+}
+}  // namespace
+
+G2oSolution solutionFromG2o(const G2oGraph& graph, const FullSlamProblem& problem, const std::string& path)
+{
+	const std::vector<Pose2> poses = posesOf(graph, problem.poses.size(), path);
+	G2oSolution s;
+	for (std::size_t k = 0; k < problem.step_pose.size(); ++k)
+	{
+		TrajectoryPoint p;
+		p.step = k;
+		p.time_s = problem.step_time_s[k];
+		p.pose.mean = toTPose2D(poses[problem.step_pose[k]]);
+		s.trajectory.push_back(p);
+	}
+	s.estimate.landmarks = landmarksOf(graph, problem.poses.size(), path);
+	if (!s.trajectory.empty()) s.estimate.robot = s.trajectory.back().pose;
+	return s;
+}
+
+G2oImportSummary importG2oSolution(
+	const std::string& g2o_path, const std::string& rawlog_path, const std::string& out_dir)
+{
+	const G2oGraph graph = readG2oFile(g2o_path);
+	const FullSlamProblem problem = buildFullSlamProblem(readRawlog(rawlog_path));
+	const G2oSolution solution = solutionFromG2o(graph, problem, g2o_path);
+	writeRunFolder(out_dir, {"trajectory.tum", "landmarks.txt"}, [&](const std::string& staging) {
+		writeTrajectoryTum(solution.trajectory, (std::filesystem::path(staging) / "trajectory.tum").string());
+		writeLandmarksTxt(solution.estimate, (std::filesystem::path(staging) / "landmarks.txt").string());
+		return 0;
+	});
+	return {problem.poses.size(), solution.trajectory.size(), solution.estimate.landmarks.size()};
+}
+
+}  // namespace esif
