@@ -14,5 +14,6 @@ int pluginsCommand(int argc, char** argv);
 int importCommand(int argc, char** argv);
 int benchCommand(int argc, char** argv);
 int localMapsCommand(int argc, char** argv);
+int monteCarloCommand(int argc, char** argv);
 
 }  // namespace esif::app
