@@ -23,8 +23,10 @@ std::vector<PoseError> poseErrors(const GroundTruth& truth, const std::vector<Tr
 		row.step = tp.step;
 		row.error = toPose2(tp.pose.mean) - truth.path[tp.step];
 		row.error(2) = wrapAngle(row.error(2));
-		// The initial pose is known exactly (zero covariance): no NEES there.
-		if (tp.pose.cov.trace() > 0) row.nees = nees(row.error, tp.pose.cov);
+		// The initial pose is known exactly: no NEES there, whether its
+		// covariance is zero or the tiny floor of a first zero move (1e-10:
+		// its NEES of a zero error would be a meaningless 0, below any bound).
+		if (tp.step > 0 && tp.pose.cov.trace() > 0) row.nees = nees(row.error, tp.pose.cov);
 		rows.push_back(row);
 	}
 	return rows;

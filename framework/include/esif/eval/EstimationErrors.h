@@ -21,8 +21,8 @@ struct PoseError
 {
 	std::size_t step = 0;
 	Eigen::Vector3d error = Eigen::Vector3d::Zero();  ///< (x [m], y [m], heading [rad] wrapped to (-pi, pi])
-	/// e^T P^-1 e (3 dof); none at the initial pose (known exactly, zero
-	/// covariance) or when P is not positive definite.
+	/// e^T P^-1 e (3 dof); none at the initial pose (step 0, known exactly),
+	/// with a zero covariance, or when P is not positive definite.
 	std::optional<double> nees;
 };
 
