@@ -48,7 +48,13 @@ LineChart poseAneesChart(const std::vector<ConfigStatistics>& configs, const std
 
 LineChart rmseChart(const std::vector<ConfigStatistics>& configs, const std::string& title)
 {
-	LinePanel position{"position RMSE over runs [m] (shaded: 10-90 % of the runs' errors)", {}, {}, false};
+	// The spread of several configs would hide one another: shaded for one
+	// config only (per_step.csv has it for every config).
+	const bool shade_spread = configs.size() == 1;
+	LinePanel position{
+		shade_spread ? "position RMSE over runs [m] (shaded: 10-90 % of the runs' errors)"
+					 : "position RMSE over runs [m] (10-90 % spread of each config in per_step.csv)",
+		{}, {}, false};
 	LinePanel heading{"heading RMSE over runs [deg]", {}, {}, false};
 	for (std::size_t i = 0; i < configs.size(); ++i)
 	{
@@ -63,7 +69,7 @@ LineChart rmseChart(const std::vector<ConfigStatistics>& configs, const std::str
 		}
 		position.series.push_back(pos);
 		heading.series.push_back(head);
-		position.bands.push_back(spread);
+		if (shade_spread) position.bands.push_back(spread);
 	}
 	return {"error over runs: " + title, "step", {position, heading}};
 }
