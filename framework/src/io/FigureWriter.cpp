@@ -509,7 +509,11 @@ class LineChartPainter
 		int x = right - width + kSpacing;
 		for (std::size_t i = 0; i < panel.series.size(); ++i)
 		{
-			img_.line(x, y + f.h / 2, x + kGlyph, y + f.h / 2, seriesColor(i), 2);
+			const int mid = x + kGlyph / 2, cy = y + f.h / 2;
+			if (panel.series[i].markers_only)
+				img_.filledRectangle(mid - 2, cy - 2, mid + 2, cy + 2, seriesColor(i));
+			else
+				img_.line(x, cy, x + kGlyph, cy, seriesColor(i), 2);
 			text(img_, x + kGlyph + kGap, y, panel.series[i].label, f, kTextColor);
 			x += kGlyph + kGap + textWidth(panel.series[i].label, f) + kSpacing;
 		}
