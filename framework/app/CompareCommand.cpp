@@ -1,3 +1,4 @@
+#include "ChildProcess.h"
 #include "CommandLine.h"
 #include "Commands.h"
 
@@ -35,30 +36,6 @@ namespace esif::app
 {
 namespace
 {
-/// What a child run left behind: its exit code (128 + N when killed by
-/// signal N) and the line of its stderr that says why it failed.
-struct ChildResult
-{
-	int exit_code = 0;
-	std::string error_line;
-};
-
-/// The first line in which esif reports its failure ("esif: error: ...",
-/// "esif: numerical failure: ...", "esif: internal error: ...": any "esif: "
-/// line but a warning), else the last non-empty line (e.g. a library's
-/// message, or the signal that killed the run).
-std::string firstErrorLine(const std::string& text)
-{
-	std::istringstream in(text);
-	std::string last;
-	for (std::string line; std::getline(in, line);)
-	{
-		if (line.rfind("esif: ", 0) == 0 && line.rfind("esif: warning", 0) != 0) return line;
-		if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
-	}
-	return last.empty() ? "(nothing on stderr)" : last;
-}
-
 std::string withoutTrailingSeparator(const std::string& dir)
 {
 	const fs::path p = fs::path(dir).lexically_normal();
@@ -70,64 +47,6 @@ std::string replaceAll(std::string text, const std::string& from, const std::str
 	for (std::size_t at = 0; !from.empty() && (at = text.find(from, at)) != std::string::npos; at += to.size())
 		text.replace(at, from.size(), to);
 	return text;
-}
-
-/// Each config runs as its own `esif run` process: its wall time and peak
-/// memory are then its own, and one plugin cannot disturb the next (a crash
-/// included). Its stderr comes through a pipe: passed on to ours as it
-/// arrives, and kept for the error line of a failed run.
-ChildResult runChild(const std::vector<std::string>& args)
-{
-	std::vector<char*> argv;
-	for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-	argv.push_back(nullptr);
-	int pipe_fds[2];
-	if (pipe(pipe_fds) != 0) throw InputError("compare: cannot start a run: pipe failed");
-	std::cout.flush();
-	std::cerr.flush();
-	const pid_t pid = fork();
-	if (pid < 0) throw InputError("compare: cannot start a run: fork failed");
-	if (pid == 0)
-	{
-		// The child is an esif run with its own signal watcher; until its
-		// main() blocks them again, a signal may end it by default.
-		termination::unblockSignals();
-		close(pipe_fds[0]);
-		dup2(pipe_fds[1], STDERR_FILENO);
-		close(pipe_fds[1]);
-		execv("/proc/self/exe", argv.data());
-		const char message[] = "esif: error: compare: cannot execute /proc/self/exe for the run\n";
-		(void)!write(STDERR_FILENO, message, sizeof(message) - 1);
-		_exit(127);
-	}
-	// A signal to compare is passed on to this child and waited for.
-	termination::setChild(pid);
-	close(pipe_fds[1]);
-	std::string captured;
-	char buffer[4096];
-	for (ssize_t n; (n = read(pipe_fds[0], buffer, sizeof(buffer))) != 0;)
-	{
-		if (n < 0 && errno == EINTR) continue;
-		if (n < 0) break;
-		std::cerr.write(buffer, n);
-		captured.append(buffer, static_cast<std::size_t>(n));
-	}
-	close(pipe_fds[0]);
-	int status = 0;
-	while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-	{
-	}
-	termination::setChild(0);
-	ChildResult result;
-	if (WIFEXITED(status))
-		result.exit_code = WEXITSTATUS(status);
-	else
-	{
-		result.exit_code = 128 + WTERMSIG(status);
-		captured += "killed by signal " + std::to_string(WTERMSIG(status)) + " (" + strsignal(WTERMSIG(status)) + ")\n";
-	}
-	if (result.exit_code != 0) result.error_line = firstErrorLine(captured);
-	return result;
 }
 
 /// One output folder per config, named after the file (a suffix keeps repeats apart).
@@ -296,7 +215,8 @@ Stats runConfig(
 	if (associations_dir) args.insert(args.end(), {"--associations-from", *associations_dir});
 	std::cerr << "esif compare: running " << config
 			  << (associations_dir ? " (data association of " + *associations_dir + ")" : std::string()) << "\n";
-	const ChildResult child = runChild(args);
+	// Each config runs as its own `esif run` process; its stderr is passed on.
+	const ChildResult child = runEsifChild(args, ChildOutput::Shown, "compare");
 	if (child.exit_code != 0)
 	{
 		std::cerr << "esif compare: the run of " << config << " failed (exit " << child.exit_code

@@ -64,12 +64,16 @@ int simulateCommand(int argc, char** argv)
 		cmd);
 	TCLAP::ValueArg<std::string> out_arg(
 		"", "out", "output rawlog (e.g. rawlogs/grid196.rawlog)", true, "", "RAWLOG", cmd);
-	TCLAP::ValueArg<int> seed_arg("", "seed", "overrides [simulation] seed", false, 0, "N", cmd);
+	TCLAP::ValueArg<int> seed_arg("", "seed", "overrides [simulation] seed (path, layout and noise)", false, 0, "N", cmd);
+	TCLAP::ValueArg<int> noise_seed_arg(
+		"", "noise-seed", "overrides [simulation] noise_seed: new noise on the same path and world", false, 0, "N",
+		cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 
 	ConfigFile config = ConfigFile::load(config_arg.getValue());
 	// Through the INI so the seed is validated like any other value.
 	if (seed_arg.isSet()) config.set("simulation", "seed", std::to_string(seed_arg.getValue()));
+	if (noise_seed_arg.isSet()) config.set("simulation", "noise_seed", std::to_string(noise_seed_arg.getValue()));
 	const Scenario scenario = Scenario::fromConfig(config);
 
 	try
@@ -89,10 +93,10 @@ int simulateCommand(int argc, char** argv)
 
 	const std::string prefix = groundTruthPrefixFor(out_arg.getValue());
 	std::printf(
-		"Simulated %s (seed %d) in %.1f s: %zu steps, %zu measurements, %zu of %zu features seen, "
+		"Simulated %s (seed %d, noise seed %u) in %.1f s: %zu steps, %zu measurements, %zu of %zu features seen, "
 		"%.2f measurements per scan on average, true path length %.1f m. Ground truth in %s_ground_truth.txt "
 		"and %s_ground_truth_robot_path.txt.\n",
-		out_arg.getValue().c_str(), scenario.seed, seconds, s.steps, s.measurements, s.features_seen, s.features,
+		out_arg.getValue().c_str(), scenario.seed, scenario.effectiveNoiseSeed(), seconds, s.steps, s.measurements, s.features_seen, s.features,
 		s.meanMeasurementsPerScan(), s.path_length_m, prefix.c_str(), prefix.c_str());
 	printGaps(s, scenario);
 	if (scenario.hasOutliers()) printOutliers(s, scenario, prefix);

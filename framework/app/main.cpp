@@ -28,13 +28,14 @@ const Subcommand kSubcommands[] = {
 	{"export", esif::app::exportCommand, "write a rawlog's full-SLAM problem for other solvers (g2o, GTSAM)"},
 	{"plugins", esif::app::pluginsCommand, "list the plugins found and their parameters"},
 	{"localmaps", esif::app::localMapsCommand, "build local maps from a rawlog, or summarise a folder of them"},
+	{"montecarlo", esif::app::monteCarloCommand, "Monte Carlo campaign: ANEES and RMSE of configs over N noise draws"},
 	{"bench", esif::app::benchCommand, "benchmarks (sparse: recovery methods of the sparse core)"},
 };
 
 void printUsage(std::ostream& out)
 {
 	out << "usage: esif <command> [options]   (esif <command> --help for details)\n\ncommands:\n";
-	for (const auto& c : kSubcommands) out << "  " << c.name << std::string(10 - std::strlen(c.name), ' ') << c.summary << "\n";
+	for (const auto& c : kSubcommands) out << "  " << c.name << std::string(12 - std::strlen(c.name), ' ') << c.summary << "\n";
 }
 
 /// Exit codes: 1 bad input, config or command line; 2 no/unknown command;

@@ -1,45 +1,29 @@
 #include <esif/association/Chi2.h>
 #include <esif/eval/Evaluator.h>
-#include <esif/models/Se2.h>
 
-#include <Eigen/Cholesky>
 #include <cmath>
 
 namespace esif
 {
-std::optional<double> nees(const Eigen::VectorXd& error, const Eigen::MatrixXd& cov)
-{
-	const Eigen::LLT<Eigen::MatrixXd> llt(cov);
-	if (llt.info() != Eigen::Success) return std::nullopt;
-	return error.dot(llt.solve(error));
-}
-
 namespace
 {
-void scoreLandmarks(
-	const GroundTruth& truth, const Estimate& estimate, const std::map<LandmarkId, LandmarkId>& filter_to_true,
-	Accuracy& acc)
+void scoreLandmarks(const std::vector<LandmarkError>& rows, Accuracy& acc)
 {
 	const double bound = chi2Quantile(0.95, 2);
 	double sq = 0, nees_sum = 0;
-	std::size_t n = 0, n_nees = 0, consistent = 0;
-	for (const auto& lm : estimate.landmarks)
+	std::size_t n_nees = 0, consistent = 0;
+	for (const auto& row : rows)
 	{
-		const auto map_it = filter_to_true.find(lm.id);
-		if (map_it == filter_to_true.end()) continue;
-		const auto gt_it = truth.landmarks.find(map_it->second);
-		if (gt_it == truth.landmarks.end()) continue;
-		const Eigen::Vector2d e = lm.mean - gt_it->second;
-		sq += e.squaredNorm();
-		++n;
+		sq += row.error.squaredNorm();
 		// A landmark whose covariance is not positive definite counts as inconsistent.
-		if (const auto v = nees(e, lm.cov))
+		if (row.nees)
 		{
-			nees_sum += *v;
+			nees_sum += *row.nees;
 			++n_nees;
-			if (*v < bound) ++consistent;
+			if (*row.nees < bound) ++consistent;
 		}
 	}
+	const std::size_t n = rows.size();
 	acc.landmarks_evaluated = n;
 	if (n == 0) return;
 	acc.landmark_rmse_m = std::sqrt(sq / n);
@@ -50,28 +34,22 @@ void scoreLandmarks(
 	acc.landmark_nees_mean = nees_sum / n_nees;
 }
 
-void scoreTrajectory(const GroundTruth& truth, const std::vector<TrajectoryPoint>& trajectory, Accuracy& acc)
+void scoreTrajectory(const std::vector<PoseError>& rows, Accuracy& acc)
 {
 	const double bound = chi2Quantile(0.95, 3);
 	double sq = 0, nees_sum = 0;
-	std::size_t n = 0, n_nees = 0, consistent = 0;
-	for (const auto& tp : trajectory)
+	std::size_t n_nees = 0, consistent = 0;
+	for (const auto& row : rows)
 	{
-		if (tp.step >= truth.path.size()) continue;
-		const Pose2& gt = truth.path[tp.step];
-		Eigen::Vector3d e = toPose2(tp.pose.mean) - gt;
-		e(2) = wrapAngle(e(2));
-		sq += e.head<2>().squaredNorm();
-		++n;
-		// The initial pose is known exactly (zero covariance): no NEES there.
-		if (tp.pose.cov.trace() <= 0) continue;
-		if (const auto v = nees(e, tp.pose.cov))
+		sq += row.error.head<2>().squaredNorm();
+		if (row.nees)
 		{
-			nees_sum += *v;
+			nees_sum += *row.nees;
 			++n_nees;
-			if (*v < bound) ++consistent;
+			if (*row.nees < bound) ++consistent;
 		}
 	}
+	const std::size_t n = rows.size();
 	acc.poses_evaluated = n;
 	if (n == 0) return;
 	acc.ate_rmse_m = std::sqrt(sq / n);
@@ -83,14 +61,19 @@ void scoreTrajectory(const GroundTruth& truth, const std::vector<TrajectoryPoint
 }
 }  // namespace
 
+Accuracy summarizeErrors(const std::vector<PoseError>& poses, const std::vector<LandmarkError>& landmarks)
+{
+	Accuracy acc;
+	scoreLandmarks(landmarks, acc);
+	scoreTrajectory(poses, acc);
+	return acc;
+}
+
 Accuracy evaluate(
 	const GroundTruth& truth, const std::vector<TrajectoryPoint>& trajectory, const Estimate& estimate,
 	const std::map<LandmarkId, LandmarkId>& filter_to_true)
 {
-	Accuracy acc;
-	scoreLandmarks(truth, estimate, filter_to_true, acc);
-	scoreTrajectory(truth, trajectory, acc);
-	return acc;
+	return summarizeErrors(poseErrors(truth, trajectory), landmarkErrors(truth, estimate, filter_to_true));
 }
 
 }  // namespace esif

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -116,14 +117,41 @@ struct StepPoint
 	double ms;
 };
 
-/// Linear map from data [0, x_top] x [0, y_top] onto the plot rectangle.
+/// Map from data [0, x_top] x [0, y_top] onto the plot rectangle; with
+/// `log_y`, y from [y_bottom, y_top] on a logarithmic scale instead.
 struct Axes
 {
 	int x0 = 0, y0 = 0, x1 = 0, y1 = 0;	 ///< plot rectangle [px], y0 at the top
 	double x_top = 1, y_top = 1;
+	bool log_y = false;
+	double y_bottom = 1;  ///< lowest value of a log axis (> 0)
 	int px(double x) const { return x0 + static_cast<int>(std::lround((x1 - x0) * x / x_top)); }
-	int py(double y) const { return y1 - static_cast<int>(std::lround((y1 - y0) * std::min(y, y_top) / y_top)); }
+	int py(double y) const
+	{
+		const double f = log_y ? (std::log10(std::clamp(y, y_bottom, y_top)) - std::log10(y_bottom)) /
+									 (std::log10(y_top) - std::log10(y_bottom))
+							   : std::min(y, y_top) / y_top;
+		return y1 - static_cast<int>(std::lround((y1 - y0) * f));
+	}
+	/// Whether y can be drawn (a log axis has no place for y <= 0).
+	bool drawable(double y) const { return std::isfinite(y) && (!log_y || y > 0); }
 };
+
+/// Ticks of a log axis over [lo, hi]: the powers of ten inside, and 2 and 5
+/// times them when fewer than three decades are spanned.
+std::vector<double> logTicks(double lo, double hi)
+{
+	std::vector<double> ticks;
+	const bool fine = std::log10(hi / lo) < 3;
+	for (int e = static_cast<int>(std::floor(std::log10(lo))); e <= static_cast<int>(std::ceil(std::log10(hi))); ++e)
+		for (const double m : {1.0, 2.0, 5.0})
+		{
+			if (m > 1 && !fine) continue;
+			const double t = m * std::pow(10.0, e);
+			if (t >= lo * (1 - 1e-9) && t <= hi * (1 + 1e-9)) ticks.push_back(t);
+		}
+	return ticks;
+}
 
 /// Fonts for a figure width: tuned at 1000 px.
 struct Fonts
@@ -336,9 +364,14 @@ class LineChartPainter
 		: chart_(chart), w_(width_px), h_(width_px * 3 / 4), fonts_(w_), img_(blankImage(w_, h_))
 	{
 		for (const auto& panel : chart_.panels)
+		{
 			for (const auto& s : panel.series)
 				for (const auto& [x, y] : s.points)
 					if (std::isfinite(x)) x_max_ = std::max(x_max_, x);
+			for (const auto& b : panel.bands)
+				for (const auto& p : b.points)
+					if (std::isfinite(p[0])) x_max_ = std::max(x_max_, p[0]);
+		}
 	}
 
 	mrpt::img::CImage paint()
@@ -360,15 +393,11 @@ class LineChartPainter
 	void drawPanel(int y_top, int y_bottom, const LinePanel& panel)
 	{
 		const int pad = 8;
-		double y_max = 0;
-		for (const auto& s : panel.series)
-			for (const auto& [x, y] : s.points)
-				if (std::isfinite(y)) y_max = std::max(y_max, y);
 		Axes axes;
 		const double x_step = map_geometry::niceStep(x_max_, 8);
 		axes.x_top = std::ceil(x_max_ / x_step) * x_step;
-		axes.y_top = y_max > 0 ? 1.05 * y_max : 1.0;
-		const std::vector<double> x_ticks = niceTicks(axes.x_top, 8), y_ticks = niceTicks(axes.y_top, 4);
+		const std::vector<double> x_ticks = niceTicks(axes.x_top, 8);
+		const std::vector<double> y_ticks = layoutYAxis(panel, axes);
 		int label_w = 0;
 		for (double t : y_ticks) label_w = std::max(label_w, textWidth(tickLabel(t), fonts_.label));
 		axes.x0 = pad + label_w + 8;
@@ -376,12 +405,70 @@ class LineChartPainter
 		axes.y0 = y_top + fonts_.label.h + 2 * pad;
 		axes.y1 = y_bottom - (fonts_.label.h + 2 * pad);
 		drawGridAndTicks(img_, axes, x_ticks, y_ticks, fonts_.label);
+		for (const auto& band : panel.bands) drawBand(axes, band);
 		// Last series first, so the first shows where they coincide.
 		for (std::size_t i = panel.series.size(); i-- > 0;) drawSeries(axes, panel.series[i], seriesColor(i));
 		img_.line(axes.x0, axes.y0, axes.x0, axes.y1, kInk, 1);
 		img_.line(axes.x0, axes.y1, axes.x1, axes.y1, kInk, 1);
 		text(img_, pad, y_top + pad / 2, panel.y_label, fonts_.label, kTextColor);
-		drawLegend(axes.x1, y_top + pad / 2, panel.series);
+		drawLegend(axes.x1, y_top + pad / 2, panel);
+	}
+
+	/// The y range (linear from 0, or log over the positive values) and its ticks.
+	static std::vector<double> layoutYAxis(const LinePanel& panel, Axes& axes)
+	{
+		double y_min = std::numeric_limits<double>::infinity(), y_max = 0;
+		const auto include = [&](double y) {
+			if (!std::isfinite(y) || (panel.log_y && y <= 0)) return;
+			y_min = std::min(y_min, y);
+			y_max = std::max(y_max, y);
+		};
+		for (const auto& s : panel.series)
+			for (const auto& [x, y] : s.points) include(y);
+		for (const auto& b : panel.bands)
+			for (const auto& p : b.points) include(p[1]), include(p[2]);
+		if (!panel.log_y)
+		{
+			axes.y_top = y_max > 0 ? 1.05 * y_max : 1.0;
+			return niceTicks(axes.y_top, 4);
+		}
+		axes.log_y = true;
+		if (!(y_max > 0)) y_min = 0.1, y_max = 10;
+		// At least a factor 10 shown, with a margin of 10 % of a decade each side.
+		axes.y_bottom = std::min(y_min, y_max / 10) / std::pow(10.0, 0.1);
+		axes.y_top = y_max * std::pow(10.0, 0.1);
+		return logTicks(axes.y_bottom, axes.y_top);
+	}
+
+	/// Fills between the band's curves, one pixel column at a time, with
+	/// the bounds interpolated linearly in x between its points.
+	void drawBand(const Axes& axes, const ShadedBand& band)
+	{
+		const TColor tint = bandColour(band.colour_of);
+		for (std::size_t i = 1; i < band.points.size(); ++i)
+		{
+			const auto& a = band.points[i - 1];
+			const auto& b = band.points[i];
+			if (!axes.drawable(a[1]) || !axes.drawable(a[2]) || !axes.drawable(b[1]) || !axes.drawable(b[2]) ||
+				!std::isfinite(a[0]) || !std::isfinite(b[0]))
+				continue;
+			const int xa = axes.px(a[0]), xb = axes.px(b[0]);
+			for (int x = xa; x <= xb; ++x)
+			{
+				const double t = xb > xa ? double(x - xa) / double(xb - xa) : 0.0;
+				const int lo = axes.py(a[1] + t * (b[1] - a[1])), hi = axes.py(a[2] + t * (b[2] - a[2]));
+				img_.line(x, lo, x, hi, tint, 1);
+			}
+		}
+	}
+
+	/// A light tint of series `i`'s colour (a quarter of it on white), or light grey.
+	static TColor bandColour(int i)
+	{
+		if (i < 0) return TColor(215, 215, 215);
+		const TColor c = seriesColor(static_cast<std::size_t>(i));
+		const auto tint = [](int v) { return static_cast<uint8_t>(255 - (255 - v) / 4); };
+		return TColor(tint(c.R), tint(c.G), tint(c.B));
 	}
 
 	/// A polyline through the finite points; a gap where a point is not finite.
@@ -392,13 +479,15 @@ class LineChartPainter
 		int px = 0, py = 0;
 		for (const auto& [x, y] : s.points)
 		{
-			if (!std::isfinite(x) || !std::isfinite(y))
+			if (!std::isfinite(x) || !axes.drawable(y))
 			{
 				have_previous = false;
 				continue;
 			}
 			const int cx = axes.px(x), cy = axes.py(y);
-			if (have_previous)
+			if (s.markers_only)
+				img_.filledRectangle(cx - 2, cy - 2, cx + 2, cy + 2, color);
+			else if (have_previous)
 				img_.line(px, py, cx, cy, color, thick);
 			else
 				img_.filledRectangle(cx - 1, cy - 1, cx + 1, cy + 1, color);
@@ -407,19 +496,33 @@ class LineChartPainter
 	}
 
 	/// The legend on one line above the plot, ending at `right`: a short
-	/// line in each series' colour before its label.
-	void drawLegend(int right, int y, const std::vector<LineSeries>& series)
+	/// line in each series' colour before its label, then a swatch before
+	/// each labelled band's.
+	void drawLegend(int right, int y, const LinePanel& panel)
 	{
 		const Font& f = fonts_.label;
 		constexpr int kGlyph = 24, kGap = 6, kSpacing = 18;
 		int width = 0;
-		for (const auto& s : series) width += kGlyph + kGap + textWidth(s.label, f) + kSpacing;
+		for (const auto& s : panel.series) width += kGlyph + kGap + textWidth(s.label, f) + kSpacing;
+		for (const auto& b : panel.bands)
+			if (!b.label.empty()) width += kGlyph + kGap + textWidth(b.label, f) + kSpacing;
 		int x = right - width + kSpacing;
-		for (std::size_t i = 0; i < series.size(); ++i)
+		for (std::size_t i = 0; i < panel.series.size(); ++i)
 		{
-			img_.line(x, y + f.h / 2, x + kGlyph, y + f.h / 2, seriesColor(i), 2);
-			text(img_, x + kGlyph + kGap, y, series[i].label, f, kTextColor);
-			x += kGlyph + kGap + textWidth(series[i].label, f) + kSpacing;
+			const int mid = x + kGlyph / 2, cy = y + f.h / 2;
+			if (panel.series[i].markers_only)
+				img_.filledRectangle(mid - 2, cy - 2, mid + 2, cy + 2, seriesColor(i));
+			else
+				img_.line(x, cy, x + kGlyph, cy, seriesColor(i), 2);
+			text(img_, x + kGlyph + kGap, y, panel.series[i].label, f, kTextColor);
+			x += kGlyph + kGap + textWidth(panel.series[i].label, f) + kSpacing;
+		}
+		for (const auto& b : panel.bands)
+		{
+			if (b.label.empty()) continue;
+			img_.filledRectangle(x, y + 1, x + kGlyph, y + f.h - 2, bandColour(b.colour_of));
+			text(img_, x + kGlyph + kGap, y, b.label, f, kTextColor);
+			x += kGlyph + kGap + textWidth(b.label, f) + kSpacing;
 		}
 	}
 

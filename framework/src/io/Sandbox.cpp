@@ -170,9 +170,9 @@ SandboxOutcome runInSandbox(const std::function<void(SandboxProgress&)>& work, c
 	}
 	if (pid == 0) runChild(work, limits, *shared);
 	// A signal that ends esif meanwhile must end the child too, and reap it.
-	termination::setChild(pid);
+	termination::addChild(pid);
 	const SandboxOutcome out = outcomeOf(waitFor(pid), *shared);
-	termination::setChild(0);
+	termination::removeChild(pid);
 	munmap(page, sizeof(SharedReport));
 	return out;
 }

@@ -20,7 +20,7 @@ struct Registry
 {
 	std::mutex mutex;
 	std::vector<std::string> paths;
-	pid_t child = 0;
+	std::vector<pid_t> children;
 };
 
 Registry& registry()
@@ -39,16 +39,18 @@ sigset_t terminationSignals()
 	return set;
 }
 
-/// Passes the signal on to the child run (which cleans up its own folder)
-/// and waits for it, so that no orphan keeps writing into a folder that is
-/// about to be removed.
-void stopChild(pid_t child, int sig)
+/// Passes the signal on to the child runs (each cleans up its own folder)
+/// and waits for them, so that no orphan keeps writing into a folder that
+/// is about to be removed.
+void stopChildren(const std::vector<pid_t>& children, int sig)
 {
-	if (child <= 0) return;
-	::kill(child, sig);
-	int status = 0;
-	while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
+	for (const pid_t child : children) ::kill(child, sig);
+	for (const pid_t child : children)
 	{
+		int status = 0;
+		while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
+		{
+		}
 	}
 }
 
@@ -72,7 +74,7 @@ void removeRegistered(const std::vector<std::string>& paths)
 	}
 	Registry& r = registry();
 	r.mutex.lock();	 // held until _exit: nothing may start a swap now
-	stopChild(r.child, sig);
+	stopChildren(r.children, sig);
 	removeRegistered(r.paths);
 	// _exit, not exit: other threads may be inside library code that static
 	// destructors would pull from under them.
@@ -113,10 +115,17 @@ void removePath(const std::string& path)
 	if (it != paths.rend()) paths.erase(std::next(it).base());
 }
 
-void setChild(pid_t pid)
+void addChild(pid_t pid)
 {
 	std::lock_guard<std::mutex> lock(registry().mutex);
-	registry().child = pid;
+	registry().children.push_back(pid);
+}
+
+void removeChild(pid_t pid)
+{
+	std::lock_guard<std::mutex> lock(registry().mutex);
+	auto& children = registry().children;
+	children.erase(std::remove(children.begin(), children.end(), pid), children.end());
 }
 
 std::unique_lock<std::mutex> holdOff() { return std::unique_lock<std::mutex>(registry().mutex); }

@@ -3,6 +3,7 @@
 #include <esif/eval/Evaluator.h>
 #include <esif/io/AssociationFile.h>
 #include <esif/io/AtomicFile.h>
+#include <esif/io/EstimationErrorFiles.h>
 #include <esif/io/FigureWriter.h>
 #include <esif/io/GroundTruth.h>
 #include <esif/io/MapWriter.h>
@@ -105,7 +106,12 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 	{
 		result.record.truth = truth->inInitialPoseFrame();
 		std::map<LandmarkId, LandmarkId> filter_to_true = result.audit.filterToTrue();
-		accuracy = evaluate(*result.record.truth, result.record.trajectory, result.record.final_estimate, filter_to_true);
+		const auto pose_errors = poseErrors(*result.record.truth, result.record.trajectory);
+		const auto landmark_errors =
+			landmarkErrors(*result.record.truth, result.record.final_estimate, filter_to_true);
+		accuracy = summarizeErrors(pose_errors, landmark_errors);
+		// Per step and per landmark, for campaigns over many runs (esif montecarlo).
+		writeEstimationErrorFiles(request.out_dir, pose_errors, landmark_errors);
 	}
 
 	MapWriterOptions map_options;

@@ -17,6 +17,11 @@ void Scenario::declare(ParamBinder& b)
 {
 	b.integer("seed", seed, "seed of the simulator's random generators", Bounds::nonNegative());
 	b.integer(
+		"noise_seed", noise_seed,
+		"seed of the odometry and sensor noise (and wrong IDs, clutter) alone; -1: from seed. The path and "
+		"the layout follow seed only (esif montecarlo varies noise_seed)",
+		Bounds::atLeast(-1));
+	b.integer(
 		"steps", steps, "number of steps (scans), the first one at the start pose",
 		Bounds::closed(1, kMaxSteps));
 	b.real("dt_s", dt_s, "time between two steps [s]", Bounds{0, kMaxDt_s, true, false});

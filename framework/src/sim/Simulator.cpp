@@ -206,8 +206,10 @@ SimulationSummary Simulator::simulate(const std::function<void(const SimulatedSt
 	const Scenario& s = scenario_;
 	const auto seed = static_cast<std::uint32_t>(s.seed);
 	WaypointTour tour(s, seed);
-	mrpt::random::CRandomGenerator noise(seed + kNoiseSeedOffset);
-	MeasurementOutliers outliers(s, features_, feature_ids_, seed + kOutlierSeedOffset);
+	// The noise may have its own seed (noise_seed): new noise, same path.
+	const std::uint32_t noise_seed = s.effectiveNoiseSeed();
+	mrpt::random::CRandomGenerator noise(noise_seed + kNoiseSeedOffset);
+	MeasurementOutliers outliers(s, features_, feature_ids_, noise_seed + kOutlierSeedOffset);
 
 	const double dt = s.dt_s;
 	const double var_d = std::pow(s.std_speed_mps * dt, 2);

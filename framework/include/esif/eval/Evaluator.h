@@ -5,6 +5,7 @@
 /// error in the estimate is never hidden by a best-fit transform.
 
 #include <esif/core/Estimate.h>
+#include <esif/eval/EstimationErrors.h>
 #include <esif/io/GroundTruth.h>
 #include <esif/io/RunRecord.h>
 
@@ -28,13 +29,14 @@ struct Accuracy
 	std::size_t poses_evaluated = 0;
 };
 
-/// NEES e^T P^-1 e; nullopt when P is not positive definite.
-std::optional<double> nees(const Eigen::VectorXd& error, const Eigen::MatrixXd& cov);
-
 /// `truth` must already be in the initial-pose frame. `filter_to_true` maps
 /// each estimated landmark ID to a ground-truth ID (identity when the filter
 /// used the rawlog's IDs); landmarks without a mapping are not scored.
 /// Trajectory point k is compared with path row k for the steps both have.
+/// The figures above from a run's error rows (EstimationErrors.h).
+Accuracy summarizeErrors(const std::vector<PoseError>& poses, const std::vector<LandmarkError>& landmarks);
+
+/// summarizeErrors() of poseErrors() and landmarkErrors().
 Accuracy evaluate(
 	const GroundTruth& truth, const std::vector<TrajectoryPoint>& trajectory, const Estimate& estimate,
 	const std::map<LandmarkId, LandmarkId>& filter_to_true);

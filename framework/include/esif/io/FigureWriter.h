@@ -10,6 +10,7 @@
 #include <esif/core/InformationPattern.h>
 #include <esif/plugin/LocalMapJoiner.h>
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -62,19 +63,37 @@ void writeStepTimesImage(
 	int width_px);
 
 /// One line of a chart: (x, y) points, joined in order; a non-finite point
-/// breaks the line.
+/// (or, on a log axis, one <= 0) breaks the line. With `markers_only`, a
+/// dot per point and no line (values that are not a sequence, e.g. one per
+/// landmark).
 struct LineSeries
 {
 	std::string label;
 	std::vector<std::pair<double, double>> points;
+	bool markers_only = false;
+};
+
+/// A shaded region between two curves, e.g. the chi-square bounds of an
+/// ANEES or the spread of an error over runs: (x, lower, upper) points,
+/// filled between consecutive points. Drawn under the lines, in a light
+/// tint of series `colour_of`'s colour, or light grey when it is -1.
+struct ShadedBand
+{
+	std::string label;	///< in the legend; empty: not listed
+	std::vector<std::array<double, 3>> points;
+	int colour_of = -1;
 };
 
 /// One panel: its y-axis label and its lines (coloured in order: red, blue,
-/// green, orange, purple).
+/// green, orange, purple), with optional shaded bands under them and a
+/// logarithmic y axis (decade ticks; the range spans the positive values of
+/// lines and bands).
 struct LinePanel
 {
 	std::string y_label;
 	std::vector<LineSeries> series;
+	std::vector<ShadedBand> bands = {};
+	bool log_y = false;
 };
 
 /// Panels one above the other over a shared x axis from 0.

@@ -12,7 +12,9 @@ namespace esif
 class ProgressBar
 {
    public:
-	ProgressBar(std::string label, std::size_t total);
+	/// With `show_eta`, the time left is estimated from the mean time per
+	/// item so far (items of a campaign take about as long as each other).
+	ProgressBar(std::string label, std::size_t total, bool show_eta = false);
 	~ProgressBar();
 	/// Reports that `done` of `total` items are finished (redraws at most ~10 Hz).
 	void update(std::size_t done);
@@ -25,6 +27,8 @@ class ProgressBar
 	std::size_t total_;
 	bool enabled_;
 	bool finished_ = false;
+	bool show_eta_ = false;
+	std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 	std::chrono::steady_clock::time_point last_draw_{};
 };
 

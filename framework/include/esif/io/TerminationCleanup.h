@@ -2,7 +2,7 @@
 /// \file TerminationCleanup.h
 /// What happens on SIGINT, SIGTERM and SIGHUP: the signals are blocked in
 /// every thread and taken by one watcher thread (sigwait), which forwards
-/// the signal to a running child run and waits for it, removes the
+/// the signal to the running child runs and waits for them, removes the
 /// temporary files, folders and locks registered here, and ends the process
 /// with 128 + the signal number. A handler that ran inside an arbitrary
 /// thread could not safely remove folders; a watcher thread can, and a
@@ -33,8 +33,10 @@ void addPath(const std::string& path);
 /// Unregisters `path` (it was moved into place or removed already).
 void removePath(const std::string& path);
 
-/// The child process to forward a signal to and wait for (0: none).
-void setChild(pid_t pid);
+/// A child process to forward a signal to and wait for; several may run
+/// at once (esif montecarlo --jobs). Unregister it once it has been waited for.
+void addChild(pid_t pid);
+void removeChild(pid_t pid);
 
 /// Held over steps that must not be cut in two by the cleanup (the swap of
 /// a finished folder into place): the watcher waits for it.

@@ -11,6 +11,7 @@
 #include <esif/core/StepInput.h>
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,12 @@ struct Scenario
 {
 	// ---- random stream and length
 	int seed = 1;  ///< seed of the simulator's random generators; >= 0
+	/// Seed of the noise alone (odometry and sensor noise, wrong IDs,
+	/// clutter); -1 (default): derived from `seed`, as before the key existed.
+	/// The path (waypoints) and the layout (twins) follow `seed` only, so a
+	/// Monte Carlo campaign varies noise_seed to draw new noise on the same
+	/// world and path; >= -1
+	int noise_seed = -1;
 	int steps = 3000;  ///< number of rawlog steps (scans), including the first one at the start pose; >= 1
 	double dt_s = 0.1;	///< time between two steps [s]; > 0
 
@@ -117,6 +124,13 @@ struct Scenario
 	/// sensor_max_range_m and sensor_fov_deg) at the world's mean landmark
 	/// density, at most all of them, plus spurious_rate.
 	double expectedMeasurementsPerScan() const;
+
+	/// The seed of the noise and outlier generators: noise_seed when set
+	/// (>= 0), else `seed`.
+	std::uint32_t effectiveNoiseSeed() const
+	{
+		return static_cast<std::uint32_t>(noise_seed >= 0 ? noise_seed : seed);
+	}
 
 	/// Whether grid features have twins (cluster_pair_distance_m > 0).
 	bool hasClusterPairs() const { return cluster_pair_distance_m > 0; }

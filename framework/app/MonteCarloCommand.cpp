@@ -1,0 +1,202 @@
+/// \file MonteCarloCommand.cpp
+/// `esif montecarlo`: a Monte Carlo campaign of one scenario and several
+/// configs (MonteCarloCampaign.h), run on local cores, or emitted as a job
+/// list for GNU parallel, xargs -P or a Slurm array, and aggregated
+/// (MonteCarloCollect.h).
+
+#include "CommandLine.h"
+#include "Commands.h"
+#include "MonteCarloJobs.h"
+
+#include <esif/config/ConfigFile.h>
+#include <esif/core/Errors.h>
+#include <esif/io/AtomicFile.h>
+#include <esif/run/MonteCarloCollect.h>
+#include <esif/run/RunSetup.h>
+#include <esif/sim/Scenario.h>
+
+#include <climits>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+namespace fs = std::filesystem;
+
+namespace esif::app
+{
+namespace
+{
+/// The scenario loads and passes its cross-key rules, as `esif simulate` checks it.
+void checkScenario(const std::string& path)
+{
+	if (!fs::is_regular_file(path)) throw ConfigError(path + ": scenario file not found");
+	const Scenario scenario = Scenario::fromConfig(ConfigFile::load(path));
+	try
+	{
+		scenario.validate();
+	}
+	catch (const ConfigError& e)
+	{
+		throw ConfigError(path + ": " + e.what());
+	}
+}
+
+/// Every config and its plugin checked before the first run, as `esif run` would.
+void checkConfigs(const std::vector<std::string>& configs)
+{
+	PluginLoader loader;
+	loader.loadAll();
+	for (const auto& c : configs)
+	{
+		if (!fs::is_regular_file(c)) throw ConfigError(c + ": config file not found");
+		try
+		{
+			const ConfigFile config = ConfigFile::load(c);
+			createConfiguredPlugin(config, loadHostParams(config), loader);
+		}
+		catch (const ConfigError& e)
+		{
+			const std::string message = e.what();
+			throw ConfigError(message.find(c) != std::string::npos ? message : c + ": " + message);
+		}
+	}
+}
+
+/// The campaign's plan after merging the request into what DIR holds; a
+/// folder that is neither empty nor a campaign is refused.
+CampaignPlan planCampaign(const std::string& dir, const CampaignPlan& requested)
+{
+	std::error_code ec;
+	if (fs::is_regular_file(campaign_layout::manifest(dir), ec))
+		return CampaignPlan::load(dir).mergedWith(requested, dir);
+	if (fs::exists(dir, ec) && !(fs::is_directory(dir, ec) && fs::is_empty(dir, ec)))
+		throw InputError(dir + ": exists and is not a campaign folder (no campaign.ini): choose another --out");
+	return requested;
+}
+
+std::vector<CampaignJob> unfinishedJobs(const std::string& dir, const CampaignPlan& plan)
+{
+	std::vector<CampaignJob> jobs;
+	for (const auto& job : campaignJobs(plan))
+		if (jobState(dir, plan, job) != JobState::Finished) jobs.push_back(job);
+	return jobs;
+}
+
+/// Aggregates what `dir` holds, writes the outputs and prints the summary.
+void collectAndReport(const std::string& dir, const CampaignPlan& plan)
+{
+	const CampaignCollection c = collectCampaign(dir, plan);
+	if (c.configs.empty())
+		throw InputError(
+			dir + ": no finished run to aggregate (" + std::to_string(c.gaps.failed.size()) + " failed, " +
+			std::to_string(c.gaps.pending.size()) + " not finished)");
+	std::cout << writeCampaignOutputs(dir, plan, c);
+	std::cout << "\nesif montecarlo: " << c.finished << " of " << c.total << " runs finished, "
+			  << c.gaps.failed.size() << " failed, " << c.gaps.pending.size() << " not finished; outputs in " << dir
+			  << " (summary.md, summary.csv, per_step.csv, landmarks.csv, anees_pose.png, rmse.png, "
+				 "landmark_anees.png)\n";
+}
+
+int runOneJob(const std::string& dir, const std::string& id)
+{
+	const CampaignPlan plan = CampaignPlan::load(dir);
+	SimulationLocks locks;
+	const JobOutcome outcome = runCampaignJob(dir, plan, campaign_layout::parseJobId(plan, id), locks);
+	if (outcome.exit_code != 0)
+		std::cerr << "esif montecarlo: " << outcome.id << " failed (exit " << outcome.exit_code
+				  << "): " << outcome.error_line << "\n";
+	return outcome.exit_code;
+}
+
+void writeJobList(const std::string& path, const std::string& dir, const CampaignPlan& plan,
+				  const std::vector<CampaignJob>& jobs)
+{
+	std::string text;
+	for (const auto& job : jobs) text += jobCommandLine(dir, plan, job) + "\n";
+	writeTextAtomically(path, text);
+	std::cout << "esif montecarlo: " << jobs.size() << " jobs written to " << path << " ("
+			  << campaignJobs(plan).size() - jobs.size() << " finished already); then: esif montecarlo --collect "
+			  << dir << "\n";
+}
+}  // namespace
+
+int monteCarloCommand(int argc, char** argv)
+{
+	TCLAP::CmdLine cmd(
+		"Monte Carlo campaign: simulates --runs noise draws of a scenario (noise seeds --seed0, --seed0 + 1, ...: "
+		"new odometry and sensor noise on the same world and path) and runs every config on each, each run in "
+		"its own process, --jobs at a time; then writes ANEES with its 95% chi-square bounds, RMSE and time per "
+		"config (summary.md, summary.csv, per_step.csv, landmarks.csv, anees_pose.png, rmse.png, "
+		"landmark_anees.png) into --out. Re-running resumes (finished runs are kept, failed ones retried) and "
+		"may add configs or runs. A failed run is recorded in DIR/failures/ and listed; the exit code is then "
+		"that of the first failed run. --emit-jobs writes the runs as shell commands instead, for GNU "
+		"parallel, xargs -P or a Slurm array; --collect DIR aggregates what has finished.",
+		' ', ESIF_VERSION);
+	TCLAP::ValueArg<std::string> scenario("s", "scenario", "scenario INI with a [simulation] section", false, "", "INI", cmd);
+	TCLAP::ValueArg<std::string> configs("c", "configs", "comma-separated filter configs", false, "", "A.ini,B.ini,...", cmd);
+	TCLAP::ValueArg<int> runs("n", "runs", "number of runs (noise seeds)", false, 0, "N", cmd);
+	TCLAP::ValueArg<std::string> out("o", "out", "campaign folder", false, "", "DIR", cmd);
+	TCLAP::ValueArg<int> jobs("j", "jobs", "runs at a time (default: the number of cores)", false, 0, "J", cmd);
+	TCLAP::ValueArg<int> seed0("", "seed0", "noise seed of the first run (default 1)", false, 1, "S", cmd);
+	TCLAP::ValueArg<std::string> emit_jobs(
+		"", "emit-jobs", "write one shell command per unfinished run to FILE instead of running them", false, "",
+		"FILE", cmd);
+	TCLAP::ValueArg<std::string> collect(
+		"", "collect", "aggregate the finished runs of campaign folder DIR (and list the others)", false, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> job(
+		"", "job", "with --out DIR: run one job of the campaign in DIR (what an --emit-jobs line runs)", false, "",
+		"CONFIG/seed_S", cmd);
+	if (!parseCommandLine(cmd, argc, argv)) return 0;
+
+	const bool planning = scenario.isSet() || configs.isSet() || runs.isSet() || seed0.isSet();
+	if (collect.isSet())
+	{
+		if (planning || out.isSet() || job.isSet() || emit_jobs.isSet() || jobs.isSet())
+			throw ConfigError("esif montecarlo: --collect DIR takes no other option");
+		collectAndReport(collect.getValue(), CampaignPlan::load(collect.getValue()));
+		return 0;
+	}
+	if (!out.isSet()) throw ConfigError("esif montecarlo: --out DIR is required (or --collect DIR; see --help)");
+	if (job.isSet())
+	{
+		if (planning || emit_jobs.isSet() || jobs.isSet())
+			throw ConfigError("esif montecarlo: --job takes only --out (the campaign folder)");
+		return runOneJob(out.getValue(), job.getValue());
+	}
+	if (!scenario.isSet() || !configs.isSet() || !runs.isSet())
+		throw ConfigError("esif montecarlo: --scenario, --configs and --runs are required (see --help)");
+	if (runs.getValue() < 1) throw ConfigError("esif montecarlo: --runs " + std::to_string(runs.getValue()) + ": must be >= 1");
+	if (seed0.getValue() < 0 || seed0.getValue() > INT_MAX - runs.getValue())
+		throw ConfigError("esif montecarlo: --seed0 " + std::to_string(seed0.getValue()) + ": must be >= 0 and leave room for --runs seeds");
+	if (jobs.isSet() && jobs.getValue() < 1)
+		throw ConfigError("esif montecarlo: --jobs " + std::to_string(jobs.getValue()) + ": must be >= 1");
+	if (jobs.isSet() && emit_jobs.isSet())
+		throw ConfigError("esif montecarlo: --jobs applies to local runs, not to --emit-jobs");
+	const auto config_list = splitCommas(configs.getValue());
+	if (config_list.empty()) throw ConfigError("esif montecarlo: --configs: no config file given");
+	checkScenario(scenario.getValue());
+	checkConfigs(config_list);
+
+	const std::string dir = out.getValue();
+	const CampaignPlan plan =
+		planCampaign(dir, CampaignPlan::create(scenario.getValue(), config_list, seed0.getValue(), runs.getValue()));
+	ensureDirectory(dir);
+	writeTextAtomically(campaign_layout::manifest(dir), plan.iniText());
+	const std::vector<CampaignJob> todo = unfinishedJobs(dir, plan);
+	if (emit_jobs.isSet())
+	{
+		writeJobList(emit_jobs.getValue(), dir, plan, todo);
+		return 0;
+	}
+	const unsigned threads = jobs.isSet() ? static_cast<unsigned>(jobs.getValue())
+										  : std::max(1u, std::thread::hardware_concurrency());
+	std::cerr << "esif montecarlo: " << todo.size() << " runs to do (" << campaignJobs(plan).size() - todo.size()
+			  << " finished before) on " << threads << " threads\n";
+	const std::vector<JobOutcome> outcomes = runCampaignJobs(dir, plan, todo, threads);
+	collectAndReport(dir, plan);
+	for (const auto& o : outcomes)
+		if (o.exit_code != 0) return o.exit_code;
+	return 0;
+}
+
+}  // namespace esif::app

@@ -1,0 +1,205 @@
+/// \file MonteCarloStatistics.cpp
+/// ANEES with chi-square bounds, RMSE and time over a campaign's runs; see
+/// MonteCarloStatistics.h.
+
+#include <esif/eval/MonteCarloStatistics.h>
+
+#include <boost/math/distributions/chi_squared.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace esif
+{
+namespace
+{
+/// Linear interpolation between the order statistics of sorted `v` (not empty).
+double sortedQuantile(const std::vector<double>& v, double p)
+{
+	const double at = p * static_cast<double>(v.size() - 1);
+	const auto i = static_cast<std::size_t>(std::floor(at));
+	const std::size_t j = std::min(i + 1, v.size() - 1);
+	return v[i] + (at - static_cast<double>(i)) * (v[j] - v[i]);
+}
+
+/// What the runs hold at one step.
+struct StepAccumulator
+{
+	std::vector<double> nees;
+	std::vector<double> position_errors;
+	double heading_sq = 0;
+};
+
+struct LandmarkAccumulator
+{
+	std::vector<double> nees;
+	double sq = 0;
+	std::size_t n = 0;
+};
+
+StepStatistics stepStatistics(std::size_t step, const StepAccumulator& acc)
+{
+	StepStatistics s;
+	s.step = step;
+	s.runs = acc.nees.size();
+	if (s.runs > 0)
+	{
+		double sum = 0;
+		for (const double v : acc.nees) sum += v;
+		s.anees = sum / static_cast<double>(s.runs);
+		s.bounds = aneesBounds(3, s.runs);
+	}
+	const std::size_t reached = acc.position_errors.size();
+	if (reached > 0)
+	{
+		double sq = 0;
+		for (const double e : acc.position_errors) sq += e * e;
+		s.position_rmse_m = std::sqrt(sq / static_cast<double>(reached));
+		s.heading_rmse_rad = std::sqrt(acc.heading_sq / static_cast<double>(reached));
+		std::vector<double> sorted = acc.position_errors;
+		std::sort(sorted.begin(), sorted.end());
+		s.position_error_p10_m = sortedQuantile(sorted, 0.10);
+		s.position_error_p90_m = sortedQuantile(sorted, 0.90);
+	}
+	return s;
+}
+
+/// Per-step statistics and, into `out`, the pose ANEES summary.
+void addPoseStatistics(const std::vector<CampaignRunErrors>& runs, ConfigStatistics& out)
+{
+	std::map<std::size_t, StepAccumulator> by_step;
+	for (const auto& run : runs)
+		for (const auto& row : run.poses)
+		{
+			auto& acc = by_step[row.step];
+			if (row.nees) acc.nees.push_back(*row.nees);
+			acc.position_errors.push_back(row.error.head<2>().norm());
+			acc.heading_sq += row.error(2) * row.error(2);
+		}
+	double anees_sum = 0;
+	std::size_t with_anees = 0, inside = 0;
+	for (const auto& [step, acc] : by_step)
+	{
+		out.steps.push_back(stepStatistics(step, acc));
+		const auto& s = out.steps.back();
+		if (!s.anees) continue;
+		anees_sum += *s.anees;
+		++with_anees;
+		if (s.bounds.contains(*s.anees)) ++inside;
+	}
+	out.pose_bounds = aneesBounds(3, runs.size());
+	if (with_anees == 0) return;
+	out.pose_anees_mean = anees_sum / static_cast<double>(with_anees);
+	out.pose_steps_inside_fraction = static_cast<double>(inside) / static_cast<double>(with_anees);
+}
+
+void addLandmarkStatistics(const std::vector<CampaignRunErrors>& runs, ConfigStatistics& out)
+{
+	std::map<LandmarkId, LandmarkAccumulator> by_id;
+	double nees_sum = 0;
+	std::size_t pairs = 0;
+	for (const auto& run : runs)
+		for (const auto& row : run.landmarks)
+		{
+			auto& acc = by_id[row.true_id];
+			acc.sq += row.error.squaredNorm();
+			++acc.n;
+			if (!row.nees) continue;
+			acc.nees.push_back(*row.nees);
+			nees_sum += *row.nees;
+			++pairs;
+		}
+	std::size_t with_anees = 0, inside = 0;
+	for (const auto& [id, acc] : by_id)
+	{
+		LandmarkStatistics s;
+		s.true_id = id;
+		s.runs = acc.nees.size();
+		s.rmse_m = std::sqrt(acc.sq / static_cast<double>(acc.n));
+		if (s.runs > 0)
+		{
+			double sum = 0;
+			for (const double v : acc.nees) sum += v;
+			s.anees = sum / static_cast<double>(s.runs);
+			s.bounds = aneesBounds(2, s.runs);
+			++with_anees;
+			if (s.bounds.contains(s.anees)) ++inside;
+		}
+		out.landmarks.push_back(s);
+	}
+	out.landmark_bounds = aneesBounds(2, runs.size());
+	if (pairs > 0) out.landmark_anees = nees_sum / static_cast<double>(pairs);
+	if (with_anees > 0) out.landmarks_inside_fraction = static_cast<double>(inside) / static_cast<double>(with_anees);
+}
+
+/// sqrt(mean |e|^2) of a run's trajectory positions and of its landmarks.
+double trajectoryRmse(const std::vector<PoseError>& rows)
+{
+	double sq = 0;
+	for (const auto& r : rows) sq += r.error.head<2>().squaredNorm();
+	return rows.empty() ? 0.0 : std::sqrt(sq / static_cast<double>(rows.size()));
+}
+
+double landmarkRmse(const std::vector<LandmarkError>& rows)
+{
+	double sq = 0;
+	for (const auto& r : rows) sq += r.error.squaredNorm();
+	return rows.empty() ? 0.0 : std::sqrt(sq / static_cast<double>(rows.size()));
+}
+}  // namespace
+
+AneesBounds aneesBounds(int dof, std::size_t runs, double confidence)
+{
+	if (dof < 1 || runs < 1) throw std::invalid_argument("aneesBounds: dof and runs must be >= 1");
+	if (!(confidence > 0 && confidence < 1)) throw std::invalid_argument("aneesBounds: confidence must be in (0, 1)");
+	const double n = static_cast<double>(runs);
+	const boost::math::chi_squared_distribution<double> chi2(dof * n);
+	return {boost::math::quantile(chi2, (1 - confidence) / 2) / n, boost::math::quantile(chi2, (1 + confidence) / 2) / n};
+}
+
+Quantiles quantilesOf(std::vector<double> values)
+{
+	if (values.empty()) throw std::invalid_argument("quantilesOf: no values");
+	std::sort(values.begin(), values.end());
+	return {sortedQuantile(values, 0.5), sortedQuantile(values, 0.25), sortedQuantile(values, 0.75), values.front(),
+			values.back()};
+}
+
+MeanSpread meanSpreadOf(const std::vector<double>& values)
+{
+	if (values.empty()) throw std::invalid_argument("meanSpreadOf: no values");
+	double sum = 0;
+	for (const double v : values) sum += v;
+	const double mean = sum / static_cast<double>(values.size());
+	if (values.size() == 1) return {mean, 0.0};
+	double sq = 0;
+	for (const double v : values) sq += (v - mean) * (v - mean);
+	return {mean, std::sqrt(sq / static_cast<double>(values.size() - 1))};
+}
+
+ConfigStatistics aggregateRuns(const std::string& name, const std::vector<CampaignRunErrors>& runs)
+{
+	if (runs.empty()) throw std::invalid_argument("aggregateRuns: " + name + ": no finished run");
+	ConfigStatistics out;
+	out.name = name;
+	out.runs = runs.size();
+	addPoseStatistics(runs, out);
+	addLandmarkStatistics(runs, out);
+	std::vector<double> trajectory, landmarks, wall;
+	for (const auto& run : runs)
+	{
+		trajectory.push_back(trajectoryRmse(run.poses));
+		landmarks.push_back(landmarkRmse(run.landmarks));
+		wall.push_back(run.wall_s);
+		out.da_wrong_total += run.da_wrong;
+		if (run.da_wrong > 0) ++out.runs_with_da_wrong;
+	}
+	out.trajectory_rmse_m = meanSpreadOf(trajectory);
+	out.landmark_rmse_m = meanSpreadOf(landmarks);
+	out.wall_s = quantilesOf(wall);
+	return out;
+}
+
+}  // namespace esif

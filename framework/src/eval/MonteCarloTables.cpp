@@ -1,0 +1,136 @@
+/// \file MonteCarloTables.cpp
+/// summary.csv, summary.md, per_step.csv, landmarks.csv; see MonteCarloTables.h.
+
+#include <esif/eval/MonteCarloTables.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace esif
+{
+namespace
+{
+std::string full(double v)
+{
+	char buf[40];
+	std::snprintf(buf, sizeof(buf), "%.17g", v);
+	return buf;
+}
+
+std::string full(const std::optional<double>& v) { return v ? full(*v) : std::string(); }
+
+std::string rounded(double v, int digits = 3)
+{
+	char buf[40];
+	std::snprintf(buf, sizeof(buf), "%.*g", digits, v);
+	return buf;
+}
+
+std::string rounded(const std::optional<double>& v, int digits = 3) { return v ? rounded(*v, digits) : "-"; }
+
+std::string percent(const std::optional<double>& fraction)
+{
+	if (!fraction) return "-";
+	char buf[16];
+	std::snprintf(buf, sizeof(buf), "%.1f %%", 100 * *fraction);
+	return buf;
+}
+
+std::string band(const AneesBounds& b) { return "[" + rounded(b.lo) + ", " + rounded(b.hi) + "]"; }
+
+const char* const kSummaryColumns =
+	"config,runs,runs_planned,pose_anees_mean,pose_bound_lo,pose_bound_hi,pose_steps_inside_fraction,"
+	"landmark_anees,landmark_bound_lo,landmark_bound_hi,landmarks_inside_fraction,landmarks_scored,"
+	"trajectory_rmse_mean_m,trajectory_rmse_std_m,landmark_rmse_mean_m,landmark_rmse_std_m,"
+	"final_position_rmse_m,wall_s_median,wall_s_p25,wall_s_p75,wall_s_min,wall_s_max,da_wrong_total,"
+	"runs_with_da_wrong";
+
+/// The RMSE over runs of the position at the last step all runs have.
+double finalPositionRmse(const ConfigStatistics& c)
+{
+	return c.steps.empty() ? std::nan("") : c.steps.back().position_rmse_m;
+}
+}  // namespace
+
+std::string monteCarloSummaryCsv(const std::vector<ConfigStatistics>& configs, std::size_t planned)
+{
+	std::string out = std::string(kSummaryColumns) + "\n";
+	for (const auto& c : configs)
+	{
+		const std::vector<std::string> cells = {
+			c.name, std::to_string(c.runs), std::to_string(planned), full(c.pose_anees_mean), full(c.pose_bounds.lo),
+			full(c.pose_bounds.hi), full(c.pose_steps_inside_fraction), full(c.landmark_anees),
+			full(c.landmark_bounds.lo), full(c.landmark_bounds.hi), full(c.landmarks_inside_fraction),
+			std::to_string(c.landmarks.size()), full(c.trajectory_rmse_m.mean), full(c.trajectory_rmse_m.stddev),
+			full(c.landmark_rmse_m.mean), full(c.landmark_rmse_m.stddev), full(finalPositionRmse(c)),
+			full(c.wall_s.median), full(c.wall_s.p25), full(c.wall_s.p75), full(c.wall_s.min), full(c.wall_s.max),
+			std::to_string(c.da_wrong_total), std::to_string(c.runs_with_da_wrong)};
+		for (std::size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + cells[i];
+		out += "\n";
+	}
+	return out;
+}
+
+std::string monteCarloSummaryMarkdown(
+	const std::string& title, const std::vector<ConfigStatistics>& configs, const CampaignGaps& gaps)
+{
+	std::string out = "# " + title + "\n\n";
+	out += "| config | N | pose ANEES (mean over steps) | 95% bounds (3N dof) | steps inside | landmark ANEES | "
+		   "95% bounds (2N dof) | landmarks inside | trajectory RMSE [m] | landmark RMSE [m] | time per run [s] | "
+		   "wrong associations |\n";
+	out += "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+	for (const auto& c : configs)
+	{
+		out += "| " + c.name + " | " + std::to_string(c.runs) + " | " + rounded(c.pose_anees_mean) + " | " +
+			   band(c.pose_bounds) + " | " + percent(c.pose_steps_inside_fraction) + " | " +
+			   rounded(c.landmark_anees) + " | " + band(c.landmark_bounds) + " | " +
+			   percent(c.landmarks_inside_fraction) + " | " + rounded(c.trajectory_rmse_m.mean) + " ± " +
+			   rounded(c.trajectory_rmse_m.stddev, 2) + " | " + rounded(c.landmark_rmse_m.mean) + " ± " +
+			   rounded(c.landmark_rmse_m.stddev, 2) + " | " + rounded(c.wall_s.median) + " [" +
+			   rounded(c.wall_s.p25) + ", " + rounded(c.wall_s.p75) + "] | " + std::to_string(c.da_wrong_total) +
+			   " in " + std::to_string(c.runs_with_da_wrong) + " runs |\n";
+	}
+	out += "\nPose ANEES: at each step the mean over runs of the pose NEES (3 dof), averaged over the steps; "
+		   "\"steps inside\": the share of steps whose ANEES lies inside its two-sided 95% chi-square bounds "
+		   "[chi2inv(0.025, 3N), chi2inv(0.975, 3N)] / N. Landmark ANEES: the mean NEES (2 dof) of the final "
+		   "landmarks over all runs and landmarks, held against the bounds of one landmark over N runs (the "
+		   "landmarks of a run share the robot's error, so they are not independent draws); \"landmarks "
+		   "inside\": the share of landmarks whose own ANEES over the runs that mapped them is inside its "
+		   "bounds. RMSE: per run, of the trajectory's positions over its steps and of its final landmarks; "
+		   "mean ± standard deviation over runs. Time: the filter's wall time per run, median [quartiles]. "
+		   "Runs are independent noise draws of the same scenario (same world and path).\n";
+	if (!gaps.failed.empty() || !gaps.pending.empty())
+	{
+		out += "\n## Runs not aggregated\n\n";
+		for (const auto& line : gaps.failed) out += "- " + line + "\n";
+		for (const auto& line : gaps.pending) out += "- " + line + "\n";
+	}
+	return out;
+}
+
+std::string monteCarloPerStepCsv(const std::vector<ConfigStatistics>& configs)
+{
+	std::string out =
+		"config,step,runs,anees,bound_lo,bound_hi,position_rmse_m,heading_rmse_rad,position_error_p10_m,"
+		"position_error_p90_m\n";
+	for (const auto& c : configs)
+		for (const auto& s : c.steps)
+			out += c.name + "," + std::to_string(s.step) + "," + std::to_string(s.runs) + "," + full(s.anees) + "," +
+				   (s.runs ? full(s.bounds.lo) + "," + full(s.bounds.hi) : std::string(",")) + "," +
+				   full(s.position_rmse_m) + "," + full(s.heading_rmse_rad) + "," + full(s.position_error_p10_m) +
+				   "," + full(s.position_error_p90_m) + "\n";
+	return out;
+}
+
+std::string monteCarloLandmarksCsv(const std::vector<ConfigStatistics>& configs)
+{
+	std::string out = "config,true_id,runs,anees,bound_lo,bound_hi,rmse_m\n";
+	for (const auto& c : configs)
+		for (const auto& l : c.landmarks)
+			out += c.name + "," + std::to_string(l.true_id) + "," + std::to_string(l.runs) + "," +
+				   (l.runs ? full(l.anees) + "," + full(l.bounds.lo) + "," + full(l.bounds.hi) : std::string(",,")) +
+				   "," + full(l.rmse_m) + "\n";
+	return out;
+}
+
+}  // namespace esif

@@ -1,0 +1,289 @@
+// The statistics of a Monte Carlo campaign (MonteCarloStatistics.h): the
+// chi-square bounds against an independent implementation, the ANEES of an
+// exactly consistent filter (a linear Kalman filter on a linear-Gaussian
+// toy problem) inside them and of a mis-scaled one outside on either side,
+// and the aggregation of a fixed set of run folders checked by hand.
+
+#include <EsifTestSupport.h>
+
+#include <esif/association/Chi2.h>
+#include <esif/core/Errors.h>
+#include <esif/eval/MonteCarloStatistics.h>
+#include <esif/eval/MonteCarloTables.h>
+#include <esif/io/AtomicFile.h>
+#include <esif/io/EstimationErrorFiles.h>
+#include <esif/run/MonteCarloCollect.h>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <filesystem>
+#include <random>
+
+namespace
+{
+using esif::AneesBounds;
+using esif::CampaignRunErrors;
+using esif::ConfigStatistics;
+
+TEST(AneesBounds, MatchTheProjectsOwnChiSquareQuantile)
+{
+	// Chi2.h sums the incomplete-gamma series, Boost.Math inverts its own
+	// implementation: two independent routes, agreeing to the bisection
+	// tolerance of chi2Quantile (1e-12 relative) at dof where both work.
+	for (const int dof : {2, 3})
+		for (const std::size_t n : {1u, 8u, 50u, 200u})
+		{
+			const AneesBounds b = esif::aneesBounds(dof, n);
+			const int total = dof * static_cast<int>(n);
+			EXPECT_NEAR(b.lo, esif::chi2Quantile(0.025, total) / n, 1e-9 * b.hi) << dof << " " << n;
+			EXPECT_NEAR(b.hi, esif::chi2Quantile(0.975, total) / n, 1e-9 * b.hi) << dof << " " << n;
+		}
+	// Bar-Shalom et al. (2001), Sec. 5.4.2 example: 50 runs of a 2-dof NEES,
+	// bounds [1.5, 2.6] to the two digits the book prints.
+	const AneesBounds b = esif::aneesBounds(2, 50);
+	EXPECT_NEAR(b.lo, 1.5, 0.05);
+	EXPECT_NEAR(b.hi, 2.6, 0.05);
+	// Large campaigns: Boost stays exact where the series of Chi2.h would
+	// overflow; the bounds close in on the dof as 1/sqrt(N).
+	const AneesBounds wide = esif::aneesBounds(3, 5000);
+	EXPECT_NEAR(wide.lo, 3 - 1.96 * std::sqrt(6.0 / 5000), 0.002);
+	EXPECT_NEAR(wide.hi, 3 + 1.96 * std::sqrt(6.0 / 5000), 0.002);
+}
+
+/// A linear-Gaussian toy problem where the Kalman filter is exactly
+/// consistent: a 3-state random walk x_k = F x_{k-1} + w (F a rotation-like
+/// mixing), observed directly z = x + v, and a static 2-D point observed
+/// with noise (the "landmark"). The filter's covariance is scaled by
+/// `cov_scale` in the reported NEES: 1 is the true covariance, 0.5 an
+/// overconfident filter, 2 a pessimistic one.
+CampaignRunErrors simulateKalmanRun(std::mt19937& rng, double cov_scale, std::size_t index)
+{
+	std::normal_distribution<double> g(0.0, 1.0);
+	const auto draw3 = [&] { return Eigen::Vector3d(g(rng), g(rng), g(rng)); };
+	Eigen::Matrix3d F;
+	F << 1.0, 0.1, 0.0, 0.0, 1.0, 0.1, 0.0, 0.0, 0.9;
+	const Eigen::Matrix3d Q = 0.04 * Eigen::Matrix3d::Identity(), R = 0.25 * Eigen::Matrix3d::Identity();
+	const Eigen::Matrix3d LQ = Q.llt().matrixL(), LR = R.llt().matrixL();
+	Eigen::Vector3d x = Eigen::Vector3d::Zero(), xh = Eigen::Vector3d::Zero();
+	Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+	CampaignRunErrors run;
+	run.seed_index = index;
+	run.wall_s = 1.0;
+	for (std::size_t k = 1; k <= 150; ++k)
+	{
+		x = F * x + LQ * draw3();
+		const Eigen::Vector3d z = x + LR * draw3();
+		xh = F * xh;
+		P = F * P * F.transpose() + Q;
+		const Eigen::Matrix3d S = P + R;
+		const Eigen::Matrix3d K = P * S.inverse();	// 3x3: fine
+		xh += K * (z - xh);
+		P = (Eigen::Matrix3d::Identity() - K) * P;
+		P = 0.5 * (P + P.transpose());
+		esif::PoseError row;
+		row.step = k;
+		row.error = xh - x;
+		row.nees = esif::nees(row.error, cov_scale * P);
+		run.poses.push_back(row);
+	}
+	// Landmarks: each a fixed point, prior N(0, I), observed 5 times with
+	// noise 0.1 I; posterior covariance (I + 5 * 10 I)^-1 = I / 51.
+	for (esif::LandmarkId id = 0; id < 20; ++id)
+	{
+		const Eigen::Vector2d truth(g(rng), g(rng));
+		Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+		for (int m = 0; m < 5; ++m) sum += truth + std::sqrt(0.1) * Eigen::Vector2d(g(rng), g(rng));
+		const Eigen::Vector2d estimate = sum * 10.0 / 51.0;	 // (prior mean 0) posterior mean
+		esif::LandmarkError row;
+		row.true_id = id;
+		row.error = estimate - truth;
+		row.nees = esif::nees(row.error, cov_scale * Eigen::Matrix2d::Identity() / 51.0);
+		run.landmarks.push_back(row);
+	}
+	return run;
+}
+
+ConfigStatistics kalmanCampaign(double cov_scale, std::size_t runs = 50)
+{
+	std::mt19937 rng(20261129);
+	std::vector<CampaignRunErrors> all;
+	for (std::size_t r = 0; r < runs; ++r) all.push_back(simulateKalmanRun(rng, cov_scale, r));
+	return esif::aggregateRuns("kf", all);
+}
+
+TEST(MonteCarloStatistics, AConsistentKalmanFilterIsInsideItsBounds)
+{
+	const ConfigStatistics c = kalmanCampaign(1.0);
+	ASSERT_EQ(c.runs, 50u);
+	ASSERT_EQ(c.steps.size(), 150u);
+	// Each step's ANEES lies inside its 95% bounds with probability 0.95;
+	// the steps of one campaign are correlated through the filter's memory,
+	// so the share varies more than a binomial of 150: 0.85 is about four
+	// binomial standard deviations (0.018) below 0.95, and still far above
+	// the mis-scaled filters' shares below (about 0).
+	ASSERT_TRUE(c.pose_steps_inside_fraction);
+	EXPECT_GT(*c.pose_steps_inside_fraction, 0.85);
+	// Mean over steps of ANEES (each with mean 3 and sd sqrt(6/50) = 0.35):
+	// within 0.25 of 3 (the per-step sd over the ~150/10 effectively
+	// independent steps is 0.09; 0.25 is almost 3 of those).
+	EXPECT_NEAR(*c.pose_anees_mean, 3.0, 0.25);
+	// Landmarks: 50 runs x 20 independent landmarks; their mean NEES has sd
+	// sqrt(4 / 1000) = 0.063: within 0.2 of 2 (3 sd). Per landmark, 95% of
+	// the ANEES inside: at least 80% of the 20 (binomial sd 0.05).
+	EXPECT_NEAR(*c.landmark_anees, 2.0, 0.2);
+	EXPECT_GE(*c.landmarks_inside_fraction, 0.8);
+	EXPECT_TRUE(c.landmark_bounds.contains(*c.landmark_anees));
+}
+
+TEST(MonteCarloStatistics, AMisScaledFilterIsOutsideOnEitherSide)
+{
+	// Reporting half the covariance doubles every NEES (ANEES about 6, above
+	// the upper bound 3.72 of 50 runs); twice the covariance halves it (1.5,
+	// below the lower bound 2.36). A one-sided test would miss the second.
+	const ConfigStatistics over = kalmanCampaign(0.5), under = kalmanCampaign(2.0);
+	EXPECT_NEAR(*over.pose_anees_mean, 6.0, 0.5);
+	EXPECT_NEAR(*under.pose_anees_mean, 1.5, 0.125);
+	EXPECT_LT(*over.pose_steps_inside_fraction, 0.1);
+	EXPECT_LT(*under.pose_steps_inside_fraction, 0.1);
+	EXPECT_GT(*over.landmark_anees, over.landmark_bounds.hi);
+	EXPECT_LT(*under.landmark_anees, under.landmark_bounds.lo);
+}
+
+TEST(EstimationErrors, TheInitialPoseHasNoNeesEvenWithACovarianceFloor)
+{
+	// The simulator's first step is a zero move with covariance 1e-10 I: a
+	// NEES of 0 there would be an ANEES of 0, outside any bound, at every
+	// campaign's step 0.
+	esif::GroundTruth truth;
+	truth.path = {esif::Pose2(0, 0, 0), esif::Pose2(1, 0, 0)};
+	const std::vector<esif::TrajectoryPoint> trajectory = {
+		{0, 0, {{0, 0, 0}, 1e-10 * Eigen::Matrix3d::Identity()}},
+		{1, 0.1, {{1, 0.1, 0}, 0.01 * Eigen::Matrix3d::Identity()}}};
+	const auto rows = esif::poseErrors(truth, trajectory);
+	ASSERT_EQ(rows.size(), 2u);
+	EXPECT_FALSE(rows[0].nees);
+	ASSERT_TRUE(rows[1].nees);
+	EXPECT_NEAR(*rows[1].nees, 1.0, 1e-12);	 // 0.1^2 / 0.01
+}
+
+/// A finished run folder with the given rows, wall time and wrong associations.
+void writeRunFolder(
+	const std::string& dir, const std::vector<esif::PoseError>& poses, const std::vector<esif::LandmarkError>& lms,
+	double wall_s, int da_wrong)
+{
+	esif::ensureDirectory(dir);
+	esif::writeEstimationErrorFiles(dir, poses, lms);
+	esif::writeTextAtomically(
+		dir + "/stats.json",
+		"{\n  \"wall_s\": " + std::to_string(wall_s) + ",\n  \"da_wrong\": " + std::to_string(da_wrong) + "\n}\n");
+}
+
+esif::PoseError pose(std::size_t step, double ex, double ey, double eth, std::optional<double> nees)
+{
+	return {step, Eigen::Vector3d(ex, ey, eth), nees};
+}
+
+esif::LandmarkError landmark(esif::LandmarkId id, double ex, double ey, double nees)
+{
+	return {id, Eigen::Vector2d(ex, ey), nees};
+}
+
+TEST(MonteCarloCollect, AggregatesAFixedSetOfRunFoldersAsCheckedByHand)
+{
+	esif::test::TempDir tmp;
+	const std::string dir = tmp.file("mc");
+	auto plan = esif::CampaignPlan::create("scenario.ini", {"ekf.ini"}, 1, 3);
+	esif::ensureDirectory(dir);
+	esif::writeTextAtomically(esif::campaign_layout::manifest(dir), plan.iniText());
+	// Run 1 (seed 1) and run 2 (seed 2) finished; run 3 failed.
+	writeRunFolder(
+		esif::campaign_layout::runFolder(dir, "ekf", 1),
+		{pose(0, 0, 0, 0, std::nullopt), pose(1, 3, 4, 0.1, 2.0), pose(2, 0, 1, 0.0, 12.0)},
+		{landmark(5, 0.3, 0.4, 1.0), landmark(9, 0, 0.2, 3.0)}, 1.0, 0);
+	writeRunFolder(
+		esif::campaign_layout::runFolder(dir, "ekf", 2),
+		{pose(0, 0, 0, 0, std::nullopt), pose(1, 0, 0, -0.1, 4.0), pose(2, 0, 1, 0.0, 9.0)},
+		{landmark(5, 0, 0, 5.0)}, 3.0, 2);
+	esif::writeFailureRecord(
+		esif::campaign_layout::failureFile(dir, "ekf", 3), {3, "esif: numerical failure: step 7: not PD", "..."});
+
+	const esif::CampaignCollection c = esif::collectCampaign(dir, esif::CampaignPlan::load(dir));
+	EXPECT_EQ(c.total, 3u);
+	EXPECT_EQ(c.finished, 2u);
+	ASSERT_EQ(c.gaps.failed.size(), 1u);
+	EXPECT_EQ(c.gaps.failed[0], "ekf/seed_0003: failed (exit 3): esif: numerical failure: step 7: not PD");
+	EXPECT_TRUE(c.gaps.pending.empty());
+	ASSERT_EQ(c.configs.size(), 1u);
+	const ConfigStatistics& s = c.configs[0];
+	EXPECT_EQ(s.runs, 2u);
+	ASSERT_EQ(s.steps.size(), 3u);
+	// Step 0: no NEES (initial pose), errors zero.
+	EXPECT_FALSE(s.steps[0].anees);
+	EXPECT_EQ(s.steps[0].runs, 0u);
+	// Step 1: ANEES (2 + 4) / 2 = 3 inside [chi2inv(.025, 6), chi2inv(.975, 6)] / 2
+	// = [1.2373 / 2, 14.4494 / 2]; position errors 5 and 0: RMSE sqrt(25 / 2);
+	// heading errors +-0.1: RMSE 0.1.
+	EXPECT_DOUBLE_EQ(*s.steps[1].anees, 3.0);
+	EXPECT_NEAR(s.steps[1].bounds.lo, 1.2373442 / 2, 1e-6);
+	EXPECT_NEAR(s.steps[1].bounds.hi, 14.4493753 / 2, 1e-6);
+	EXPECT_NEAR(s.steps[1].position_rmse_m, std::sqrt(12.5), 1e-12);
+	EXPECT_NEAR(s.steps[1].heading_rmse_rad, 0.1, 1e-12);
+	// p10 and p90 of {0, 5}, interpolated: 0.5 and 4.5.
+	EXPECT_NEAR(s.steps[1].position_error_p10_m, 0.5, 1e-12);
+	EXPECT_NEAR(s.steps[1].position_error_p90_m, 4.5, 1e-12);
+	// Step 2: ANEES (12 + 9) / 2 = 10.5, above 7.2247: outside. One step of two inside.
+	EXPECT_DOUBLE_EQ(*s.steps[2].anees, 10.5);
+	EXPECT_DOUBLE_EQ(*s.pose_steps_inside_fraction, 0.5);
+	EXPECT_DOUBLE_EQ(*s.pose_anees_mean, (3.0 + 10.5) / 2);
+	// Landmarks: pairs (1, 3, 5): mean 3; landmark 5 ANEES (1 + 5) / 2 = 3
+	// over 2 runs, landmark 9 ANEES 3 over 1 run (bounds [0.0506, 7.378]).
+	EXPECT_DOUBLE_EQ(*s.landmark_anees, 3.0);
+	ASSERT_EQ(s.landmarks.size(), 2u);
+	EXPECT_EQ(s.landmarks[0].true_id, 5);
+	EXPECT_EQ(s.landmarks[0].runs, 2u);
+	EXPECT_DOUBLE_EQ(s.landmarks[0].anees, 3.0);
+	EXPECT_NEAR(s.landmarks[0].rmse_m, std::sqrt(0.25 / 2), 1e-12);
+	EXPECT_EQ(s.landmarks[1].runs, 1u);
+	EXPECT_NEAR(s.landmarks[1].bounds.lo, 0.0506356, 1e-6);
+	EXPECT_NEAR(s.landmarks[1].bounds.hi, 7.3777589, 1e-6);
+	EXPECT_DOUBLE_EQ(*s.landmarks_inside_fraction, 1.0);
+	// Trajectory RMSE per run: run 1 sqrt((0 + 25 + 1) / 3), run 2 sqrt(1 / 3).
+	const double r1 = std::sqrt(26.0 / 3), r2 = std::sqrt(1.0 / 3);
+	EXPECT_NEAR(s.trajectory_rmse_m.mean, (r1 + r2) / 2, 1e-12);
+	EXPECT_NEAR(s.trajectory_rmse_m.stddev, std::abs(r1 - r2) / std::sqrt(2.0), 1e-12);
+	// Landmark RMSE per run: run 1 sqrt((0.25 + 0.04) / 2), run 2 0.
+	EXPECT_NEAR(s.landmark_rmse_m.mean, std::sqrt(0.29 / 2) / 2, 1e-12);
+	EXPECT_DOUBLE_EQ(s.wall_s.median, 2.0);
+	EXPECT_DOUBLE_EQ(s.wall_s.p25, 1.5);
+	EXPECT_EQ(s.da_wrong_total, 2);
+	EXPECT_EQ(s.runs_with_da_wrong, 1u);
+
+	// The outputs are written and list the failed run.
+	const std::string md = esif::writeCampaignOutputs(dir, esif::CampaignPlan::load(dir), c);
+	EXPECT_NE(md.find("ekf/seed_0003: failed (exit 3)"), std::string::npos);
+	for (const char* f : {"summary.csv", "summary.md", "per_step.csv", "landmarks.csv", "anees_pose.png", "rmse.png",
+						  "landmark_anees.png"})
+		EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/" + f)) << f;
+	const std::string csv = esif::test::readText(dir + "/summary.csv");
+	EXPECT_NE(csv.find("\nekf,2,3,6.75,"), std::string::npos) << csv;
+}
+
+TEST(MonteCarloCollect, AMalformedErrorFileIsOneLineNamingIt)
+{
+	esif::test::TempDir tmp;
+	const std::string run = tmp.file("run");
+	writeRunFolder(run, {pose(1, 0, 0, 0, 1.0)}, {}, 1.0, 0);
+	esif::writeTextAtomically(run + "/pose_errors.csv", "step,ex_m,ey_m,eth_rad,nees\n1,0,zero,0,1\n");
+	try
+	{
+		esif::readCampaignRun(run, 0);
+		FAIL() << "no error";
+	}
+	catch (const esif::InputError& e)
+	{
+		EXPECT_EQ(std::string(e.what()), run + "/pose_errors.csv:2: 'zero' is not a number");
+	}
+}
+
+}  // namespace
