@@ -80,7 +80,10 @@ TEST(DslamCampaign, PcgAndFreshCholeskyRecoveriesGiveTheSameEstimates)
 		// ... and each did recover that way: PCG solves, or a fresh
 		// factorisation at every change (no partial refactorisation).
 		const auto& counters = c.runs.front().counters;
-		if (recovery == "pcg") EXPECT_GT(counters.at("sparse_pcg_solves"), 0);
+		if (recovery == "pcg")
+		{
+			EXPECT_GT(counters.at("sparse_pcg_solves"), 0);
+		}
 		if (recovery == "fresh_cholesky")
 		{
 			EXPECT_EQ(counters.at("sparse_partial_refactorisations"), 0);
