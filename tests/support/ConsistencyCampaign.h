@@ -121,4 +121,27 @@ inline void printCampaign(const std::string& what, const CampaignSummary& c, con
 			  << c.ate_rmse_m << " m\n";
 }
 
+/// Prints the campaign and expects its mean landmark and pose NEES inside
+/// their two-sided bands for its number of runs (meanNeesBand).
+inline void expectInsideBands(const std::string& what, const CampaignSummary& c)
+{
+	const int runs = static_cast<int>(c.runs.size());
+	const Band landmark = meanNeesBand(2, runs), pose = meanNeesBand(3, runs);
+	printCampaign(what, c, landmark, pose);
+	EXPECT_TRUE(landmark.contains(c.landmark_nees)) << what << ": " << c.landmark_nees;
+	EXPECT_TRUE(pose.contains(c.pose_nees)) << what << ": " << c.pose_nees;
+}
+
+/// Expects the campaign's landmark RMSE within [0.9, `above`] times the
+/// optimum's on the same seeds: the optimum is the optimum (0.9 leaves room
+/// for ten draws), and the tests' comments say where each `above` comes from.
+inline void expectNearOptimum(const std::string& what, const CampaignSummary& c, const CampaignSummary& optimum,
+							  double above = 1.3)
+{
+	std::cout << "landmark RMSE: " << what << " " << c.landmark_rmse_m << " m, optimum " << optimum.landmark_rmse_m
+			  << " m\n";
+	EXPECT_LT(c.landmark_rmse_m, above * optimum.landmark_rmse_m) << what;
+	EXPECT_GT(c.landmark_rmse_m, 0.9 * optimum.landmark_rmse_m) << what;
+}
+
 }  // namespace esif::test

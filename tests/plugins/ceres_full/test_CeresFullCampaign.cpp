@@ -25,10 +25,7 @@ TEST(CeresFullCampaign, DefaultConsistentFromBothSides)
 	// Bands for 10 runs at alpha = 0.01: landmarks [0.74, 4.00], poses
 	// [1.38, 5.37]. Measured 2.61 and 3.21.
 	const auto& c = defaultCeres();
-	const auto landmark_band = test::meanNeesBand(2, kRuns), pose_band = test::meanNeesBand(3, kRuns);
-	test::printCampaign("ceres_full", c, landmark_band, pose_band);
-	EXPECT_TRUE(landmark_band.contains(c.landmark_nees)) << c.landmark_nees;
-	EXPECT_TRUE(pose_band.contains(c.pose_nees)) << c.pose_nees;
+	test::expectInsideBands("ceres_full", c);
 }
 
 TEST(CeresFullCampaign, HuberLossOnCleanDataKeepsTheOptimum)
@@ -38,10 +35,7 @@ TEST(CeresFullCampaign, HuberLossOnCleanDataKeepsTheOptimum)
 	// tail beyond it (0.3 % of them): the optimum moves by a small fraction
 	// of its error (measured: RMSE equal to 3 digits, NEES 2.622 vs 2.615).
 	const auto huber = test::runCampaign(kScenario, kRuns, "CeresFullSlam", "robust_loss = huber\n");
-	const auto landmark_band = test::meanNeesBand(2, kRuns), pose_band = test::meanNeesBand(3, kRuns);
-	test::printCampaign("ceres_full huber", huber, landmark_band, pose_band);
-	EXPECT_TRUE(landmark_band.contains(huber.landmark_nees)) << huber.landmark_nees;
-	EXPECT_TRUE(pose_band.contains(huber.pose_nees)) << huber.pose_nees;
+	test::expectInsideBands("ceres_full huber", huber);
 	EXPECT_NEAR(huber.landmark_rmse_m, defaultCeres().landmark_rmse_m, 0.02 * defaultCeres().landmark_rmse_m);
 	EXPECT_NEAR(huber.landmark_nees, defaultCeres().landmark_nees, 0.02 * defaultCeres().landmark_nees);
 }

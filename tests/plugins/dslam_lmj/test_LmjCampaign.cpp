@@ -20,15 +20,10 @@ TEST(LmjCampaign, ConsistentFromBothSidesAndNearTheOptimum)
 	// Bands for 10 runs at alpha = 0.01: landmarks [0.74, 4.00], poses
 	// [1.38, 5.37]. Measured 3.10 and 3.63 (book Ch. 4: local map joining
 	// with small local maps is close to consistent).
-	const auto landmark_band = test::meanNeesBand(2, kRuns), pose_band = test::meanNeesBand(3, kRuns);
-	test::printCampaign("D-SLAM local map joining", lmj, landmark_band, pose_band);
-	EXPECT_TRUE(landmark_band.contains(lmj.landmark_nees)) << lmj.landmark_nees;
-	EXPECT_TRUE(pose_band.contains(lmj.pose_nees)) << lmj.pose_nees;
+	test::expectInsideBands("D-SLAM local map joining", lmj);
 	// Measured 5.1 cm against the optimum's 4.8 cm (1.07x); the trajectory,
 	// fused only when a local map closes, 6.5 cm against 3.7 cm.
-	std::cout << "landmark RMSE: LMJ " << lmj.landmark_rmse_m << " m, optimum " << optimum.landmark_rmse_m << " m\n";
-	EXPECT_LT(lmj.landmark_rmse_m, 1.3 * optimum.landmark_rmse_m);
-	EXPECT_GT(lmj.landmark_rmse_m, 0.9 * optimum.landmark_rmse_m);
+	test::expectNearOptimum("LMJ", lmj, optimum);
 	EXPECT_LT(lmj.ate_rmse_m, 2.5 * optimum.ate_rmse_m);
 }
 

@@ -25,16 +25,11 @@ TEST(EkfCampaign, KnownIdsConsistentFromBothSidesAndNearTheOptimum)
 	// seeds 11-20 one draw gives the EKF a landmark NEES of 16, its known
 	// heading inconsistency (book Sec. 1.3), and the 20-seed mean, 3.7,
 	// leaves the 20-run band [1.04, 3.34]; the optimum's stays at 2.4.)
-	const auto landmark_band = test::meanNeesBand(2, kRuns), pose_band = test::meanNeesBand(3, kRuns);
-	test::printCampaign("EKF known IDs", ekf, landmark_band, pose_band);
-	EXPECT_TRUE(landmark_band.contains(ekf.landmark_nees)) << ekf.landmark_nees;
-	EXPECT_TRUE(pose_band.contains(ekf.pose_nees)) << ekf.pose_nees;
+	test::expectInsideBands("EKF known IDs", ekf);
 	// Accuracy: the EKF linearises once, the optimum re-linearises
 	// everything, so the EKF is a little worse on average (measured 1.05x
 	// the optimum's 4.8 cm); a third more is a clear regression.
-	std::cout << "landmark RMSE: EKF " << ekf.landmark_rmse_m << " m, optimum " << optimum.landmark_rmse_m << " m\n";
-	EXPECT_LT(ekf.landmark_rmse_m, 1.3 * optimum.landmark_rmse_m);
-	EXPECT_GT(ekf.landmark_rmse_m, 0.9 * optimum.landmark_rmse_m);	 // the optimum is the optimum
+	test::expectNearOptimum("EKF", ekf, optimum);
 }
 
 TEST(EkfCampaign, NearestNeighbourWithoutIdsConsistentFromBothSides)
@@ -46,10 +41,7 @@ TEST(EkfCampaign, NearestNeighbourWithoutIdsConsistentFromBothSides)
 	// wrong ones pull their landmarks).
 	const auto nn = test::runCampaign(kScenario, kRuns, "EkfSlam", "association = nn\n", true);
 	const auto known = test::runCampaign(kScenario, kRuns, "EkfSlam", "association = known_ids\n");
-	const auto landmark_band = test::meanNeesBand(2, kRuns), pose_band = test::meanNeesBand(3, kRuns);
-	test::printCampaign("EKF nearest neighbour", nn, landmark_band, pose_band);
-	EXPECT_TRUE(landmark_band.contains(nn.landmark_nees)) << nn.landmark_nees;
-	EXPECT_TRUE(pose_band.contains(nn.pose_nees)) << nn.pose_nees;
+	test::expectInsideBands("EKF nearest neighbour", nn);
 	std::size_t wrong = 0;
 	for (const auto& r : nn.runs) wrong += r.wrong_associations;
 	EXPECT_LE(wrong, 10u);	// ~0.1 % of the measurements
