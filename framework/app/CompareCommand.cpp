@@ -1,4 +1,5 @@
 #include "ChildProcess.h"
+#include "ConfigCheck.h"
 #include "CommandLine.h"
 #include "Commands.h"
 
@@ -14,9 +15,7 @@
 #include <esif/io/TerminationCleanup.h>
 #include <esif/io/RunOutputReader.h>
 #include <esif/io/StatsJson.h>
-#include <esif/run/LocalMapRunPipeline.h>
 #include <esif/run/RunOrder.h>
-#include <esif/run/RunSetup.h>
 
 #include <cerrno>
 #include <cstring>
@@ -157,48 +156,6 @@ struct ChildSettings
 	/// line is shown with the folder it will have.
 	std::pair<std::string, std::string> staging_to_out;
 };
-
-/// What checking a config found out before any run.
-struct CheckedConfig
-{
-	std::string plugin;	 ///< [esif] plugin
-	Formulation formulation = Formulation::Other;
-};
-
-/// `message` naming `config` (errors from the plugin loader name no file).
-std::string namingConfig(const std::string& config, const std::string& message)
-{
-	return message.find(config) != std::string::npos ? message : config + ": " + message;
-}
-
-/// Every config checked in this process before the first run, as `esif run`
-/// would check it: [esif], the plugin found and configured from its
-/// section, and on local-map input a joining plugin. A mistake in the last
-/// config is then one error line before any run has cost time and before
-/// any output folder exists.
-std::vector<CheckedConfig> checkConfigs(
-	const std::vector<std::string>& configs, const std::optional<std::string>& plugin_dir, bool local_maps)
-{
-	PluginLoader loader(plugin_dir ? std::vector<std::string>{*plugin_dir} : std::vector<std::string>{});
-	loader.loadAll();
-	std::vector<CheckedConfig> checked;
-	for (const auto& c : configs)
-	{
-		try
-		{
-			const ConfigFile config = ConfigFile::load(c);
-			const HostParams host = loadHostParams(config);
-			const auto plugin = createConfiguredPlugin(config, host, loader);
-			if (local_maps) requireLocalMapJoiner(*plugin, config.origin(), host.plugin);
-			checked.push_back({host.plugin, plugin->formulation()});
-		}
-		catch (const ConfigError& e)
-		{
-			throw ConfigError(namingConfig(c, e.what()));
-		}
-	}
-	return checked;
-}
 
 /// Runs one config as `esif run` into `dir`; `associations_dir` is the run
 /// folder of the config its associations_from names, if any. Returns its
@@ -416,7 +373,7 @@ int compareCommand(int argc, char** argv)
 
 	const auto config_list = splitCommas(configs.getValue());
 	if (config_list.empty()) throw ConfigError("esif compare: --configs: no config file given");
-	for (const auto& c : config_list)
+	for (const auto& c : config_list)	 // before planRuns reads them; checkConfigs below does the rest
 		if (!fs::is_regular_file(c)) throw ConfigError(c + ": config file not found");
 	const auto dirs = runFolders(config_list, out.getValue());
 	const auto planned = planRuns(config_list);

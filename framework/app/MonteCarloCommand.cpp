@@ -6,6 +6,7 @@
 
 #include "CommandLine.h"
 #include "Commands.h"
+#include "ConfigCheck.h"
 #include "MonteCarloJobs.h"
 
 #include <esif/config/ConfigFile.h>
@@ -38,27 +39,6 @@ void checkScenario(const std::string& path)
 	catch (const ConfigError& e)
 	{
 		throw ConfigError(path + ": " + e.what());
-	}
-}
-
-/// Every config and its plugin checked before the first run, as `esif run` would.
-void checkConfigs(const std::vector<std::string>& configs)
-{
-	PluginLoader loader;
-	loader.loadAll();
-	for (const auto& c : configs)
-	{
-		if (!fs::is_regular_file(c)) throw ConfigError(c + ": config file not found");
-		try
-		{
-			const ConfigFile config = ConfigFile::load(c);
-			createConfiguredPlugin(config, loadHostParams(config), loader);
-		}
-		catch (const ConfigError& e)
-		{
-			const std::string message = e.what();
-			throw ConfigError(message.find(c) != std::string::npos ? message : c + ": " + message);
-		}
 	}
 }
 
