@@ -108,11 +108,8 @@ std::size_t referenceIndex(
 
 Stats readStats(const std::string& path)
 {
-	std::ifstream in(path);
-	if (!in) throw InputError(path + ": missing after the run");
-	std::stringstream ss;
-	ss << in.rdbuf();
-	return Stats::fromJson(ss.str(), path);
+	if (!fs::is_regular_file(path)) throw InputError(path + ": missing after the run");
+	return Stats::load(path);
 }
 
 /// Every config parsed once, before any run: labels and associations_from

@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace esif
@@ -93,6 +94,15 @@ std::string Stats::toJson() const
 	}
 	out << "}\n";
 	return out.str();
+}
+
+Stats Stats::load(const std::string& path)
+{
+	std::ifstream in(path);
+	if (!in) throw InputError(path + ": cannot open");
+	std::stringstream ss;
+	ss << in.rdbuf();
+	return fromJson(ss.str(), path);
 }
 
 Stats Stats::fromJson(const std::string& text, const std::string& origin)

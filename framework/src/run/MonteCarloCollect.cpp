@@ -10,8 +10,6 @@
 #include <esif/run/MonteCarloCollect.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -20,15 +18,6 @@ namespace esif
 namespace
 {
 constexpr int kFigureWidthPx = 1200;
-
-Stats readStatsFile(const std::string& path)
-{
-	std::ifstream in(path);
-	if (!in) throw InputError(path + ": cannot open");
-	std::stringstream ss;
-	ss << in.rdbuf();
-	return Stats::fromJson(ss.str(), path);
-}
 
 std::string failureLine(const std::string& id, const FailureRecord& r)
 {
@@ -44,7 +33,7 @@ CampaignRunErrors readCampaignRun(const std::string& run_folder, std::size_t see
 	run.poses = readPoseErrors((d / kPoseErrorsFile).string());
 	run.landmarks = readLandmarkErrors((d / kLandmarkErrorsFile).string());
 	const std::string stats_path = (d / "stats.json").string();
-	const Stats stats = readStatsFile(stats_path);
+	const Stats stats = Stats::load(stats_path);
 	const auto wall = stats.number("wall_s");
 	if (!wall) throw InputError(stats_path + ": no wall_s");
 	run.wall_s = *wall;

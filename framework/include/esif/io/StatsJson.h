@@ -31,6 +31,8 @@ class Stats
 	std::string toJson() const;
 	/// Parses what toJson() writes; throws InputError naming `origin` otherwise.
 	static Stats fromJson(const std::string& text, const std::string& origin);
+	/// Reads and parses a stats.json file; throws InputError naming `path`.
+	static Stats load(const std::string& path);
 
    private:
 	std::vector<std::pair<std::string, StatValue>> items_;
