@@ -4,6 +4,7 @@
 #include <esif/relative/RelativeAssociation.h>
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -24,36 +25,66 @@ RelativeAssociation::RelativeAssociation(const RelativeAssociationParams& params
 }
 
 std::vector<LandmarkId> RelativeAssociation::candidatesFor(const Scan& scan, const Pose2& robot,
-														   const FeatureMap& map) const
+														   const Eigen::Matrix3d& robot_cov, const FeatureMap& map,
+														   const std::unordered_set<LandmarkId>& excluded) const
 {
 	const Pose2 sensor = toPose2(scan.sensor_on_robot);
 	const double max_range = scan.max_range_m > 0 ? scan.max_range_m + params_.candidate_margin_m : INFINITY;
 	const double half_fov = scan.fov_rad > 0 ? 0.5 * scan.fov_rad + params_.candidate_margin_deg * kDeg : INFINITY;
+	const double k = params_.candidate_margin_sigmas;
 	std::vector<LandmarkId> out;
 	for (LandmarkId id : map.ids())
 	{
+		if (excluded.count(id)) continue;
 		const auto h = predictRangeBearing(robot, sensor, map.position(id));
 		// Within the range margin of the sensor the bearing says little (the
 		// robot may drive over a feature): such features are always candidates.
 		const bool near = h.z(0) <= params_.candidate_margin_m;
-		if (near || (h.z(0) <= max_range && std::abs(h.z(1)) <= half_fov)) out.push_back(id);
+		const Eigen::Vector2d sd = (h.d_robot * robot_cov * h.d_robot.transpose()).diagonal().cwiseSqrt();
+		if (near || (h.z(0) <= max_range + k * sd(0) && std::abs(h.z(1)) <= half_fov + k * sd(1))) out.push_back(id);
 	}
 	return out;
 }
 
 StepReport RelativeAssociation::associate(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov,
-										  FeatureMap& map)
+										  FeatureMap& map, const std::unordered_set<LandmarkId>& excluded,
+										  const std::vector<Anchor>& anchors)
 {
 	const auto& ms = scan.measurements;
 	const Pose2 sensor = toPose2(scan.sensor_on_robot);
-	const auto candidates = candidatesFor(scan, robot, map);
-	const Eigen::MatrixXd P_map = candidates.empty() ? Eigen::MatrixXd() : map.covariance(candidates);
+	const auto candidates = candidatesFor(scan, robot, robot_cov, map, excluded);
+	const auto k = static_cast<Eigen::Index>(candidates.size());
+
+	// The relative tests see the candidates and the anchors: measurements
+	// [scan, anchors], features [candidates, anchors].
+	Scan tested = scan;
+	std::vector<LandmarkId> features = candidates;
+	std::vector<Match> anchored;
+	for (const Anchor& a : anchors)
+	{
+		anchored.push_back({static_cast<int>(tested.measurements.size()), static_cast<int>(features.size()), true});
+		tested.measurements.push_back(a.measurement);
+		features.push_back(a.feature);
+	}
+	const Eigen::MatrixXd P = features.empty() ? Eigen::MatrixXd() : map.covariance(features);
+	const Tested t{tested, P, features, map};
+	// Tracked features that disagree with the map on their own geometry
+	// leave no reference to test hypotheses against: decide nothing. They
+	// were tracked, so only a disagreement beyond the new-feature
+	// confidence counts (at the relative test's 0.99 one scan in a hundred
+	// would be lost to chance).
+	if (anchored.size() >= 2 && relativeTest(anchored, t, params_.new_landmark_chi2_quantile) >= 1.0)
+	{
+		++anchor_conflicts_;
+		StepReport none;
+		none.associations.assign(ms.size(), {Association::Kind::Rejected, -1});
+		return none;
+	}
 
 	// Hypotheses: predictions with the robot-map cross-covariance taken as zero.
 	AssociationInput in;
 	in.observations.resize(static_cast<Eigen::Index>(ms.size()), 2);
 	for (std::size_t i = 0; i < ms.size(); ++i) in.observations.row(i) = measurementOf(ms[i]).transpose();
-	const auto k = static_cast<Eigen::Index>(candidates.size());
 	in.predictions.resize(k, 2);
 	Eigen::MatrixXd Hr(2 * k, 3), Hf = Eigen::MatrixXd::Zero(2 * k, 2 * k);
 	for (Eigen::Index j = 0; j < k; ++j)
@@ -63,41 +94,115 @@ StepReport RelativeAssociation::associate(const Scan& scan, const Pose2& robot, 
 		Hr.middleRows<2>(2 * j) = h.d_robot;
 		Hf.block<2, 2>(2 * j, 2 * j) = h.d_landmark;
 	}
-	in.covariance = Hr * robot_cov * Hr.transpose() + Hf * P_map * Hf.transpose();
+	in.covariance = Hr * robot_cov * Hr.transpose() + Hf * P.topLeftCorner(2 * k, 2 * k) * Hf.transpose();
 	for (Eigen::Index j = 0; j < k && !ms.empty(); ++j) in.covariance.block<2, 2>(2 * j, 2 * j) += ms.front().cov;
 
-	const auto method = params_.association == AssociationMode::NearestNeighbor ? AssociationMethod::NearestNeighbor
-																			: AssociationMethod::Jcbb;
+	// With anchors the hypotheses come from the relative test itself: the
+	// absolute gate, robot and map independent, passes a whole grid row
+	// shifted by one spacing after dead reckoning, and JCBB then prefers it.
+	const bool anchored_search = !anchored.empty();
+	const auto method = params_.association == AssociationMode::NearestNeighbor || anchored_search
+		? AssociationMethod::NearestNeighbor
+		: AssociationMethod::Jcbb;
 	const auto result = esif::associate(in, method, params_.gate_chi2_quantile, params_.search);
 	jcbb_nodes_ += result.jcbb_nodes;
 	jcbb_fallbacks_ += result.fell_back;
+	const std::vector<int> candidate_of =
+		anchored_search ? bestFitsToAnchors(in, anchored, t) : result.candidate_of;
 
-	std::vector<Match> matches;
+	std::vector<Match> matches = anchored;
 	std::vector<bool> taken(candidates.size(), false);
 	for (std::size_t i = 0; i < ms.size(); ++i)
 	{
-		const int c = result.candidate_of[i];
+		const int c = candidate_of[i];
 		if (c >= 0 && !taken[c])
 		{
 			taken[c] = true;
-			matches.push_back({static_cast<int>(i), c});
+			matches.push_back({static_cast<int>(i), c, false});
 		}
 	}
-	verify(matches, scan, P_map, candidates, map);
+	verify(matches, t);
 
 	StepReport report;
 	report.associations.assign(ms.size(), {Association::Kind::Rejected, -1});
-	for (const auto& m : matches) report.associations[m.measurement] = {Association::Kind::Matched, candidates[m.candidate]};
+	for (const auto& m : matches)
+		if (!m.anchor) report.associations[m.measurement] = {Association::Kind::Matched, candidates[m.candidate]};
 	for (std::size_t i = 0; i < ms.size(); ++i)
-		if (result.candidate_of[i] < 0 && result.min_distance2[i] > new_gate_)
+	{
+		if (report.associations[i].kind == Association::Kind::Matched) continue;
+		// Unmatched, or matched and dropped by the relative test.
+		const bool far = candidate_of[i] < 0 && result.min_distance2[i] > new_gate_;
+		if (far || noCandidateFitsAnchors(static_cast<int>(i), in, anchored, matches, t))
 			report.associations[i] = {Association::Kind::New, -1};
+	}
 	return report;
 }
 
-double RelativeAssociation::relativeTest(const std::vector<Match>& matches, const Scan& scan,
-										 const Eigen::MatrixXd& candidate_cov,
-										 const std::vector<LandmarkId>& candidates, const FeatureMap& map) const
+double RelativeAssociation::individualDistance2(const AssociationInput& in, Eigen::Index measurement,
+												Eigen::Index candidate)
 {
+	Eigen::Vector2d nu = (in.observations.row(measurement) - in.predictions.row(candidate)).transpose();
+	nu(1) = wrapAngle(nu(1));
+	const Eigen::Matrix2d S = in.covariance.block<2, 2>(2 * candidate, 2 * candidate);
+	return nu.dot(S.ldlt().solve(nu));
+}
+
+std::vector<int> RelativeAssociation::bestFitsToAnchors(const AssociationInput& in, const std::vector<Match>& anchored,
+														const Tested& t) const
+{
+	// Per measurement, the candidate inside the individual gate whose
+	// relative test with the anchors, eq. (3.45), is smallest and passes; a
+	// candidate claimed twice goes to the better fit. verify() then tests
+	// the set jointly.
+	const double gate = chi2Quantile(params_.gate_chi2_quantile, 2);
+	const auto n = in.observations.rows(), k = in.predictions.rows();
+	std::vector<int> best(static_cast<std::size_t>(n), -1);
+	std::vector<double> fit(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
+	for (Eigen::Index i = 0; i < n; ++i)
+		for (Eigen::Index j = 0; j < k; ++j)
+		{
+			const double d2 = individualDistance2(in, i, j);
+			if (d2 > gate) continue;
+			std::vector<Match> hypothesis = anchored;
+			hypothesis.push_back({static_cast<int>(i), static_cast<int>(j), false});
+			const double r = relativeTest(hypothesis, t);
+			// Ranked by both statistics: with one anchor the relative test
+			// holds a distance only, which a grid repeats.
+			if (r < 1.0 && d2 / gate + r < fit[i]) fit[i] = d2 / gate + r, best[i] = static_cast<int>(j);
+		}
+	for (Eigen::Index i = 0; i < n; ++i)
+		for (Eigen::Index o = 0; o < n; ++o)
+			if (o != i && best[i] >= 0 && best[o] == best[i] && fit[o] < fit[i]) best[i] = -1;
+	return best;
+}
+
+bool RelativeAssociation::noCandidateFitsAnchors(int measurement, const AssociationInput& in,
+												 const std::vector<Match>& anchored, const std::vector<Match>& accepted,
+												 const Tested& t) const
+{
+	// Near a candidate in absolute terms, which after dead reckoning says
+	// little: new when no such candidate fits the features tracked in this
+	// scan (the anchors) in relative distances and angles, eq. (3.45).
+	if (anchored.empty()) return false;
+	for (Eigen::Index j = 0; j < in.predictions.rows(); ++j)
+	{
+		if (individualDistance2(in, measurement, j) > new_gate_) continue;
+		const bool used = std::any_of(accepted.begin(), accepted.end(),
+									  [&](const Match& m) { return !m.anchor && m.candidate == j; });
+		if (used) return false;	 // another measurement took it: ambiguous
+		std::vector<Match> hypothesis = anchored;
+		hypothesis.push_back({measurement, static_cast<int>(j), false});
+		if (relativeTest(hypothesis, t) < 1.0) return false;
+	}
+	return true;
+}
+
+double RelativeAssociation::relativeTest(const std::vector<Match>& matches, const Tested& t, double quantile) const
+{
+	const Scan& scan = t.scan;
+	const Eigen::MatrixXd& candidate_cov = t.cov;
+	const std::vector<LandmarkId>& candidates = t.features;
+	const FeatureMap& map = t.map;
 	const int m = static_cast<int>(matches.size());
 	const Pose2 sensor = toPose2(scan.sensor_on_robot);
 	// Measured points (eq. 3.41-3.42) and the pair to measure angles from.
@@ -141,28 +246,33 @@ double RelativeAssociation::relativeTest(const std::vector<Match>& matches, cons
 		G.jacobian * map_cov * G.jacobian.transpose() + H.jacobian * pts_cov * H.jacobian.transpose();
 	const Eigen::LDLT<Eigen::MatrixXd> ldlt(S);
 	const double d2 = nu.dot(ldlt.solve(nu));
-	return d2 / chi2Quantile(params_.relative_gate_chi2_quantile, static_cast<int>(nu.size()));	// eq. (3.45)
+	const double q = quantile > 0 ? quantile : params_.relative_gate_chi2_quantile;
+	return d2 / chi2Quantile(q, static_cast<int>(nu.size()));	// eq. (3.45)
 }
 
-void RelativeAssociation::verify(std::vector<Match>& matches, const Scan& scan, const Eigen::MatrixXd& candidate_cov,
-								 const std::vector<LandmarkId>& candidates, const FeatureMap& map)
+void RelativeAssociation::verify(std::vector<Match>& matches, const Tested& t)
 {
-	while (matches.size() >= 2 && relativeTest(matches, scan, candidate_cov, candidates, map) >= 1.0)
+	const auto anchors = static_cast<std::size_t>(
+		std::count_if(matches.begin(), matches.end(), [](const Match& m) { return m.anchor; }));
+	while (matches.size() > anchors && matches.size() >= 2 && relativeTest(matches, t) >= 1.0)
 	{
-		if (matches.size() == 2)
+		if (matches.size() == 2 && anchors == 0)
 		{
 			dropped_ += 2;	// two features disagree on their distance: trust neither
 			matches.clear();
 			return;
 		}
+		// Drop the map match whose removal best restores consistency; the
+		// anchors, tracked with their correlation to the robot, stay.
 		std::size_t worst = 0;
 		double best = std::numeric_limits<double>::infinity();
 		for (std::size_t r = 0; r < matches.size(); ++r)
 		{
+			if (matches[r].anchor) continue;
 			std::vector<Match> rest = matches;
 			rest.erase(rest.begin() + static_cast<long>(r));
-			const double t = relativeTest(rest, scan, candidate_cov, candidates, map);
-			if (t < best) best = t, worst = r;
+			const double test = rest.size() >= 2 ? relativeTest(rest, t) : 0.0;
+			if (test < best) best = test, worst = r;
 		}
 		matches.erase(matches.begin() + static_cast<long>(worst));
 		++dropped_;

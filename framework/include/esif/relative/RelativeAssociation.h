@@ -9,10 +9,20 @@
 ///    distances and angles among the features, eq. (3.40)-(3.45), which a
 ///    pose error cannot pass or fail. When the test fails, the match whose
 ///    removal best restores consistency is dropped, and the test repeated.
+/// With anchors (measurements already tied to mapped features, e.g. by
+/// D-SLAM's tracking of the features its local SLAM holds) the hypotheses
+/// of step 1 are chosen by the relative test with the anchors instead of
+/// JCBB, and a measurement that fits no candidate relative to them is new:
+/// after a long stretch of dead reckoning the absolute gate passes every
+/// feature within metres, and a grid row shifted by one spacing keeps all
+/// relative distances and angles among the measured features themselves.
+/// Candidates are the features predicted within the sensor's range and field
+/// of view plus margins that grow with the robot's uncertainty.
 /// Only the candidate features' covariance blocks are recovered from the map.
 /// Serves D-SLAM (Ch. 3) and D-SLAM map joining (Ch. 4), whose map is the
 /// same feature-only EIF.
 
+#include <esif/association/DataAssociation.h>
 #include <esif/core/Estimate.h>
 #include <esif/core/StepInput.h>
 #include <esif/relative/FeatureMap.h>
@@ -20,6 +30,7 @@
 #include <esif/relative/RelativeAssociationParams.h>
 
 #include <cstddef>
+#include <unordered_set>
 
 namespace esif::relative
 {
@@ -31,8 +42,22 @@ class RelativeAssociation
 	RelativeAssociation(const RelativeAssociationParams& params, const ReferenceRules& reference_rules);
 
 	/// One decision per measurement of `scan`: Matched (with the map ID),
-	/// New (id -1: the caller names it) or Rejected.
-	StepReport associate(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov, FeatureMap& map);
+	/// New (id -1: the caller names it) or Rejected. Features in `excluded`
+	/// are no candidates: D-SLAM tests the features its local SLAM holds
+	/// first, with their correlation to the robot, and a measurement that
+	/// test did not match is none of them.
+	///
+	/// `anchors`: measurements of this scan already associated with mapped
+	/// features (D-SLAM's tracking). They join every relative test, so a
+	/// hypothesis must also fit them, and a measurement near a candidate in
+	/// absolute terms is still new when no such candidate fits them.
+	struct Anchor
+	{
+		RangeBearing measurement;
+		LandmarkId feature = -1;
+	};
+	StepReport associate(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov, FeatureMap& map,
+						 const std::unordered_set<LandmarkId>& excluded = {}, const std::vector<Anchor>& anchors = {});
 
 	std::size_t jcbbNodes() const { return jcbb_nodes_; }
 	/// Scans too ambiguous for JCBB (SearchBounds): their hypotheses came from
@@ -40,20 +65,42 @@ class RelativeAssociation
 	std::size_t jcbbFallbacks() const { return jcbb_fallbacks_; }
 	/// Matches dropped because the relative test, eq. (3.45), failed.
 	std::size_t droppedByRelativeTest() const { return dropped_; }
+	/// Scans whose anchors failed the relative test among themselves: their
+	/// other measurements were left unassociated.
+	std::size_t anchorConflicts() const { return anchor_conflicts_; }
 
    private:
 	struct Match
 	{
 		int measurement = 0;
 		int candidate = 0;
+		bool anchor = false;  ///< tracked before: never dropped
 	};
-	std::vector<LandmarkId> candidatesFor(const Scan& scan, const Pose2& robot, const FeatureMap& map) const;
+	/// What the relative tests read: measurements, their features and the
+	/// features' joint covariance (Match indexes the first two).
+	struct Tested
+	{
+		const Scan& scan;
+		const Eigen::MatrixXd& cov;
+		const std::vector<LandmarkId>& features;
+		const FeatureMap& map;
+	};
+	std::vector<LandmarkId> candidatesFor(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov,
+										  const FeatureMap& map, const std::unordered_set<LandmarkId>& excluded) const;
 	/// Eq. (3.45) statistic D^2 / chi2(d, alpha) of a matched set (< 1 passes).
-	double relativeTest(const std::vector<Match>& matches, const Scan& scan, const Eigen::MatrixXd& candidate_cov,
-						const std::vector<LandmarkId>& candidates, const FeatureMap& map) const;
+	/// `quantile`: the test's confidence, relative_gate_chi2_quantile if 0.
+	double relativeTest(const std::vector<Match>& matches, const Tested& t, double quantile = 0) const;
 	/// Drops matches until the relative test passes.
-	void verify(std::vector<Match>& matches, const Scan& scan, const Eigen::MatrixXd& candidate_cov,
-				const std::vector<LandmarkId>& candidates, const FeatureMap& map);
+	void verify(std::vector<Match>& matches, const Tested& t);
+	static double individualDistance2(const AssociationInput& in, Eigen::Index measurement, Eigen::Index candidate);
+	/// Hypotheses when anchors exist: per measurement the candidate that best
+	/// passes the relative test with them (-1: none).
+	std::vector<int> bestFitsToAnchors(const AssociationInput& in, const std::vector<Match>& anchored,
+									   const Tested& t) const;
+	/// An unmatched measurement within the new-feature gate of candidates:
+	/// true when none of them passes the relative test with the anchors.
+	bool noCandidateFitsAnchors(int measurement, const AssociationInput& in, const std::vector<Match>& anchored,
+								const std::vector<Match>& accepted, const Tested& t) const;
 
 	RelativeAssociationParams params_;
 	ReferenceRules reference_rules_;
@@ -61,6 +108,7 @@ class RelativeAssociation
 	std::size_t jcbb_nodes_ = 0;
 	std::size_t jcbb_fallbacks_ = 0;
 	std::size_t dropped_ = 0;
+	std::size_t anchor_conflicts_ = 0;
 };
 
 }  // namespace esif::relative

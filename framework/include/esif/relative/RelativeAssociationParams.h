@@ -38,6 +38,11 @@ struct RelativeAssociationParams
 	double new_landmark_chi2_quantile = 0.9999;
 	double candidate_margin_m = 2.0;	 ///< candidates: predicted range <= max range + this [m]
 	double candidate_margin_deg = 10.0;	 ///< ... and bearing within half the field of view + this [deg]
+	/// ... both widened by this many standard deviations of the predicted
+	/// range and bearing from the robot's uncertainty. After a long stretch
+	/// of dead reckoning a fixed margin left a mapped feature in view out of
+	/// the candidates, and its next sighting was mapped a second time.
+	double candidate_margin_sigmas = 3.0;
 	/// When the JCBB hypotheses give way to nearest neighbour with the joint
 	/// test (keys jcbb_max_candidates, jcbb_max_hypotheses).
 	SearchBounds search;
