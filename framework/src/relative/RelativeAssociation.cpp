@@ -46,12 +46,37 @@ std::vector<LandmarkId> RelativeAssociation::candidatesFor(const Scan& scan, con
 	return out;
 }
 
+AssociationInput RelativeAssociation::absoluteInput(const Scan& scan, const Pose2& robot,
+													 const Eigen::Matrix3d& robot_cov, const FeatureMap& map,
+													 const std::vector<LandmarkId>& candidates,
+													 const Eigen::MatrixXd& candidate_cov)
+{
+	// Predictions with the robot-map cross-covariance taken as zero (Sec. 3.4.2).
+	const auto& ms = scan.measurements;
+	const Pose2 sensor = toPose2(scan.sensor_on_robot);
+	const auto k = static_cast<Eigen::Index>(candidates.size());
+	AssociationInput in;
+	in.observations.resize(static_cast<Eigen::Index>(ms.size()), 2);
+	for (std::size_t i = 0; i < ms.size(); ++i) in.observations.row(i) = measurementOf(ms[i]).transpose();
+	in.predictions.resize(k, 2);
+	Eigen::MatrixXd Hr(2 * k, 3), Hf = Eigen::MatrixXd::Zero(2 * k, 2 * k);
+	for (Eigen::Index j = 0; j < k; ++j)
+	{
+		const auto h = predictRangeBearing(robot, sensor, map.position(candidates[j]));
+		in.predictions.row(j) = h.z.transpose();
+		Hr.middleRows<2>(2 * j) = h.d_robot;
+		Hf.block<2, 2>(2 * j, 2 * j) = h.d_landmark;
+	}
+	in.covariance = Hr * robot_cov * Hr.transpose() + Hf * candidate_cov * Hf.transpose();
+	for (Eigen::Index j = 0; j < k && !ms.empty(); ++j) in.covariance.block<2, 2>(2 * j, 2 * j) += ms.front().cov;
+	return in;
+}
+
 StepReport RelativeAssociation::associate(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov,
 										  FeatureMap& map, const std::unordered_set<LandmarkId>& excluded,
 										  const std::vector<Anchor>& anchors)
 {
 	const auto& ms = scan.measurements;
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
 	const auto candidates = candidatesFor(scan, robot, robot_cov, map, excluded);
 	const auto k = static_cast<Eigen::Index>(candidates.size());
 
@@ -81,21 +106,7 @@ StepReport RelativeAssociation::associate(const Scan& scan, const Pose2& robot, 
 		return none;
 	}
 
-	// Hypotheses: predictions with the robot-map cross-covariance taken as zero.
-	AssociationInput in;
-	in.observations.resize(static_cast<Eigen::Index>(ms.size()), 2);
-	for (std::size_t i = 0; i < ms.size(); ++i) in.observations.row(i) = measurementOf(ms[i]).transpose();
-	in.predictions.resize(k, 2);
-	Eigen::MatrixXd Hr(2 * k, 3), Hf = Eigen::MatrixXd::Zero(2 * k, 2 * k);
-	for (Eigen::Index j = 0; j < k; ++j)
-	{
-		const auto h = predictRangeBearing(robot, sensor, map.position(candidates[j]));
-		in.predictions.row(j) = h.z.transpose();
-		Hr.middleRows<2>(2 * j) = h.d_robot;
-		Hf.block<2, 2>(2 * j, 2 * j) = h.d_landmark;
-	}
-	in.covariance = Hr * robot_cov * Hr.transpose() + Hf * P.topLeftCorner(2 * k, 2 * k) * Hf.transpose();
-	for (Eigen::Index j = 0; j < k && !ms.empty(); ++j) in.covariance.block<2, 2>(2 * j, 2 * j) += ms.front().cov;
+	const AssociationInput in = absoluteInput(scan, robot, robot_cov, map, candidates, P.topLeftCorner(2 * k, 2 * k));
 
 	// With anchors the hypotheses come from the relative test itself: the
 	// absolute gate, robot and map independent, passes a whole grid row

@@ -92,6 +92,9 @@ class RelativeAssociation
 	double relativeTest(const std::vector<Match>& matches, const Tested& t, double quantile = 0) const;
 	/// Drops matches until the relative test passes.
 	void verify(std::vector<Match>& matches, const Tested& t);
+	static AssociationInput absoluteInput(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov,
+										  const FeatureMap& map, const std::vector<LandmarkId>& candidates,
+										  const Eigen::MatrixXd& candidate_cov);
 	static double individualDistance2(const AssociationInput& in, Eigen::Index measurement, Eigen::Index candidate);
 	/// Hypotheses when anchors exist: per measurement the candidate that best
 	/// passes the relative test with them (-1: none).
