@@ -14,16 +14,13 @@ namespace esif
 namespace
 {
 constexpr double kDeg = M_PI / 180.0;
-/// The iterated update stops when an iteration moves no state entry by more
-/// than this [m, rad]: a micrometre, 1e-5 of the book's range sigma (0.1 m).
-constexpr double kIterationTolerance = 1e-6;
 }
 
 LandmarkEkf::LandmarkEkf(const EkfAssociationParams& params, LandmarkId first_own_id)
 	: params_(params),
 	  gate_distance2_new_(chi2Quantile(params.new_landmark_chi2_quantile, 2)),
 	  id_gate_distance2_(params.idGateDistance2()),
-	  iterated_{params.update_iterations, params.relinearise_above_d2, kIterationTolerance},
+	  iterated_{params.update_iterations, params.relinearise_above_d2},
 	  next_own_id_(first_own_id)
 {
 }

@@ -44,6 +44,7 @@ struct IteratedUpdate
 {
 	int max_iterations = 1;	 ///< 1 = the plain EKF update
 	double min_linearisation_error_d2 = 1.0;
+	/// [m, rad]: a micrometre, 1e-5 of the book's range sigma (0.1 m).
 	double tolerance = 1e-6;
 };
 
