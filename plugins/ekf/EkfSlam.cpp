@@ -19,6 +19,8 @@ CostFigures EkfSlam::costFigures() const
 	c.counters.emplace_back("jcbb_fallbacks", static_cast<double>(filter_.jcbbFallbacks()));
 	c.counters.emplace_back("id_gate_rejected", static_cast<double>(filter_.idGateRejections()));
 	c.counters.emplace_back("id_gate_dropped", static_cast<double>(filter_.idGateDrops()));
+	c.counters.emplace_back("iterated_updates", static_cast<double>(filter_.iteratedUpdates()));
+	c.counters.emplace_back("relinearisations", static_cast<double>(filter_.relinearisations()));
 	return c;
 }
 

@@ -30,6 +30,14 @@ void EkfAssociationParams::declare(ParamBinder& b)
 		   "a measurement associated by its landmark ID whose innovation fails this chi-square quantile is "
 		   "rejected (misread ID); 1 = no gate",
 		   Bounds{0, 1, true, false});
+	b.integer("update_iterations", update_iterations,
+			  "at most this many linearisations of the measurement model per update (iterated EKF, "
+			  "Gauss-Newton); 1 = plain EKF",
+			  Bounds::atLeast(1));
+	b.real("relinearise_above_d2", relinearise_above_d2,
+		   "an update is iterated when its linear model misses the measurement model at the corrected state by "
+		   "more than this squared Mahalanobis distance (sensor noise)",
+		   Bounds::nonNegative());
 	search.declare(b);
 }
 

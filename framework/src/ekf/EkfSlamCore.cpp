@@ -3,6 +3,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -82,53 +83,116 @@ Eigen::MatrixXd EkfSlamCore::predictionCovariance(
 	return S;
 }
 
-void EkfSlamCore::update(const std::vector<Match>& matches, const Pose2& sensor_on_robot)
+EkfSlamCore::Linearisation EkfSlamCore::linearise(
+	const std::vector<Match>& matches, const Pose2& sensor_on_robot, const Eigen::VectorXd& at) const
 {
-	if (matches.empty()) return;
 	const std::size_t m = matches.size(), n = n_;
 	const auto P = P_.topLeftCorner(n, n);
+	Linearisation lin{Eigen::MatrixXd(n, 2 * m), Eigen::MatrixXd(2 * m, 2 * m), Eigen::VectorXd(2 * m), {}, {}};
 
 	// P H^T built from the 5 columns each measurement touches: O(n m).
-	Eigen::MatrixXd PHt(n, 2 * m);
 	std::vector<RangeBearingPrediction> h(m);
-	Eigen::VectorXd innovation(2 * m);
 	for (std::size_t j = 0; j < m; ++j)
 	{
 		const std::size_t il = 3 + 2 * matches[j].landmark;
-		h[j] = predictMeasurement(matches[j].landmark, sensor_on_robot);
-		PHt.middleCols<2>(2 * j).noalias() =
+		h[j] = predictRangeBearing(at.head<3>(), sensor_on_robot, at.segment<2>(il));
+		lin.PHt.middleCols<2>(2 * j).noalias() =
 			P.leftCols<3>() * h[j].d_robot.transpose() + P.middleCols<2>(il) * h[j].d_landmark.transpose();
-		innovation.segment<2>(2 * j) = matches[j].z - h[j].z;
-		innovation(2 * j + 1) = wrapAngle(innovation(2 * j + 1));
+		lin.innovation.segment<2>(2 * j) = matches[j].z - h[j].z;
+		lin.innovation(2 * j + 1) = wrapAngle(lin.innovation(2 * j + 1));
+		// Linearised at `at` rather than at the prior mean x0 (iterated EKF),
+		// the innovation is z - h(at) - H (x0 - at); at x0 the term is zero.
+		Eigen::Vector3d dr = x_.head<3>() - at.head<3>();
+		dr(2) = wrapAngle(dr(2));
+		lin.innovation.segment<2>(2 * j) -=
+			h[j].d_robot * dr + h[j].d_landmark * (x_.segment<2>(il) - at.segment<2>(il));
 	}
 
 	// Eq. (1.10): S = H P H^T + R, read off the rows of P H^T.
-	Eigen::MatrixXd S(2 * m, 2 * m);
 	for (std::size_t j = 0; j < m; ++j)
 	{
 		const std::size_t il = 3 + 2 * matches[j].landmark;
-		S.middleRows<2>(2 * j).noalias() =
-			h[j].d_robot * PHt.topRows<3>() + h[j].d_landmark * PHt.middleRows<2>(il);
+		lin.S.middleRows<2>(2 * j).noalias() =
+			h[j].d_robot * lin.PHt.topRows<3>() + h[j].d_landmark * lin.PHt.middleRows<2>(il);
 	}
-	S = 0.5 * (S + S.transpose()).eval();
-	for (std::size_t j = 0; j < m; ++j) S.block<2, 2>(2 * j, 2 * j) += matches[j].R;
+	lin.S = 0.5 * (lin.S + lin.S.transpose()).eval();
+	for (std::size_t j = 0; j < m; ++j) lin.S.block<2, 2>(2 * j, 2 * j) += matches[j].R;
 
-	const Eigen::LLT<Eigen::MatrixXd> llt(S);
-	if (llt.info() != Eigen::Success)
+	lin.llt.compute(lin.S);
+	if (lin.llt.info() != Eigen::Success)
 		throw NumericalError("EKF update: innovation covariance is not positive definite");
+	lin.Wt = lin.llt.matrixL().solve(lin.PHt.transpose());
+	return lin;
+}
 
-	// Eq. (1.9) with K = P H^T S^-1 = W L^-1, W = P H^T L^-T (S = L L^T):
-	// x += W L^-1 nu and P -= W W^T, the latter as one symmetric rank update.
-	const Eigen::MatrixXd Wt = llt.matrixL().solve(PHt.transpose());
-	const Eigen::VectorXd v = llt.matrixL().solve(innovation);
-	x_.head(n).noalias() += Wt.transpose() * v;
-	x_(2) = wrapAngle(x_(2));
+UpdateOutcome EkfSlamCore::update(
+	const std::vector<Match>& matches, const Pose2& sensor_on_robot, const IteratedUpdate& iterated)
+{
+	UpdateOutcome out;
+	if (matches.empty()) return out;
+	const std::size_t n = n_;
+
+	// Eq. (1.9)-(1.10) linearised at the prior mean x0, then, if the model
+	// is not linear at the scale of that correction, Gauss-Newton on the
+	// scan's posterior (iterated EKF): each iteration relinearises h at the
+	// last estimate x_i and sets x_{i+1} = x0 + K_i (z - h(x_i) - H_i (x0 - x_i)),
+	// until one moves no state entry by more than the tolerance. Each costs
+	// O(n m^2); P is updated once, with H at the last linearisation point.
+	const Eigen::VectorXd x0 = x_.head(n);
+	Linearisation lin = linearise(matches, sensor_on_robot, x0);
+	Eigen::VectorXd x_next = stateAfter(lin);
+	out.linearisations = 1;
+	if (iterated.max_iterations > 1)
+		out.linearisation_error_d2 = linearisationError(matches, sensor_on_robot, x0, x_next);
+	if (out.linearisation_error_d2 > iterated.min_linearisation_error_d2)
+		while (out.linearisations < iterated.max_iterations)
+		{
+			const Eigen::VectorXd x_i = x_next;
+			lin = linearise(matches, sensor_on_robot, x_i);
+			x_next = stateAfter(lin);
+			++out.linearisations;
+			Eigen::VectorXd step = x_next - x_i;
+			step(2) = wrapAngle(step(2));
+			if (step.lpNorm<Eigen::Infinity>() <= iterated.tolerance) break;
+		}
+
+	// P -= W W^T (K S K^T of eq. 1.9) as one symmetric rank update.
+	x_.head(n) = x_next;
 	auto Pn = P_.topLeftCorner(n, n);
-	Pn.selfadjointView<Eigen::Lower>().rankUpdate(Wt.transpose(), -1.0);
+	Pn.selfadjointView<Eigen::Lower>().rankUpdate(lin.Wt.transpose(), -1.0);
 	symmetrise();
 
 	if (!x_.head(n).allFinite() || !(P_(0, 0) >= 0 && P_(1, 1) >= 0 && P_(2, 2) >= 0))
 		throw NumericalError("EKF update produced a non-finite state or negative variance");
+	return out;
+}
+
+double EkfSlamCore::linearisationError(
+	const std::vector<Match>& matches, const Pose2& sensor_on_robot, const Eigen::VectorXd& x0,
+	const Eigen::VectorXd& x1) const
+{
+	Eigen::Vector3d dr = x1.head<3>() - x0.head<3>();
+	dr(2) = wrapAngle(dr(2));
+	double worst = 0;
+	for (const auto& match : matches)
+	{
+		const std::size_t il = 3 + 2 * match.landmark;
+		const auto h0 = predictRangeBearing(x0.head<3>(), sensor_on_robot, x0.segment<2>(il));
+		const auto h1 = predictRangeBearing(x1.head<3>(), sensor_on_robot, x1.segment<2>(il));
+		Eigen::Vector2d e = h1.z - h0.z - h0.d_robot * dr - h0.d_landmark * (x1.segment<2>(il) - x0.segment<2>(il));
+		e(1) = wrapAngle(e(1));
+		worst = std::max(worst, e.dot(match.R.ldlt().solve(e)));
+	}
+	return worst;
+}
+
+Eigen::VectorXd EkfSlamCore::stateAfter(const Linearisation& lin) const
+{
+	// Eq. (1.9) with K = P H^T S^-1 = W L^-1, W = P H^T L^-T (S = L L^T).
+	Eigen::VectorXd x = x_.head(n_);
+	x.noalias() += lin.Wt.transpose() * lin.llt.matrixL().solve(lin.innovation);
+	x(2) = wrapAngle(x(2));
+	return x;
 }
 
 std::size_t EkfSlamCore::addLandmark(const Eigen::Vector2d& z, const Eigen::Matrix2d& R, const Pose2& sensor_on_robot)

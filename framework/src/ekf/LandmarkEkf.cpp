@@ -20,6 +20,7 @@ LandmarkEkf::LandmarkEkf(const EkfAssociationParams& params, LandmarkId first_ow
 	: params_(params),
 	  gate_distance2_new_(chi2Quantile(params.new_landmark_chi2_quantile, 2)),
 	  id_gate_distance2_(params.idGateDistance2()),
+	  iterated_{params.update_iterations, params.relinearise_above_d2},
 	  next_own_id_(first_own_id)
 {
 }
@@ -37,7 +38,12 @@ StepReport LandmarkEkf::processScan(const StepInput& step)
 	std::vector<EkfSlamCore::Match> matches;
 	unconfirmed_failing_.clear();
 	StepReport report = associateScan(step, matches);
-	core_.update(matches, toPose2(step.scan->sensor_on_robot));
+	const auto outcome = core_.update(matches, toPose2(step.scan->sensor_on_robot), iterated_);
+	if (outcome.linearisations > 1)
+	{
+		++iterated_updates_;
+		relinearisations_ += static_cast<std::size_t>(outcome.linearisations - 1);
+	}
 	for (const auto& m : matches) confirmed_.insert(ids_[m.landmark]);
 	dropLandmarks(unconfirmed_failing_);
 	addNewLandmarks(*step.scan, report);

@@ -7,16 +7,23 @@
 /// exactly alike.
 ///
 /// A step is: prediction with the odometry (eq. 1.8), association of the
-/// scan, one joint update with every match (eq. 1.9-1.10), then the new
-/// landmarks initialised from their measurements.
+/// scan, one joint update with every match (eq. 1.9-1.10, iterated when
+/// the linear model does not fit the correction: IteratedUpdate in
+/// EkfSlamCore.h), then the new landmarks initialised from their
+/// measurements.
 ///
 /// Landmark IDs are not trusted blindly: each ID-matched measurement is
 /// tested on its own innovation against the prior (the chi-square gate
 /// id_gate_chi2_quantile, 2 dof) before the joint update. Individually,
 /// because a joint test over the scan only says that something is wrong,
 /// and a wrong ID fused in the joint update moves the robot and with it
-/// every other landmark of the scan; against the prior, because the test
-/// of a measurement must not depend on whether the others were fused. A
+/// every other landmark of the scan; against the prior (its full
+/// covariance, robot-landmark correlation included), because the test of a
+/// measurement must not depend on whether the others were fused. The gate
+/// is only as good as the filter's consistency: on a loop closed after
+/// long dead reckoning, a plain EKF update linearised metres from the truth
+/// leaves P far too small, and every later sighting fails the gate; the
+/// iterated update is what keeps such valid measurements in. A
 /// measurement failing the gate is Rejected. When its landmark has never
 /// passed the gate since it was initialised, the one earlier sighting is
 /// no more credible than this one (a misread ID of a landmark not yet
@@ -70,6 +77,10 @@ class LandmarkEkf
 	/// before any had confirmed them (the measurement is counted here, not
 	/// in idGateRejections()).
 	std::size_t idGateDrops() const { return id_gate_drops_; }
+	/// Updates that were iterated (EkfAssociationParams::relinearise_above_d2).
+	std::size_t iteratedUpdates() const { return iterated_updates_; }
+	/// Their linearisations beyond the first.
+	std::size_t relinearisations() const { return relinearisations_; }
 
 	PoseEstimate robotPose() const;
 	/// Robot pose and every landmark with its marginal covariance.
@@ -93,6 +104,7 @@ class LandmarkEkf
 	EkfAssociationParams params_;
 	double gate_distance2_new_ = 0;	 // chi-square value of new_landmark_chi2_quantile
 	double id_gate_distance2_ = 0;	// chi-square value of id_gate_chi2_quantile
+	IteratedUpdate iterated_;
 	EkfSlamCore core_;
 	std::vector<LandmarkId> ids_;  // landmark index -> ID
 	std::unordered_map<LandmarkId, std::size_t> index_of_;
@@ -105,6 +117,8 @@ class LandmarkEkf
 	std::size_t jcbb_fallbacks_ = 0;
 	std::size_t id_gate_rejections_ = 0;
 	std::size_t id_gate_drops_ = 0;
+	std::size_t iterated_updates_ = 0;
+	std::size_t relinearisations_ = 0;
 };
 
 }  // namespace esif
