@@ -38,6 +38,22 @@ double bearingOffsetAwayFromCut(const AssociationInput& in)
 	return M_PI - cut;
 }
 
+struct ShiftedBearings
+{
+	Eigen::MatrixXd z, y;  ///< observations, predictions
+};
+
+/// The input's observations and predictions with every bearing rotated by
+/// bearingOffsetAwayFromCut.
+ShiftedBearings shiftedAwayFromCut(const AssociationInput& in)
+{
+	const double offset = bearingOffsetAwayFromCut(in);
+	ShiftedBearings b{in.observations, in.predictions};
+	for (Eigen::Index i = 0; i < b.z.rows(); ++i) b.z(i, 1) = wrapAngle(b.z(i, 1) + offset);
+	for (Eigen::Index j = 0; j < b.y.rows(); ++j) b.y(j, 1) = wrapAngle(b.y(j, 1) + offset);
+	return b;
+}
+
 mrpt::math::CMatrixDouble toMrpt(const Eigen::MatrixXd& m)
 {
 	mrpt::math::CMatrixDouble out(m.rows(), m.cols());
@@ -117,6 +133,14 @@ std::vector<int> compatibleCounts(const Eigen::MatrixXd& d2, double gate_quantil
 }
 }  // namespace
 
+Eigen::MatrixXd individualDistances2(const AssociationInput& input)
+{
+	if (input.observations.rows() == 0 || input.predictions.rows() == 0)
+		return Eigen::MatrixXd(input.observations.rows(), input.predictions.rows());
+	const ShiftedBearings b = shiftedAwayFromCut(input);
+	return pairDistances(b.z, b.y, input.covariance);
+}
+
 AssociationResult associate(
 	const AssociationInput& input, AssociationMethod method, double gate_quantile, const SearchBounds& bounds)
 {
@@ -126,10 +150,7 @@ AssociationResult associate(
 	out.min_distance2.assign(M, std::numeric_limits<double>::infinity());
 	if (M == 0 || N == 0) return out;  // MRPT asserts both are non-empty
 
-	const double offset = bearingOffsetAwayFromCut(input);
-	Eigen::MatrixXd z = input.observations, y = input.predictions;
-	for (Eigen::Index i = 0; i < M; ++i) z(i, 1) = wrapAngle(z(i, 1) + offset);
-	for (Eigen::Index j = 0; j < N; ++j) y(j, 1) = wrapAngle(y(j, 1) + offset);
+	const auto [z, y] = shiftedAwayFromCut(input);
 	const Eigen::MatrixXd d2 = pairDistances(z, y, input.covariance);
 	for (Eigen::Index i = 0; i < M; ++i) out.min_distance2[i] = d2.row(i).minCoeff();
 

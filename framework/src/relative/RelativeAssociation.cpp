@@ -111,15 +111,19 @@ StepReport RelativeAssociation::associate(const Scan& scan, const Pose2& robot, 
 	// With anchors the hypotheses come from the relative test itself: the
 	// absolute gate, robot and map independent, passes a whole grid row
 	// shifted by one spacing after dead reckoning, and JCBB then prefers it.
-	const bool anchored_search = !anchored.empty();
-	const auto method = params_.association == AssociationMode::NearestNeighbor || anchored_search
-		? AssociationMethod::NearestNeighbor
-		: AssociationMethod::Jcbb;
-	const auto result = esif::associate(in, method, params_.gate_chi2_quantile, params_.search);
-	jcbb_nodes_ += result.jcbb_nodes;
-	jcbb_fallbacks_ += result.fell_back;
-	const std::vector<int> candidate_of =
-		anchored_search ? bestFitsToAnchors(in, anchored, t) : result.candidate_of;
+	const Eigen::MatrixXd d2 = individualDistances2(in);
+	std::vector<int> candidate_of;
+	if (!anchored.empty())
+		candidate_of = bestFitsToAnchors(d2, anchored, t);
+	else
+	{
+		const auto method = params_.association == AssociationMode::NearestNeighbor ? AssociationMethod::NearestNeighbor
+																				: AssociationMethod::Jcbb;
+		const auto result = esif::associate(in, method, params_.gate_chi2_quantile, params_.search);
+		jcbb_nodes_ += result.jcbb_nodes;
+		jcbb_fallbacks_ += result.fell_back;
+		candidate_of = result.candidate_of;
+	}
 
 	std::vector<Match> matches = anchored;
 	std::vector<bool> taken(candidates.size(), false);
@@ -142,23 +146,14 @@ StepReport RelativeAssociation::associate(const Scan& scan, const Pose2& robot, 
 	{
 		if (report.associations[i].kind == Association::Kind::Matched) continue;
 		// Unmatched, or matched and dropped by the relative test.
-		const bool far = candidate_of[i] < 0 && result.min_distance2[i] > new_gate_;
-		if (far || noCandidateFitsAnchors(static_cast<int>(i), in, anchored, matches, t))
+		const bool far = candidate_of[i] < 0 && (k == 0 || d2.row(static_cast<Eigen::Index>(i)).minCoeff() > new_gate_);
+		if (far || noCandidateFitsAnchors(static_cast<int>(i), d2, anchored, matches, t))
 			report.associations[i] = {Association::Kind::New, -1};
 	}
 	return report;
 }
 
-double RelativeAssociation::individualDistance2(const AssociationInput& in, Eigen::Index measurement,
-												Eigen::Index candidate)
-{
-	Eigen::Vector2d nu = (in.observations.row(measurement) - in.predictions.row(candidate)).transpose();
-	nu(1) = wrapAngle(nu(1));
-	const Eigen::Matrix2d S = in.covariance.block<2, 2>(2 * candidate, 2 * candidate);
-	return nu.dot(S.ldlt().solve(nu));
-}
-
-std::vector<int> RelativeAssociation::bestFitsToAnchors(const AssociationInput& in, const std::vector<Match>& anchored,
+std::vector<int> RelativeAssociation::bestFitsToAnchors(const Eigen::MatrixXd& d2, const std::vector<Match>& anchored,
 														const Tested& t) const
 {
 	// Per measurement, the candidate inside the individual gate whose
@@ -166,20 +161,20 @@ std::vector<int> RelativeAssociation::bestFitsToAnchors(const AssociationInput& 
 	// candidate claimed twice goes to the better fit. verify() then tests
 	// the set jointly.
 	const double gate = chi2Quantile(params_.gate_chi2_quantile, 2);
-	const auto n = in.observations.rows(), k = in.predictions.rows();
+	const auto n = d2.rows(), k = d2.cols();
 	std::vector<int> best(static_cast<std::size_t>(n), -1);
 	std::vector<double> fit(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
 	for (Eigen::Index i = 0; i < n; ++i)
 		for (Eigen::Index j = 0; j < k; ++j)
 		{
-			const double d2 = individualDistance2(in, i, j);
-			if (d2 > gate) continue;
+			if (d2(i, j) > gate) continue;
 			std::vector<Match> hypothesis = anchored;
 			hypothesis.push_back({static_cast<int>(i), static_cast<int>(j), false});
 			const double r = relativeTest(hypothesis, t);
 			// Ranked by both statistics: with one anchor the relative test
 			// holds a distance only, which a grid repeats.
-			if (r < 1.0 && d2 / gate + r < fit[i]) fit[i] = d2 / gate + r, best[i] = static_cast<int>(j);
+			const double score = d2(i, j) / gate + r;
+			if (r < 1.0 && score < fit[i]) fit[i] = score, best[i] = static_cast<int>(j);
 		}
 	for (Eigen::Index i = 0; i < n; ++i)
 		for (Eigen::Index o = 0; o < n; ++o)
@@ -187,7 +182,7 @@ std::vector<int> RelativeAssociation::bestFitsToAnchors(const AssociationInput& 
 	return best;
 }
 
-bool RelativeAssociation::noCandidateFitsAnchors(int measurement, const AssociationInput& in,
+bool RelativeAssociation::noCandidateFitsAnchors(int measurement, const Eigen::MatrixXd& d2,
 												 const std::vector<Match>& anchored, const std::vector<Match>& accepted,
 												 const Tested& t) const
 {
@@ -195,9 +190,9 @@ bool RelativeAssociation::noCandidateFitsAnchors(int measurement, const Associat
 	// little: new when no such candidate fits the features tracked in this
 	// scan (the anchors) in relative distances and angles, eq. (3.45).
 	if (anchored.empty()) return false;
-	for (Eigen::Index j = 0; j < in.predictions.rows(); ++j)
+	for (Eigen::Index j = 0; j < d2.cols(); ++j)
 	{
-		if (individualDistance2(in, measurement, j) > new_gate_) continue;
+		if (d2(measurement, j) > new_gate_) continue;
 		const bool used = std::any_of(accepted.begin(), accepted.end(),
 									  [&](const Match& m) { return !m.anchor && m.candidate == j; });
 		if (used) return false;	 // another measurement took it: ambiguous

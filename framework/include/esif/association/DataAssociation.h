@@ -46,6 +46,12 @@ struct AssociationResult
 	std::size_t pairs_dropped = 0;
 };
 
+/// Squared Mahalanobis distance of every (observation, prediction) pair
+/// (M x N), bearings compared across the wrap, with the prediction's
+/// diagonal block of `covariance` (infinity where it is not positive
+/// definite): the individual compatibility that associate() gates on.
+Eigen::MatrixXd individualDistances2(const AssociationInput& input);
+
 /// Associates observations to candidates; `gate_quantile` in (0, 1) is the
 /// individual-compatibility chi-square confidence (2 dof), also that of the
 /// fallback's joint test (2 dof per pair).

@@ -95,14 +95,14 @@ class RelativeAssociation
 	static AssociationInput absoluteInput(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov,
 										  const FeatureMap& map, const std::vector<LandmarkId>& candidates,
 										  const Eigen::MatrixXd& candidate_cov);
-	static double individualDistance2(const AssociationInput& in, Eigen::Index measurement, Eigen::Index candidate);
 	/// Hypotheses when anchors exist: per measurement the candidate that best
-	/// passes the relative test with them (-1: none).
-	std::vector<int> bestFitsToAnchors(const AssociationInput& in, const std::vector<Match>& anchored,
+	/// passes the relative test with them (-1: none); `d2`: individual
+	/// distances, measurements x candidates (individualDistances2).
+	std::vector<int> bestFitsToAnchors(const Eigen::MatrixXd& d2, const std::vector<Match>& anchored,
 									   const Tested& t) const;
 	/// An unmatched measurement within the new-feature gate of candidates:
 	/// true when none of them passes the relative test with the anchors.
-	bool noCandidateFitsAnchors(int measurement, const AssociationInput& in, const std::vector<Match>& anchored,
+	bool noCandidateFitsAnchors(int measurement, const Eigen::MatrixXd& d2, const std::vector<Match>& anchored,
 								const std::vector<Match>& accepted, const Tested& t) const;
 
 	RelativeAssociationParams params_;
