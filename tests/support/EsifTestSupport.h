@@ -5,12 +5,14 @@
 /// third-party data made into rawlogs on the fly.
 
 #include <esif/config/ConfigFile.h>
+#include <esif/io/StatsJson.h>
 #include <esif/io/RawlogReader.h>
 #include <esif/plugin/PluginLoader.h>
 #include <esif/run/Replay.h>
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -87,6 +89,14 @@ inline std::string readText(const std::string& path)
 	std::stringstream ss;
 	ss << in.rdbuf();
 	return ss.str();
+}
+
+/// A figure of a run's stats.json; a test failure (and NaN) when it is absent.
+inline double statNumber(const Stats& stats, const std::string& key)
+{
+	const auto v = stats.number(key);
+	if (!v) ADD_FAILURE() << "no number " << key;
+	return v.value_or(std::nan(""));
 }
 
 /// Runs `esif simulate` on configs/sim/small.ini (200 steps, 16 features),

@@ -23,14 +23,7 @@ Stats runAndReadStats(const std::string& config, const std::string& rawlog, cons
 {
 	const auto r = test::runEsif("run --quiet --config '" + config + "' --rawlog '" + rawlog + "' --out '" + out + "'");
 	EXPECT_EQ(r.exit_code, 0) << r.out;
-	return Stats::fromJson(test::readText(out + "/stats.json"), out + "/stats.json");
-}
-
-double number(const Stats& s, const std::string& key)
-{
-	const auto v = s.number(key);
-	if (!v) ADD_FAILURE() << "no number " << key;
-	return v.value_or(std::nan(""));
+	return Stats::load(out + "/stats.json");
 }
 
 TEST(CeresFullRealData, ConvergesOnTheKfSlamDemoMoreAccuratelyThanTheEkf)
@@ -38,15 +31,15 @@ TEST(CeresFullRealData, ConvergesOnTheKfSlamDemoMoreAccuratelyThanTheEkf)
 	test::TempDir dir;
 	const Stats full = runAndReadStats(test::sourcePath("configs/ceres_full.ini"), kDemo, dir.file("full"));
 	const Stats ekf = runAndReadStats(test::sourcePath("configs/ekf.ini"), kDemo, dir.file("ekf"));
-	EXPECT_EQ(number(full, "plugin_converged"), 1);
+	EXPECT_EQ(test::statNumber(full, "plugin_converged"), 1);
 	// MRPT's simulator draws the noise it writes into the rawlog, so the
 	// chi-square test of Sec. 1.2.2.2's optimum applies (4 sigma, see
 	// test_CeresFullSimulated).
-	const double dof = number(full, "plugin_chi2_dof");
-	EXPECT_LT(std::abs(number(full, "plugin_chi2") - dof) / std::sqrt(2 * dof), 4.0);
-	EXPECT_LT(number(full, "landmark_rmse_m"), number(ekf, "landmark_rmse_m"));
-	EXPECT_LT(number(full, "ate_rmse_m"), number(ekf, "ate_rmse_m"));
-	EXPECT_EQ(number(full, "landmarks"), number(ekf, "landmarks"));
+	const double dof = test::statNumber(full, "plugin_chi2_dof");
+	EXPECT_LT(std::abs(test::statNumber(full, "plugin_chi2") - dof) / std::sqrt(2 * dof), 4.0);
+	EXPECT_LT(test::statNumber(full, "landmark_rmse_m"), test::statNumber(ekf, "landmark_rmse_m"));
+	EXPECT_LT(test::statNumber(full, "ate_rmse_m"), test::statNumber(ekf, "ate_rmse_m"));
+	EXPECT_EQ(test::statNumber(full, "landmarks"), test::statNumber(ekf, "landmarks"));
 }
 
 // Victoria Park has no ground truth and a noise model chosen by the user
@@ -63,15 +56,15 @@ TEST(CeresFullRealData, ConvergesOnVictoriaParkWithTheDatasetsIds)
 	const auto vicpark = test::importVictoriaPark(dir);
 	if (!vicpark) GTEST_SKIP() << test::victoriaParkDataset() << " not present";
 	const Stats full = runAndReadStats(test::sourcePath("configs/vicpark/ceres_full.ini"), *vicpark, dir.file("full"));
-	EXPECT_EQ(number(full, "plugin_converged"), 1);
-	EXPECT_LT(number(full, "plugin_chi2") / number(full, "plugin_chi2_dof"), kVicparkChi2PerDof);
+	EXPECT_EQ(test::statNumber(full, "plugin_converged"), 1);
+	EXPECT_LT(test::statNumber(full, "plugin_chi2") / test::statNumber(full, "plugin_chi2_dof"), kVicparkChi2PerDof);
 	// GTSAM's optimum on the same data and noise: chi2 7930 (4 digits); any
 	// other local minimum found so far is orders of magnitude above.
-	EXPECT_NEAR(number(full, "plugin_chi2"), 7930, 1);
-	EXPECT_EQ(number(full, "plugin_optimum_plausible"), 1);
-	EXPECT_EQ(number(full, "plugin_covariances_available"), 1);
-	EXPECT_EQ(number(full, "landmarks"), 151);
-	EXPECT_EQ(number(full, "poses_in_state"), 6968);
+	EXPECT_NEAR(test::statNumber(full, "plugin_chi2"), 7930, 1);
+	EXPECT_EQ(test::statNumber(full, "plugin_optimum_plausible"), 1);
+	EXPECT_EQ(test::statNumber(full, "plugin_covariances_available"), 1);
+	EXPECT_EQ(test::statNumber(full, "landmarks"), 151);
+	EXPECT_EQ(test::statNumber(full, "poses_in_state"), 6968);
 }
 
 TEST(CeresFullRealData, ABatchSolveFromDeadReckoningOnVictoriaParkIsFlaggedNotLost)
@@ -89,9 +82,9 @@ TEST(CeresFullRealData, ABatchSolveFromDeadReckoningOnVictoriaParkIsFlaggedNotLo
 	const auto r = test::runEsif(
 		"run --quiet --config '" + dir.file("batch.ini") + "' --rawlog '" + *vicpark + "' --out '" + dir.file("out") + "'");
 	ASSERT_EQ(r.exit_code, 0) << r.out;
-	const Stats batch = Stats::fromJson(test::readText(dir.file("out") + "/stats.json"), "stats.json");
-	EXPECT_EQ(number(batch, "plugin_optimum_plausible"), 0);
-	EXPECT_GT(number(batch, "plugin_chi2_per_dof"), 3);
+	const Stats batch = Stats::load(dir.file("out") + "/stats.json");
+	EXPECT_EQ(test::statNumber(batch, "plugin_optimum_plausible"), 0);
+	EXPECT_GT(test::statNumber(batch, "plugin_chi2_per_dof"), 3);
 	EXPECT_NE(r.out.find("implausible optimum"), std::string::npos) << r.out;
 	EXPECT_TRUE(std::filesystem::exists(dir.file("out") + "/landmarks.txt"));
 }
@@ -108,10 +101,10 @@ TEST(CeresFullRealData, ConvergesOnVictoriaParkWithAnEkfRunsAssociations)
 	std::ofstream(dir.file("full.ini")) << "[esif]\nplugin = CeresFullSlam\nhide_landmark_ids = true\nassociations_from = "
 										<< dir.file("ekf") << "\n[ceres_full]\ninitial_run = " << dir.file("ekf") << "\n";
 	const Stats full = runAndReadStats(dir.file("full.ini"), *vicpark, dir.file("full"));
-	EXPECT_EQ(number(full, "plugin_converged"), 1);
-	EXPECT_LT(number(full, "plugin_chi2") / number(full, "plugin_chi2_dof"), kVicparkChi2PerDof);
-	EXPECT_EQ(number(full, "landmarks"), number(ekf, "landmarks"));
-	EXPECT_EQ(number(full, "da_rejected"), number(ekf, "da_rejected"));
+	EXPECT_EQ(test::statNumber(full, "plugin_converged"), 1);
+	EXPECT_LT(test::statNumber(full, "plugin_chi2") / test::statNumber(full, "plugin_chi2_dof"), kVicparkChi2PerDof);
+	EXPECT_EQ(test::statNumber(full, "landmarks"), test::statNumber(ekf, "landmarks"));
+	EXPECT_EQ(test::statNumber(full, "da_rejected"), test::statNumber(ekf, "da_rejected"));
 }
 
 TEST(CeresFullRealData, WithoutAnyLandmarkIdItRefusesToStartWithOneClearLine)

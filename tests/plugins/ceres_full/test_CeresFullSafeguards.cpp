@@ -39,15 +39,8 @@ RunResult runEsif(const std::string& ini_text, const std::string& rawlog, const 
 	r.command = test::runEsif("run --quiet --config '" + ini + "' --rawlog '" + rawlog + "' --out '" + out + "'");
 	EXPECT_EQ(r.command.exit_code, 0) << r.command.out;
 	if (std::filesystem::exists(out + "/stats.json"))
-		r.stats = Stats::fromJson(test::readText(out + "/stats.json"), out + "/stats.json");
+		r.stats = Stats::load(out + "/stats.json");
 	return r;
-}
-
-double number(const Stats& s, const std::string& key)
-{
-	const auto v = s.number(key);
-	if (!v) ADD_FAILURE() << "no number " << key;
-	return v.value_or(std::nan(""));
 }
 
 std::size_t lineCount(const std::string& text) { return std::count(text.begin(), text.end(), '\n'); }
@@ -76,13 +69,13 @@ TEST(CeresFullSafeguards, TheRightNoiseModelGivesAPlausibleOptimumWithCovariance
 	const auto rawlog = simulatedSmall(dir);
 	const RunResult r = runEsif("[esif]\nplugin = CeresFullSlam\n", rawlog, dir.file("plain"), dir);
 	EXPECT_EQ(lineCount(r.command.out), 0u) << r.command.out;  // --quiet and nothing to warn about
-	EXPECT_EQ(number(r.stats, "plugin_optimum_plausible"), 1);
-	EXPECT_EQ(number(r.stats, "plugin_degenerate_poses"), 0);
-	EXPECT_EQ(number(r.stats, "plugin_covariances_available"), 1);
-	EXPECT_EQ(number(r.stats, "plugin_robust_loss_used"), 0);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_optimum_plausible"), 1);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_degenerate_poses"), 0);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_covariances_available"), 1);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_robust_loss_used"), 0);
 	// The simulator draws the noise it declares: chi2 / dof ~ 1 within
 	// sqrt(2 / dof) per sigma; dof ~ 1000 here, so 4 sigma is 0.18.
-	EXPECT_NEAR(number(r.stats, "plugin_chi2_per_dof"), 1.0, 0.2);
+	EXPECT_NEAR(test::statNumber(r.stats, "plugin_chi2_per_dof"), 1.0, 0.2);
 	EXPECT_TRUE(r.stats.number("landmark_nees_mean").has_value());
 }
 
@@ -96,9 +89,9 @@ TEST(CeresFullSafeguards, AnOverconfidentNoiseModelIsFlaggedAsAnImplausibleOptim
 	const RunResult r = runEsif(
 		"[esif]\nplugin = CeresFullSlam\nsensor_std_range_m = 0.01\nsensor_std_bearing_deg = 0.1\n", rawlog,
 		dir.file("tight"), dir);
-	EXPECT_GT(number(r.stats, "plugin_chi2_per_dof"), 10);
-	EXPECT_EQ(number(r.stats, "plugin_optimum_plausible"), 0);
-	EXPECT_EQ(number(r.stats, "plugin_degenerate_poses"), 0);
+	EXPECT_GT(test::statNumber(r.stats, "plugin_chi2_per_dof"), 10);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_optimum_plausible"), 0);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_degenerate_poses"), 0);
 	EXPECT_EQ(lineCount(r.command.out), 1u) << r.command.out;
 	EXPECT_NE(r.command.out.find("implausible optimum"), std::string::npos) << r.command.out;
 	EXPECT_NE(r.command.out.find("max_chi2_per_dof"), std::string::npos) << r.command.out;
@@ -154,10 +147,10 @@ TEST(CeresFullSafeguards, APoseOnALandmarkIsFlaggedAndTheRunStillWritesEveryOutp
 	const std::string out = dir.file("collapsed");
 	const RunResult r = runEsif(
 		"[esif]\nplugin = CeresFullSlam\n[ceres_full]\ninitial_run = " + dir.file("good") + "\n", rawlog, out, dir);
-	EXPECT_EQ(number(r.stats, "plugin_degenerate_poses"), 1);
-	EXPECT_EQ(number(r.stats, "plugin_optimum_plausible"), 0);
-	EXPECT_EQ(number(r.stats, "plugin_covariances_available"), 0);
-	EXPECT_EQ(number(r.stats, "plugin_converged"), 0);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_degenerate_poses"), 1);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_optimum_plausible"), 0);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_covariances_available"), 0);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_converged"), 0);
 	// One line each: the failed final solve, the implausible optimum, the
 	// covariances; nothing else (glog and SuiteSparse are held back).
 	EXPECT_EQ(warningCount(r.command.out), 3u) << r.command.out;
@@ -242,9 +235,9 @@ TEST(CeresFullSafeguards, ACauchyLossResistsOutliersAndIsNamedInTheStats)
 	const auto rawlog = simulatedSmall(dir);
 	const RunResult r = runEsif(
 		"[esif]\nplugin = CeresFullSlam\n[ceres_full]\nrobust_loss = cauchy\n", rawlog, dir.file("cauchy"), dir);
-	EXPECT_EQ(number(r.stats, "plugin_robust_loss_used"), 2);
-	EXPECT_EQ(number(r.stats, "plugin_converged"), 1);
-	EXPECT_EQ(number(r.stats, "plugin_optimum_plausible"), 1);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_robust_loss_used"), 2);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_converged"), 1);
+	EXPECT_EQ(test::statNumber(r.stats, "plugin_optimum_plausible"), 1);
 }
 
 }  // namespace

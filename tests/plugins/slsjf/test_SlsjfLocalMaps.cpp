@@ -24,13 +24,6 @@ using namespace esif;
 
 const std::string kVicpark200 = test::sourcePath("../shared/data/localmaps/vicpark_200");
 
-double number(const Stats& s, const std::string& key)
-{
-	const auto v = s.number(key);
-	if (!v) ADD_FAILURE() << "no number " << key;
-	return v.value_or(std::nan(""));
-}
-
 /// `esif run` of a committed local-map config on vicpark_200 against the
 /// authors' Linear SLAM result; its stats.
 Stats runOnVicpark200(const std::string& config, const test::TempDir& dir)
@@ -45,12 +38,12 @@ Stats runOnVicpark200(const std::string& config, const test::TempDir& dir)
 
 void print(const std::string& what, const Stats& s)
 {
-	std::cout << what << ": " << number(s, "landmarks") << " features, dimension " << number(s, "state_dim")
-			  << ", non-zeros " << number(s, "info_nnz") << "; from Linear SLAM: features RMS "
-			  << number(s, "refres_landmark_rms_m") << " m (max " << number(s, "refres_landmark_max_m")
-			  << "), end poses RMS " << number(s, "refres_pose_rms_m") << " m, headings RMS "
-			  << number(s, "refres_heading_rms_deg") << " deg; wrong associations " << number(s, "da_wrong")
-			  << ", features left out " << number(s, "da_rejected") << ", joined in " << number(s, "wall_s") << " s\n";
+	const auto n = [&](const char* key) { return test::statNumber(s, key); };
+	std::cout << what << ": " << n("landmarks") << " features, dimension " << n("state_dim") << ", non-zeros "
+			  << n("info_nnz") << "; from Linear SLAM: features RMS " << n("refres_landmark_rms_m") << " m (max "
+			  << n("refres_landmark_max_m") << "), end poses RMS " << n("refres_pose_rms_m") << " m, headings RMS "
+			  << n("refres_heading_rms_deg") << " deg; wrong associations " << n("da_wrong") << ", features left out "
+			  << n("da_rejected") << ", joined in " << n("wall_s") << " s\n";
 }
 
 TEST(SlsjfLocalMaps, VictoriaParkWithIdsMatchesTheIndependentImplementation)
@@ -66,18 +59,18 @@ TEST(SlsjfLocalMaps, VictoriaParkWithIdsMatchesTheIndependentImplementation)
 	// not depend on the ordering or the linearisation.
 	for (const Stats* s : {&plain, &smoothed})
 	{
-		EXPECT_EQ(number(*s, "state_dim"), 1198);
-		EXPECT_EQ(number(*s, "poses_in_state"), 200);
-		EXPECT_EQ(number(*s, "landmarks"), 299);
-		EXPECT_EQ(number(*s, "info_nnz"), 134754);
-		EXPECT_EQ(number(*s, "da_wrong"), 0);
+		EXPECT_EQ(test::statNumber(*s, "state_dim"), 1198);
+		EXPECT_EQ(test::statNumber(*s, "poses_in_state"), 200);
+		EXPECT_EQ(test::statNumber(*s, "landmarks"), 299);
+		EXPECT_EQ(test::statNumber(*s, "info_nnz"), 134754);
+		EXPECT_EQ(test::statNumber(*s, "da_wrong"), 0);
 	}
 	// The bounds from Linear SLAM's near-optimal features: the
 	// independent implementation measured 0.420 m (plain) and 0.091 m
 	// (relinearised).
-	EXPECT_LT(number(plain, "refres_landmark_rms_m"), 0.5);
-	EXPECT_LT(number(smoothed, "refres_landmark_rms_m"), 0.12);
-	EXPECT_LT(number(smoothed, "refres_pose_rms_m"), 0.1);
+	EXPECT_LT(test::statNumber(plain, "refres_landmark_rms_m"), 0.5);
+	EXPECT_LT(test::statNumber(smoothed, "refres_landmark_rms_m"), 0.12);
+	EXPECT_LT(test::statNumber(smoothed, "refres_pose_rms_m"), 0.1);
 }
 
 TEST(SlsjfLocalMaps, VictoriaParkWithoutIdsFindsEveryTree)
@@ -92,10 +85,10 @@ TEST(SlsjfLocalMaps, VictoriaParkWithoutIdsFindsEveryTree)
 	// map's estimate of the tree lies 2.2-4.1 m (Mahalanobis d^2 19-27) from
 	// the global one; gates wide enough to join those merge other trees
 	// instead (4 to 20 wrong). da_wrong counts both kinds: 1 + 3.
-	EXPECT_EQ(number(s, "refres_landmarks_matched"), number(s, "landmarks"));
-	EXPECT_LE(number(s, "da_wrong"), 4);
-	EXPECT_LE(number(s, "landmarks"), 302);
-	EXPECT_LT(number(s, "refres_landmark_rms_m"), 0.5);
+	EXPECT_EQ(test::statNumber(s, "refres_landmarks_matched"), test::statNumber(s, "landmarks"));
+	EXPECT_LE(test::statNumber(s, "da_wrong"), 4);
+	EXPECT_LE(test::statNumber(s, "landmarks"), 302);
+	EXPECT_LT(test::statNumber(s, "refres_landmark_rms_m"), 0.5);
 }
 
 TEST(SlsjfLocalMaps, OneStepMapsRelinearisedAreTheFullSlamOptimum)
