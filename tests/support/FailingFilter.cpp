@@ -1,11 +1,13 @@
-// A test-only plugin whose run fails: it dead-reckons, then throws a
+// A test-only plugin whose run fails: FakePlugin's dead reckoning and ID
+// matching, then a
 // NumericalError (esif exit code 3) at a configured step, as a filter whose
 // covariance stops being positive definite would. Built into the tests'
 // own plugin folder (never listed by `esif plugins`) for `esif compare`'s
 // handling of failed runs; configured as `plugin = test::FailingFilter`.
 
+#include "FakePlugin.h"
+
 #include <esif/core/Errors.h>
-#include <esif/plugin/FilterPlugin.h>
 
 #include <mrpt/core/initializer.h>
 
@@ -23,7 +25,7 @@ struct FailingFilterParams
 	}
 };
 
-class FailingFilter : public FilterPlugin
+class FailingFilter : public FakePlugin
 {
 	DEFINE_MRPT_OBJECT(FailingFilter, esif::test)
 
@@ -35,23 +37,14 @@ class FailingFilter : public FilterPlugin
 	{
 		if (step.index >= static_cast<std::size_t>(params_.fail_at_step))
 			throw NumericalError("test::FailingFilter fails here on purpose (fail_at_step)");  // the host adds the step
-		if (step.odometry) pose_.mean = pose_.mean + step.odometry->delta;
-		StepReport report;
-		if (step.scan)
-			for (std::size_t i = 0; i < step.scan->measurements.size(); ++i)
-				report.associations.push_back({Association::Kind::Rejected, -1});
-		return report;
+		return FakePlugin::processStep(step);
 	}
-	PoseEstimate robotPose() const override { return pose_; }
-	Estimate estimate() const override { return {pose_, {}}; }
-	CostFigures costFigures() const override { return {}; }
 
    private:
 	FailingFilterParams params_;
-	PoseEstimate pose_;
 };
 
-IMPLEMENTS_MRPT_OBJECT(FailingFilter, FilterPlugin, esif::test)
+IMPLEMENTS_MRPT_OBJECT(FailingFilter, FakePlugin, esif::test)
 
 }  // namespace esif::test
 

@@ -1,12 +1,12 @@
 // A test-only "optimization baseline" whose optimum its own check finds
-// implausible: it dead-reckons, declares the full-SLAM formulation, and
+// implausible: FakePlugin's dead reckoning and ID matching; it declares the full-SLAM formulation, and
 // reports the counters the Ceres plugin reports after its plausibility
 // check (optimum_plausible, chi2_per_dof, degenerate_poses, written to
 // stats.json as plugin_*), with values from its section. For `esif
 // compare`'s remark on an implausible baseline; configured as
 // `plugin = test::ImplausibleOptimum`.
 
-#include <esif/plugin/FilterPlugin.h>
+#include "FakePlugin.h"
 
 #include <mrpt/core/initializer.h>
 
@@ -28,7 +28,7 @@ struct ImplausibleOptimumParams
 	}
 };
 
-class ImplausibleOptimum : public FilterPlugin
+class ImplausibleOptimum : public FakePlugin
 {
 	DEFINE_MRPT_OBJECT(ImplausibleOptimum, esif::test)
 
@@ -37,17 +37,6 @@ class ImplausibleOptimum : public FilterPlugin
 	void configure(const ConfigSection& section) override { loadParams(params_, section); }
 	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
 	Formulation formulation() const override { return Formulation::FullSlamOptimum; }
-	StepReport processStep(const StepInput& step) override
-	{
-		if (step.odometry) pose_.mean = pose_.mean + step.odometry->delta;
-		StepReport report;
-		if (step.scan)
-			for (std::size_t i = 0; i < step.scan->measurements.size(); ++i)
-				report.associations.push_back({Association::Kind::Rejected, -1});
-		return report;
-	}
-	PoseEstimate robotPose() const override { return pose_; }
-	Estimate estimate() const override { return {pose_, {}}; }
 	CostFigures costFigures() const override
 	{
 		CostFigures cost;
@@ -60,10 +49,9 @@ class ImplausibleOptimum : public FilterPlugin
 
    private:
 	ImplausibleOptimumParams params_;
-	PoseEstimate pose_;
 };
 
-IMPLEMENTS_MRPT_OBJECT(ImplausibleOptimum, FilterPlugin, esif::test)
+IMPLEMENTS_MRPT_OBJECT(ImplausibleOptimum, FakePlugin, esif::test)
 
 }  // namespace esif::test
 
