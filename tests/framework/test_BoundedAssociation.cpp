@@ -93,7 +93,7 @@ TEST(BoundedAssociation, ClusteredScanFallsBackWithoutSearching)
 	// apart): an observation goes to its own feature or to the other one of
 	// its pair, never further.
 	for (int i = 0; i < 24; ++i)
-		if (r.candidate_of[i] >= 0) EXPECT_EQ(r.candidate_of[i] / 2, i / 2) << i;
+		if (r.candidate_of[i] >= 0) { EXPECT_EQ(r.candidate_of[i] / 2, i / 2) << i; }
 	// The noise that makes the pairs ambiguous is the noise of correct
 	// pairs: almost all observations are associated (the joint test may
 	// drop a few), none left new.
@@ -180,7 +180,7 @@ TEST(BoundedAssociation, ClusteredPointSetsFallBack)
 	EXPECT_TRUE(r.fell_back);
 	EXPECT_EQ(r.jcbb_nodes, 0u);
 	for (int i = 0; i < n; ++i)
-		if (r.candidate_of[i] >= 0) EXPECT_EQ(r.candidate_of[i] / 2, i / 2) << i;
+		if (r.candidate_of[i] >= 0) { EXPECT_EQ(r.candidate_of[i] / 2, i / 2) << i; }
 	EXPECT_GE(pairCount(r.candidate_of), 20u);
 }
 
