@@ -150,6 +150,7 @@ bool DslamLocalMapJoining::joinWithLastFusion(
 		decided = associate(joined, joined.covarianceMatrix().bottomRightCorner(2 * n, 2 * n));
 		if (!decided) return false;
 		const auto& created = last.update.new_features;
+		keepFeaturesOfWithdrawnFusion(joined, created, *decided);
 		std::vector<Eigen::Vector2d> points;
 		std::vector<int> usable;
 		for (int i = 0; i < n; ++i)
@@ -190,6 +191,28 @@ bool DslamLocalMapJoining::joinWithLastFusion(
 		throw std::logic_error("D-SLAM map joining: local maps joined with map " + std::to_string(joined.index) +
 							   " could not be fused again");  // the checks above rule this out
 	return true;
+}
+
+void DslamLocalMapJoining::keepFeaturesOfWithdrawnFusion(
+	const LocalMap& joined, const std::vector<LandmarkId>& created, UpperLevelOutcome& decided) const
+{
+	// A feature the withdrawn fusion created has no other information: left
+	// out of the joined map's update (rejected by the ID gate, or as
+	// ambiguous), it would stay in the global map with none at all, and the
+	// next recovery would fail on a singular information matrix. Its global
+	// estimate came from this very map, so failing a test against it says
+	// nothing about a misread ID or a wrong match: it is kept, matched to itself.
+	for (std::size_t i = 0; i < joined.features.size(); ++i)
+	{
+		auto& a = decided.decisions.associations[i];
+		if (a.kind != Association::Kind::Rejected) continue;
+		const LandmarkId local = joined.features[i].id;
+		const auto known = global_of_local_.find(local);
+		const LandmarkId global = useIds(joined) ? local : known != global_of_local_.end() ? known->second : -1;
+		if (std::find(created.begin(), created.end(), global) == created.end()) continue;
+		a = {Association::Kind::Matched, global};
+		if (decided.id_gate_rejected > 0) --decided.id_gate_rejected;
+	}
 }
 
 std::optional<UpperLevelOutcome> DslamLocalMapJoining::associate(const LocalMap& map, const Eigen::MatrixXd& feature_cov)

@@ -99,6 +99,9 @@ class DslamLocalMapJoining : public FilterPlugin, public LocalMapJoiner
 	bool joinWithLastFusion(const LocalMap& map, const std::vector<std::size_t>& originals,
 							const AbsorbedEnds& absorbed);
 	bool useIds(const LocalMap& map) const;
+	/// Keeps in a joined map's update the features the withdrawn fusion created.
+	void keepFeaturesOfWithdrawnFusion(const LocalMap& joined, const std::vector<LandmarkId>& created,
+									   lmj::UpperLevelOutcome& decided) const;
 	std::optional<lmj::UpperLevelOutcome> associate(const LocalMap& map, const Eigen::MatrixXd& feature_cov);
 	LandmarkId freshId(LandmarkId proposed, std::vector<LandmarkId>& taken_now);
 	void recordEnds(Fusion& fusion, const std::vector<std::size_t>& originals, const Eigen::MatrixXd& pair_cov) const;
