@@ -34,6 +34,14 @@ void DslamLmjParams::declare(ParamBinder& b)
 		   "with IDs, an ID-matched local feature that fails this chi-square quantile against its global feature "
 		   "(in a reference pair's frame) is left out (misread ID); 1 = no gate",
 		   Bounds{0, 1, true, false});
+	b.integer("relinearise_iterations", relinearise_iterations,
+			  "Gauss-Newton passes over the global map after each fusion (every map update evaluated again at the "
+			  "current estimate); 0 = never (the book)",
+			  Bounds::nonNegative());
+	b.real("relinearise_threshold_m", relinearise_threshold_m,
+		   "relinearise only the map updates whose features' relative geometry moved more than this since their "
+		   "last linearisation [m]",
+		   Bounds::nonNegative());
 	search.declare(b);
 	builder.declare(b);
 	recovery.declare(b);

@@ -44,6 +44,14 @@ struct DslamLmjParams
 	/// reference pair, is left out (misread ID); 1 = no gate. 0.9999 as the
 	/// local-map builder's gate (LandmarkEkf).
 	double id_gate_chi2_quantile = 0.9999;
+	/// After each fusion, Gauss-Newton passes over the global map: every
+	/// earlier update (eq. 4.17) evaluated again at the current estimate
+	/// (FeatureMap::relinearise), until none moved. 0 = never (the book's
+	/// EIF linearises each map once, at the estimate before its fusion).
+	int relinearise_iterations = 0;
+	/// Only updates whose features' relative geometry moved more than this
+	/// since their last linearisation are evaluated again [m].
+	double relinearise_threshold_m = 0.01;
 	SearchBounds search;  ///< when JCBB falls back to nearest neighbour (jcbb_max_*)
 
 	/// The chi-square value of id_gate_chi2_quantile (+inf when disabled).

@@ -55,6 +55,7 @@ void DslamLocalMapJoining::configure(const ConfigSection& section)
 	loadParams(params_, section);
 	builder_ = std::make_unique<LocalMapBuilder>(params_.builder);
 	global_ = std::make_unique<relative::FeatureMap>(params_.recovery);
+	global_->keepRelativeTerms(params_.relinearise_iterations > 0);
 }
 
 void DslamLocalMapJoining::requireConfigured() const
@@ -150,6 +151,7 @@ bool DslamLocalMapJoining::joinWithLastFusion(
 		decided = associate(joined, joined.covarianceMatrix().bottomRightCorner(2 * n, 2 * n));
 		if (!decided) return false;
 		const auto& created = last.update.new_features;
+		keepFeaturesOfWithdrawnFusion(joined, created, *decided);
 		std::vector<Eigen::Vector2d> points;
 		std::vector<int> usable;
 		for (int i = 0; i < n; ++i)
@@ -190,6 +192,28 @@ bool DslamLocalMapJoining::joinWithLastFusion(
 		throw std::logic_error("D-SLAM map joining: local maps joined with map " + std::to_string(joined.index) +
 							   " could not be fused again");  // the checks above rule this out
 	return true;
+}
+
+void DslamLocalMapJoining::keepFeaturesOfWithdrawnFusion(
+	const LocalMap& joined, const std::vector<LandmarkId>& created, UpperLevelOutcome& decided) const
+{
+	// A feature the withdrawn fusion created has no other information: left
+	// out of the joined map's update (rejected by the ID gate, or as
+	// ambiguous), it would stay in the global map with none at all, and the
+	// next recovery would fail on a singular information matrix. Its global
+	// estimate came from this very map, so failing a test against it says
+	// nothing about a misread ID or a wrong match: it is kept, matched to itself.
+	for (std::size_t i = 0; i < joined.features.size(); ++i)
+	{
+		auto& a = decided.decisions.associations[i];
+		if (a.kind != Association::Kind::Rejected) continue;
+		const LandmarkId local = joined.features[i].id;
+		const auto known = global_of_local_.find(local);
+		const LandmarkId global = useIds(joined) ? local : known != global_of_local_.end() ? known->second : -1;
+		if (std::find(created.begin(), created.end(), global) == created.end()) continue;
+		a = {Association::Kind::Matched, global};
+		if (decided.id_gate_rejected > 0) --decided.id_gate_rejected;
+	}
 }
 
 std::optional<UpperLevelOutcome> DslamLocalMapJoining::associate(const LocalMap& map, const Eigen::MatrixXd& feature_cov)
@@ -295,7 +319,9 @@ bool DslamLocalMapJoining::tryFuse(
 		}
 		fusion.update = global_->updateRelative(ids, kept);
 	}
-	global_->recover(global_->position(fusion.decisions.associations[order[0]].id));
+	const Eigen::Vector2d reference = global_->position(fusion.decisions.associations[order[0]].id);
+	global_->recover(reference);
+	relinearise(reference);
 
 	for (int i = 0; i < n; ++i)
 	{
@@ -320,6 +346,25 @@ bool DslamLocalMapJoining::tryFuse(
 	costs_.push_back({originals.front(), fusion.seconds, association_s, global_->featureCount() * 2});
 	fusions_.push_back(std::move(fusion));
 	return true;
+}
+
+void DslamLocalMapJoining::relinearise(const Eigen::Vector2d& reference)
+{
+	// Each map's update (eq. 4.17) is linearised at the estimate before its
+	// fusion. A map fused across a long stretch without landmarks, before the
+	// loop closes, is linearised metres away from where the loop closure
+	// later puts its features: its Jacobian then carries information in the
+	// wrong directions, and the map is biased and over-confident (long_gap).
+	// Evaluating the updates again at the current estimate is a Gauss-Newton
+	// step of the static map problem (no robot, no prediction: nothing is
+	// marginalised, so nothing is lost by doing so).
+	for (int pass = 0; pass < params_.relinearise_iterations; ++pass)
+	{
+		const std::size_t n = global_->relinearise(params_.relinearise_threshold_m);
+		tally_.relinearised_terms += n;
+		if (n == 0) break;
+		global_->recover(reference);
+	}
 }
 
 void DslamLocalMapJoining::recordEnds(Fusion& fusion, const std::vector<std::size_t>& originals,
@@ -516,6 +561,7 @@ CostFigures DslamLocalMapJoining::costFigures() const
 	c.counters.emplace_back("jcbb_nodes", static_cast<double>(tally_.jcbb_nodes));
 	c.counters.emplace_back("jcbb_fallbacks", static_cast<double>(tally_.jcbb_fallbacks));
 	c.counters.emplace_back("id_gate_rejected", static_cast<double>(tally_.id_gate_rejected));
+	c.counters.emplace_back("relinearised_terms", static_cast<double>(tally_.relinearised_terms));
 	return c;
 }
 

@@ -99,8 +99,13 @@ class DslamLocalMapJoining : public FilterPlugin, public LocalMapJoiner
 	bool joinWithLastFusion(const LocalMap& map, const std::vector<std::size_t>& originals,
 							const AbsorbedEnds& absorbed);
 	bool useIds(const LocalMap& map) const;
+	/// Keeps in a joined map's update the features the withdrawn fusion created.
+	void keepFeaturesOfWithdrawnFusion(const LocalMap& joined, const std::vector<LandmarkId>& created,
+									   lmj::UpperLevelOutcome& decided) const;
 	std::optional<lmj::UpperLevelOutcome> associate(const LocalMap& map, const Eigen::MatrixXd& feature_cov);
 	LandmarkId freshId(LandmarkId proposed, std::vector<LandmarkId>& taken_now);
+	/// Gauss-Newton passes over the global map (relinearise_iterations).
+	void relinearise(const Eigen::Vector2d& reference);
 	void recordEnds(Fusion& fusion, const std::vector<std::size_t>& originals, const Eigen::MatrixXd& pair_cov) const;
 	void locateEnds(Fusion& fusion) const;
 	void giveUpPendingMap();
@@ -131,7 +136,8 @@ class DslamLocalMapJoining : public FilterPlugin, public LocalMapJoiner
 	struct Tally
 	{
 		std::size_t maps_merged = 0, maps_unjoinable = 0, features_rejected = 0, candidates = 0, pairs_dropped = 0,
-					jcbb_nodes = 0, jcbb_fallbacks = 0, id_gate_rejected = 0;
+					jcbb_nodes = 0, jcbb_fallbacks = 0, id_gate_rejected = 0,
+					relinearised_terms = 0;
 		double association_s = 0;
 	} tally_;
 };
