@@ -5,30 +5,18 @@
 /// reference pair of each local map (Sec. 4.2.2), the local-map builder
 /// (with the two-common-features rule of Sec. 4.4.4) and the sparse recovery.
 
-#include <esif/association/SearchBounds.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/localmap/LocalMapBuilderParams.h>
+#include <esif/localmap/MapLevelAssociationParams.h>
 #include <esif/sparse/SparseRecoveryParams.h>
 
 namespace esif::lmj
 {
-/// How local features are associated with the global map.
-enum class UpperAssociation
+/// The upper-level association (MapLevelAssociationParams: with jcbb or nn,
+/// in the frame of two common features known from the local level, Sec.
+/// 4.4.2; with IDs the gate is tested in a reference pair's frame) and the rest.
+struct DslamLmjParams : MapLevelAssociationParams
 {
-	Auto,			  ///< known_ids when the features' IDs identify them, else jcbb
-	KnownIds,		  ///< equal IDs are one feature
-	Jcbb,			  ///< MRPT JCBB in the frame of two known common features (Sec. 4.4.2)
-	NearestNeighbor	  ///< MRPT nearest neighbour on the same candidates
-};
-
-struct DslamLmjParams
-{
-	UpperAssociation association = UpperAssociation::Auto;	///< auto | known_ids | jcbb | nn
-	double gate_chi2_quantile = 0.99;	///< individual compatibility of a local/global pair, 2 dof
-	double joint_chi2_quantile = 0.99;	///< exact joint compatibility of a map's pairs
-	/// An unmatched local feature is new only beyond this quantile from every
-	/// candidate; otherwise ambiguous and left out of the update.
-	double new_feature_chi2_quantile = 0.9999;
 	/// Region pruning (Sec. 4.4.2): candidates lie within the local map's
 	/// reach from f1 plus Delta = region_sigmas * sigma_max(f1 global) + this [m].
 	double region_margin_m = 2.0;
@@ -39,11 +27,6 @@ struct DslamLmjParams
 	/// ... whose members have no other feature of the map this close [m]:
 	/// an angle alpha_i12 is undefined when d_1i -> 0.
 	double reference_min_clearance_m = 0.2;
-	/// With IDs: an ID-matched local feature that fails this chi-square
-	/// quantile (2 dof) against its global feature, in the frame of a
-	/// reference pair, is left out (misread ID); 1 = no gate. 0.9999 as the
-	/// local-map builder's gate (LandmarkEkf).
-	double id_gate_chi2_quantile = 0.9999;
 	/// After each fusion, Gauss-Newton passes over the global map: every
 	/// earlier update (eq. 4.17) evaluated again at the current estimate
 	/// (FeatureMap::relinearise), until none moved. 0 = never (the book's
@@ -52,10 +35,6 @@ struct DslamLmjParams
 	/// Only updates whose features' relative geometry moved more than this
 	/// since their last linearisation are evaluated again [m].
 	double relinearise_threshold_m = 0.01;
-	SearchBounds search;  ///< when JCBB falls back to nearest neighbour (jcbb_max_*)
-
-	/// The chi-square value of id_gate_chi2_quantile (+inf when disabled).
-	double idGateDistance2() const;
 
 	LocalMapBuilderParams builder = defaultBuilder();  ///< local maps built from a rawlog
 	SparseRecoveryParams recovery = defaultRecovery();	///< recovery, reordering, n0 (Sec. 4.4.3, 3.3)

@@ -90,8 +90,8 @@ bool DslamLocalMapJoining::useIds(const LocalMap& map) const
 {
 	switch (params_.association)
 	{
-		case UpperAssociation::KnownIds: return true;
-		case UpperAssociation::Auto: return map.ids_identify_features && !saw_measurement_without_id_;
+		case MapAssociationMethod::KnownIds: return true;
+		case MapAssociationMethod::Auto: return map.ids_identify_features && !saw_measurement_without_id_;
 		default: return false;
 	}
 }
@@ -452,8 +452,8 @@ PoseEstimate DslamLocalMapJoining::openMapFrame() const
 
 std::optional<LandmarkId> DslamLocalMapJoining::globalIdOfOpenFeature(LandmarkId id) const
 {
-	const bool ids = params_.association == UpperAssociation::KnownIds ||
-		(params_.association == UpperAssociation::Auto && !saw_measurement_without_id_);
+	const bool ids = params_.association == MapAssociationMethod::KnownIds ||
+		(params_.association == MapAssociationMethod::Auto && !saw_measurement_without_id_);
 	if (ids) return global_->supported(id) ? std::optional<LandmarkId>(id) : std::nullopt;
 	const auto it = global_of_local_.find(id);
 	if (it != global_of_local_.end() && global_->supported(it->second)) return it->second;

@@ -245,7 +245,7 @@ std::optional<UpperLevelOutcome> associateInPairFrame(
 	for (std::size_t c = 0; c < candidates.size(); ++c) moved[c] = static_cast<int>(c + 2);
 	intoPairFrame(global_xy, global.covariance(global_ids), 0, 1, moved, sets.candidates, sets.candidates_cov);
 
-	const auto method = params.association == UpperAssociation::NearestNeighbor ? AssociationMethod::NearestNeighbor
+	const auto method = params.association == MapAssociationMethod::NearestNeighbor ? AssociationMethod::NearestNeighbor
 																				 : AssociationMethod::Jcbb;
 	const auto result =
 		associatePointSets(sets, method, params.gate_chi2_quantile, params.joint_chi2_quantile, params.search);

@@ -145,7 +145,7 @@ MapAssociationOutcome associateGeometrically(
 	sets.observed_cov = local_cov.bottomRightCorner(2 * M, 2 * M);
 	candidatesInLocalFrame(global, *start, candidates, sets);
 
-	const auto method = params.association == GlobalAssociation::NearestNeighbor ? AssociationMethod::NearestNeighbor
+	const auto method = params.association == MapAssociationMethod::NearestNeighbor ? AssociationMethod::NearestNeighbor
 																				  : AssociationMethod::Jcbb;
 	const auto result =
 		associatePointSets(sets, method, params.gate_chi2_quantile, params.joint_chi2_quantile, params.search);

@@ -78,8 +78,8 @@ bool Slsjf::useIds(const LocalMap& map) const
 {
 	switch (params_.association)
 	{
-		case GlobalAssociation::KnownIds: return true;
-		case GlobalAssociation::Auto: return map.ids_identify_features && !saw_measurement_without_id_;
+		case MapAssociationMethod::KnownIds: return true;
+		case MapAssociationMethod::Auto: return map.ids_identify_features && !saw_measurement_without_id_;
 		default: return false;
 	}
 }

@@ -1,36 +1,15 @@
 #include "SlsjfParams.h"
 
-#include <esif/association/Chi2.h>
-
-
 namespace esif::slsjf
 {
 void SlsjfParams::declare(ParamBinder& b)
 {
-	b.enumeration<GlobalAssociation>(
-		"association", association,
-		{{"auto", GlobalAssociation::Auto},
-		 {"known_ids", GlobalAssociation::KnownIds},
-		 {"jcbb", GlobalAssociation::Jcbb},
-		 {"nn", GlobalAssociation::NearestNeighbor}},
-		"global association of local features: equal IDs, or MRPT JCBB / NN on the overlapping maps' features "
-		"(Sec. 5.4.1); auto = IDs when the input has them, else jcbb");
-	b.real("gate_chi2_quantile", gate_chi2_quantile, "individual-compatibility gate of a local/global pair",
-		   Bounds::openUnit());
-	b.real("joint_chi2_quantile", joint_chi2_quantile, "joint-compatibility gate of all pairs of a map",
-		   Bounds::openUnit());
-	b.real("new_feature_chi2_quantile", new_feature_chi2_quantile,
-		   "confidence beyond which an unmatched local feature is new, not ambiguous (then left out)",
-		   Bounds::openUnit());
+	declareAssociation(b, "global association of local features: equal IDs, or MRPT JCBB / NN on the overlapping maps' "
+						  "features (Sec. 5.4.1); auto = IDs when the input has them, else jcbb");
 	b.real("overlap_margin_m", overlap_margin_m, "slack of the overlap test between local maps [m]",
 		   Bounds::nonNegative());
 	b.real("overlap_sigmas", overlap_sigmas, "sigmas added to map radii and start-pose uncertainty in the overlap test",
 		   Bounds::nonNegative());
-	b.real("id_gate_chi2_quantile", id_gate_chi2_quantile,
-		   "with IDs, a local feature whose same-ID global feature fails this chi-square quantile is left out "
-		   "(misread ID); 1 = no gate",
-		   Bounds{0, 1, true, false});
-	search.declare(b);
 	b.enumeration<Smoothing>(
 		"smoothing", smoothing,
 		{{"none", Smoothing::None}, {"final", Smoothing::Final}, {"every_k_maps", Smoothing::EveryKMaps}},
@@ -43,11 +22,6 @@ void SlsjfParams::declare(ParamBinder& b)
 		   "relinearisation stops when no estimate moves more than this [m or rad]", Bounds::positive());
 	builder.declare(b);
 	recovery.declare(b);
-}
-
-double SlsjfParams::idGateDistance2() const
-{
-	return chi2GateBound(id_gate_chi2_quantile, 2);
 }
 
 SparseRecoveryParams SlsjfParams::defaultRecovery()

@@ -4,22 +4,13 @@
 /// association (Sec. 5.4.1), the optional relinearisation of all fused maps
 /// (iterated SLSJF), the local-map builder and the sparse recovery.
 
-#include <esif/association/SearchBounds.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/localmap/LocalMapBuilderParams.h>
+#include <esif/localmap/MapLevelAssociationParams.h>
 #include <esif/sparse/SparseRecoveryParams.h>
 
 namespace esif::slsjf
 {
-/// How local features are associated with the global map.
-enum class GlobalAssociation
-{
-	Auto,			  ///< known_ids when every feature's ID came from the input, else jcbb
-	KnownIds,		  ///< equal IDs are one feature (the authors' AssumeDataAssoc = 1)
-	Jcbb,			  ///< MRPT JCBB on the overlapping maps' features (Sec. 5.4.1)
-	NearestNeighbor	  ///< MRPT nearest neighbour on the same candidates
-};
-
 /// Relinearisation of every fused local map at the current estimate
 /// (Gauss-Newton over the local-map formulation, after the authors' I-SLSJF).
 enum class Smoothing
@@ -29,16 +20,11 @@ enum class Smoothing
 	EveryKMaps	 ///< after every smoothing_every_maps maps, and after the last
 };
 
-struct SlsjfParams
+/// The global association (MapLevelAssociationParams: with jcbb or nn, on
+/// the features of the earlier maps the new one can overlap, Sec. 5.4.1; an
+/// ambiguous local feature is marginalised from the local map) and the rest.
+struct SlsjfParams : MapLevelAssociationParams
 {
-	GlobalAssociation association = GlobalAssociation::Auto;  ///< auto | known_ids | jcbb | nn
-	double gate_chi2_quantile = 0.99;	///< individual compatibility of a local/global pair, 2 dof
-	double joint_chi2_quantile = 0.99;	///< exact joint compatibility of a map's pairs, 2 dof per pair
-	/// An unmatched local feature starts a global feature only beyond this
-	/// quantile from every candidate; otherwise it is ambiguous and left out
-	/// of the update (marginalised from the local map, as the authors'
-	/// "poor observation").
-	double new_feature_chi2_quantile = 0.9999;
 	/// Slack of the overlap test between local maps and of the candidates'
 	/// distance to the new map's features (the authors' EstBias) [m]. 2 m
 	/// suits the book's simulations (features 3 m apart, 5 m range; measured
@@ -48,14 +34,6 @@ struct SlsjfParams
 	/// Sigmas added to local-map radii and to the start-pose uncertainty in
 	/// the overlap test (the authors' SigmaMultiplier).
 	double overlap_sigmas = 3.0;
-	/// With IDs: a local feature whose same-ID global feature fails this
-	/// chi-square quantile (2 dof) is left out (misread ID); 1 = no gate.
-	/// 0.9999 as the local-map builder's gate (LandmarkEkf).
-	double id_gate_chi2_quantile = 0.9999;
-	SearchBounds search;  ///< when JCBB falls back to nearest neighbour (jcbb_max_*)
-
-	/// The chi-square value of id_gate_chi2_quantile (+inf when disabled).
-	double idGateDistance2() const;
 
 	Smoothing smoothing = Smoothing::None;	///< none | final | every_k_maps
 	int smoothing_every_maps = 50;	///< K of every_k_maps
