@@ -88,10 +88,11 @@ EkfSlamCore::Linearisation EkfSlamCore::linearise(
 {
 	const std::size_t m = matches.size(), n = n_;
 	const auto P = P_.topLeftCorner(n, n);
-	Linearisation lin{Eigen::MatrixXd(n, 2 * m), Eigen::MatrixXd(2 * m, 2 * m), Eigen::VectorXd(2 * m), {}, {}};
+	Linearisation lin{Eigen::MatrixXd(n, 2 * m), Eigen::MatrixXd(2 * m, 2 * m), Eigen::VectorXd(2 * m), {}, {},
+					  std::vector<RangeBearingPrediction>(m)};
+	auto& h = lin.h;
 
 	// P H^T built from the 5 columns each measurement touches: O(n m).
-	std::vector<RangeBearingPrediction> h(m);
 	for (std::size_t j = 0; j < m; ++j)
 	{
 		const std::size_t il = 3 + 2 * matches[j].landmark;
@@ -143,7 +144,7 @@ UpdateOutcome EkfSlamCore::update(
 	Eigen::VectorXd x_next = stateAfter(lin);
 	out.linearisations = 1;
 	if (iterated.max_iterations > 1)
-		out.linearisation_error_d2 = linearisationError(matches, sensor_on_robot, x0, x_next);
+		out.linearisation_error_d2 = linearisationError(matches, sensor_on_robot, lin, x0, x_next);
 	if (out.linearisation_error_d2 > iterated.min_linearisation_error_d2)
 		while (out.linearisations < iterated.max_iterations)
 		{
@@ -167,17 +168,18 @@ UpdateOutcome EkfSlamCore::update(
 	return out;
 }
 
-double EkfSlamCore::linearisationError(
-	const std::vector<Match>& matches, const Pose2& sensor_on_robot, const Eigen::VectorXd& x0,
-	const Eigen::VectorXd& x1) const
+double EkfSlamCore::linearisationError(const std::vector<Match>& matches, const Pose2& sensor_on_robot,
+									   const Linearisation& at_x0, const Eigen::VectorXd& x0,
+									   const Eigen::VectorXd& x1) const
 {
 	Eigen::Vector3d dr = x1.head<3>() - x0.head<3>();
 	dr(2) = wrapAngle(dr(2));
 	double worst = 0;
-	for (const auto& match : matches)
+	for (std::size_t j = 0; j < matches.size(); ++j)
 	{
+		const auto& match = matches[j];
 		const std::size_t il = 3 + 2 * match.landmark;
-		const auto h0 = predictRangeBearing(x0.head<3>(), sensor_on_robot, x0.segment<2>(il));
+		const auto& h0 = at_x0.h[j];
 		const auto h1 = predictRangeBearing(x1.head<3>(), sensor_on_robot, x1.segment<2>(il));
 		Eigen::Vector2d e = h1.z - h0.z - h0.d_robot * dr - h0.d_landmark * (x1.segment<2>(il) - x0.segment<2>(il));
 		e(1) = wrapAngle(e(1));

@@ -124,12 +124,14 @@ class EkfSlamCore
 		Eigen::VectorXd innovation;	 ///< z - h(at) - H (x0 - at), bearings wrapped
 		Eigen::LLT<Eigen::MatrixXd> llt;  ///< of S
 		Eigen::MatrixXd Wt;	 ///< L^-1 (P H^T)^T, S = L L^T
+		std::vector<RangeBearingPrediction> h;	///< per match: h(at) and its Jacobians
 	};
 	Linearisation linearise(
 		const std::vector<Match>& matches, const Pose2& sensor_on_robot, const Eigen::VectorXd& at) const;
-	/// IteratedUpdate's linearisation error of the update from x0 to x1.
+	/// IteratedUpdate's linearisation error of the update from x0 to x1,
+	/// `at_x0` the model linearised at x0.
 	double linearisationError(const std::vector<Match>& matches, const Pose2& sensor_on_robot,
-							  const Eigen::VectorXd& x0, const Eigen::VectorXd& x1) const;
+							  const Linearisation& at_x0, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1) const;
 	/// The prior mean plus the gain of `lin` times its innovation.
 	Eigen::VectorXd stateAfter(const Linearisation& lin) const;
 	void reserve(std::size_t dim);
