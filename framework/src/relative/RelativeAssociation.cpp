@@ -168,9 +168,7 @@ std::vector<int> RelativeAssociation::bestFitsToAnchors(const Eigen::MatrixXd& d
 		for (Eigen::Index j = 0; j < k; ++j)
 		{
 			if (d2(i, j) > gate) continue;
-			std::vector<Match> hypothesis = anchored;
-			hypothesis.push_back({static_cast<int>(i), static_cast<int>(j), false});
-			const double r = relativeTest(hypothesis, t);
+			const double r = relativeTestWithAnchors(anchored, static_cast<int>(i), static_cast<int>(j), t);
 			// Ranked by both statistics: with one anchor the relative test
 			// holds a distance only, which a grid repeats.
 			const double score = d2(i, j) / gate + r;
@@ -196,11 +194,17 @@ bool RelativeAssociation::noCandidateFitsAnchors(int measurement, const Eigen::M
 		const bool used = std::any_of(accepted.begin(), accepted.end(),
 									  [&](const Match& m) { return !m.anchor && m.candidate == j; });
 		if (used) return false;	 // another measurement took it: ambiguous
-		std::vector<Match> hypothesis = anchored;
-		hypothesis.push_back({measurement, static_cast<int>(j), false});
-		if (relativeTest(hypothesis, t) < 1.0) return false;
+		if (relativeTestWithAnchors(anchored, measurement, static_cast<int>(j), t) < 1.0) return false;
 	}
 	return true;
+}
+
+double RelativeAssociation::relativeTestWithAnchors(const std::vector<Match>& anchored, int measurement, int candidate,
+													 const Tested& t) const
+{
+	std::vector<Match> hypothesis = anchored;
+	hypothesis.push_back({measurement, candidate, false});
+	return relativeTest(hypothesis, t);
 }
 
 double RelativeAssociation::relativeTest(const std::vector<Match>& matches, const Tested& t, double quantile) const

@@ -90,6 +90,9 @@ class RelativeAssociation
 	/// Eq. (3.45) statistic D^2 / chi2(d, alpha) of a matched set (< 1 passes).
 	/// `quantile`: the test's confidence, relative_gate_chi2_quantile if 0.
 	double relativeTest(const std::vector<Match>& matches, const Tested& t, double quantile = 0) const;
+	/// relativeTest of the anchors plus the pair (measurement, candidate).
+	double relativeTestWithAnchors(const std::vector<Match>& anchored, int measurement, int candidate,
+								   const Tested& t) const;
 	/// Drops matches until the relative test passes.
 	void verify(std::vector<Match>& matches, const Tested& t);
 	static AssociationInput absoluteInput(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov,
