@@ -32,11 +32,8 @@ JoinedRun run(const std::string& plugin_class, const std::string& section, const
 {
 	auto plugin = test::makePlugin(plugin_class, section);
 	const ReplayResult r = replay(*plugin, log, {0, false});
-	const auto truth = loadGroundTruth(groundTruthPrefixFor(kGrid196))->inInitialPoseFrame();
-	JoinedRun out{evaluate(truth, r.record.trajectory, r.record.final_estimate, r.audit.filterToTrue()),
-				  r.audit.wrongCount(), r.audit.rejectedCount(), {}};
-	for (const auto& [name, value] : plugin->costFigures().counters) out.counters[name] = value;
-	return out;
+	return {test::scoreAgainstTruth(r, groundTruthPrefixFor(kGrid196)), r.audit.wrongCount(), r.audit.rejectedCount(),
+			test::countersOf(*plugin)};
 }
 
 struct Figures

@@ -95,10 +95,9 @@ inline CampaignSummary runCampaign(
 		const Rawlog log = readRawlog(path, options);
 		auto plugin = makePlugin(plugin_class, section);
 		const ReplayResult result = replay(*plugin, log, {0, false});
-		const auto truth = loadGroundTruth(groundTruthPrefixFor(path))->inInitialPoseFrame();
 		CampaignRun r;
-		r.accuracy = evaluate(truth, result.record.trajectory, result.record.final_estimate, result.audit.filterToTrue());
-		for (const auto& [k, v] : plugin->costFigures().counters) r.counters[k] = v;
+		r.accuracy = scoreAgainstTruth(result, groundTruthPrefixFor(path));
+		r.counters = countersOf(*plugin);
 		r.wrong_associations = result.audit.wrongCount();
 		EXPECT_TRUE(r.accuracy.landmark_nees_mean && r.accuracy.pose_nees_mean && r.accuracy.landmark_rmse_m &&
 					r.accuracy.ate_rmse_m)

@@ -5,8 +5,10 @@
 /// third-party data made into rawlogs on the fly.
 
 #include <esif/config/ConfigFile.h>
-#include <esif/io/StatsJson.h>
+#include <esif/eval/Evaluator.h>
+#include <esif/io/GroundTruth.h>
 #include <esif/io/RawlogReader.h>
+#include <esif/io/StatsJson.h>
 #include <esif/plugin/PluginLoader.h>
 #include <esif/run/Replay.h>
 
@@ -16,6 +18,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -97,6 +100,30 @@ inline double statNumber(const Stats& stats, const std::string& key)
 	const auto v = stats.number(key);
 	if (!v) ADD_FAILURE() << "no number " << key;
 	return v.value_or(std::nan(""));
+}
+
+/// A replay scored against the ground truth with prefix `truth_prefix`
+/// (groundTruthPrefixFor(rawlog) for one written beside its rawlog), in
+/// the frame of the initial pose, as `esif run` scores it. A test failure
+/// (and an empty Accuracy) when there is no ground truth there.
+inline Accuracy scoreAgainstTruth(const ReplayResult& result, const std::string& truth_prefix)
+{
+	const auto truth = loadGroundTruth(truth_prefix);
+	if (!truth)
+	{
+		ADD_FAILURE() << "no ground truth at " << truth_prefix;
+		return {};
+	}
+	return evaluate(truth->inInitialPoseFrame(), result.record.trajectory, result.record.final_estimate,
+					result.audit.filterToTrue());
+}
+
+/// A plugin's counters (costFigures()) by name.
+inline std::map<std::string, double> countersOf(const FilterPlugin& plugin)
+{
+	std::map<std::string, double> out;
+	for (const auto& [name, value] : plugin.costFigures().counters) out[name] = value;
+	return out;
 }
 
 /// Runs `esif simulate` on configs/sim/small.ini (200 steps, 16 features),

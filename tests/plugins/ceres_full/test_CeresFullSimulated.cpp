@@ -54,8 +54,7 @@ Scored runOnGrid196(const std::string& plugin_class, const std::string& section)
 	const Rawlog log = readRawlog(kGrid196);
 	Scored s{test::makePlugin(plugin_class, section), {}, {}};
 	s.result = replay(*s.plugin, log, {0, false});
-	const auto truth = loadGroundTruth(groundTruthPrefixFor(kGrid196))->inInitialPoseFrame();
-	s.accuracy = evaluate(truth, s.result.record.trajectory, s.result.record.final_estimate, s.result.audit.filterToTrue());
+	s.accuracy = test::scoreAgainstTruth(s.result, groundTruthPrefixFor(kGrid196));
 	return s;
 }
 

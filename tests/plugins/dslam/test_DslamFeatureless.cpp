@@ -45,9 +45,7 @@ class DslamFeatureless : public ::testing::Test
 		const Rawlog log = readRawlog(path);
 		Scored s{test::makePlugin(plugin_class, section), {}, {}};
 		s.result = replay(*s.plugin, log, {0, false});
-		const auto truth = loadGroundTruth(groundTruthPrefixFor(path))->inInitialPoseFrame();
-		s.accuracy =
-			evaluate(truth, s.result.record.trajectory, s.result.record.final_estimate, s.result.audit.filterToTrue());
+		s.accuracy = test::scoreAgainstTruth(s.result, groundTruthPrefixFor(path));
 		return s;
 	}
 

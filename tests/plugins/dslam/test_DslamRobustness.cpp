@@ -42,9 +42,7 @@ Scored run(const Rawlog& log, const std::string& rawlog_path, const std::string&
 	auto plugin = test::makePlugin("Dslam", "association = known_ids\n" + section);
 	Scored s;
 	s.result = replay(*plugin, log, {0, false});
-	const auto truth = loadGroundTruth(groundTruthPrefixFor(rawlog_path))->inInitialPoseFrame();
-	s.accuracy =
-		evaluate(truth, s.result.record.trajectory, s.result.record.final_estimate, s.result.audit.filterToTrue());
+	s.accuracy = test::scoreAgainstTruth(s.result, groundTruthPrefixFor(rawlog_path));
 	return s;
 }
 

@@ -47,8 +47,7 @@ Scored run(const std::string& plugin_name, const std::string& section, bool hide
 	options.hide_landmark_ids = hide_ids;
 	Scored s{test::makePlugin(plugin_name, section), {}, {}};
 	s.result = replay(*s.plugin, readRawlog(kGrid196, options), {0, false});
-	const auto truth = loadGroundTruth(groundTruthPrefixFor(kGrid196))->inInitialPoseFrame();
-	s.accuracy = evaluate(truth, s.result.record.trajectory, s.result.record.final_estimate, s.result.audit.filterToTrue());
+	s.accuracy = test::scoreAgainstTruth(s.result, groundTruthPrefixFor(kGrid196));
 	return s;
 }
 

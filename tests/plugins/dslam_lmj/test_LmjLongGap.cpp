@@ -59,11 +59,8 @@ LmjRun runLongGap(int noise_seed, int steps, const std::string& extra = "")
 			"\nlocal_map_min_common_features = 0\nlocal_min_range_m = 0.3\nlocal_id_gate_chi2_quantile = 0.9999\n"
 			"local_update_iterations = 10\nlocal_relinearise_above_d2 = 1\nid_gate_chi2_quantile = 0.9999\n" + extra);
 	const auto result = replay(*lmj, log, {0, false});
-	const auto truth = loadGroundTruth(dir.file("long_gap"))->inInitialPoseFrame();
-	LmjRun r{evaluate(truth, result.record.trajectory, result.record.final_estimate, result.audit.filterToTrue()), {},
-			 result.record.final_estimate.landmarks};
-	for (const auto& [name, value] : lmj->costFigures().counters) r.counters[name] = value;
-	return r;
+	return {test::scoreAgainstTruth(result, dir.file("long_gap")), test::countersOf(*lmj),
+			result.record.final_estimate.landmarks};
 }
 
 void expectJoinedAndInformed(int noise_seed, int steps)

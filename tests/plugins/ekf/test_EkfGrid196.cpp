@@ -31,9 +31,8 @@ Scored runOnGrid196(const std::string& ekf_section, bool hide_ids)
 	const Rawlog log = readRawlog(kGrid196, opts);
 	auto ekf = test::makePlugin("EkfSlam", ekf_section);
 	Scored s{replay(*ekf, log, {0, false}), {}, {}};
-	for (const auto& [name, value] : ekf->costFigures().counters) s.counters[name] = value;
-	const auto truth = loadGroundTruth(groundTruthPrefixFor(kGrid196))->inInitialPoseFrame();
-	s.accuracy = evaluate(truth, s.result.record.trajectory, s.result.record.final_estimate, s.result.audit.filterToTrue());
+	s.counters = test::countersOf(*ekf);
+	s.accuracy = test::scoreAgainstTruth(s.result, groundTruthPrefixFor(kGrid196));
 	return s;
 }
 

@@ -39,9 +39,8 @@ GatedRun runEkf(const Rawlog& log, const std::string& section)
 {
 	auto ekf = test::makePlugin("EkfSlam", "association = known_ids\nmin_range_m = 0.3\n" + section);
 	GatedRun r{replay(*ekf, log, {0, false}), {}, {}};
-	const auto truth = loadGroundTruth(groundTruthPrefixFor(kGrid196))->inInitialPoseFrame();
-	r.accuracy = evaluate(truth, r.result.record.trajectory, r.result.record.final_estimate, r.result.audit.filterToTrue());
-	for (const auto& [name, value] : ekf->costFigures().counters) r.counters[name] = value;
+	r.accuracy = test::scoreAgainstTruth(r.result, groundTruthPrefixFor(kGrid196));
+	r.counters = test::countersOf(*ekf);
 	return r;
 }
 

@@ -45,10 +45,7 @@ class EkfLongGap : public ::testing::Test
 	{
 		auto ekf = test::makePlugin("EkfSlam", "association = known_ids\n" + extra);
 		const auto result = replay(*ekf, *log, {0, false});
-		const auto truth = loadGroundTruth(dir->file("long_gap"))->inInitialPoseFrame();
-		EkfRun r{evaluate(truth, result.record.trajectory, result.record.final_estimate, result.audit.filterToTrue()), {}};
-		for (const auto& [name, value] : ekf->costFigures().counters) r.counters[name] = value;
-		return r;
+		return {test::scoreAgainstTruth(result, dir->file("long_gap")), test::countersOf(*ekf)};
 	}
 
 	static test::TempDir* dir;
