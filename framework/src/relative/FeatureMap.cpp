@@ -13,6 +13,7 @@ VarId FeatureMap::createFeature(LandmarkId id, const Eigen::Vector2d& position)
 	const VarId v = core_.addPoint(position);
 	var_of_.emplace(id, v);
 	ids_.push_back(id);
+	shared_point_.push_back(position);
 	return v;
 }
 
@@ -28,6 +29,15 @@ Eigen::VectorXd FeatureMap::stackedPositions(const std::vector<LandmarkId>& ids)
 {
 	Eigen::VectorXd xy(2 * ids.size());
 	for (std::size_t i = 0; i < ids.size(); ++i) xy.segment<2>(2 * i) = position(ids[i]);
+	return xy;
+}
+
+Eigen::VectorXd FeatureMap::linearisationPoints(const std::vector<LandmarkId>& ids) const
+{
+	if (!share_points_) return stackedPositions(ids);
+	Eigen::VectorXd xy(2 * ids.size());
+	for (std::size_t i = 0; i < ids.size(); ++i)
+		xy.segment<2>(2 * i) = shared_point_[static_cast<std::size_t>(var_of_.at(ids[i]).value)];
 	return xy;
 }
 
@@ -50,25 +60,29 @@ MapUpdate FeatureMap::updateRelative(const std::vector<LandmarkId>& ids, const P
 			createFeature(ids[i], featureFromPair(f1, f2, z(row + 1), z(row)));	 // eq. (3.14)
 			update.new_features.push_back(ids[i]);
 		}
-	update.term = relativeTerm(ids, points);
+	const Eigen::VectorXd x_lin = linearisationPoints(ids);
+	update.term = relativeTerm(ids, points, x_lin);
 	if (keep_terms_)
 	{
 		update.relative_index = static_cast<long>(terms_.size());
-		terms_.push_back({ids, points, update.term, stackedPositions(ids), true});
+		terms_.push_back({ids, points, update.term, x_lin, true});
 	}
 	markSupported(ids);
 	return update;
 }
 
-UpdateTerm FeatureMap::relativeTerm(const std::vector<LandmarkId>& ids, const PointSet& points)
+UpdateTerm FeatureMap::relativeTerm(const std::vector<LandmarkId>& ids, const PointSet& points,
+									const Eigen::VectorXd& x_lin)
 {
 	const ValueJacobian z = relativeGeometry(points.xy);  // z_map, eq. (3.8); dT2
 	// Eq. (3.9): R_map = dT2 (dT1 R_old dT1^T) dT2^T; points.cov holds the bracket.
 	const Eigen::MatrixXd R_map = z.jacobian * points.cov * z.jacobian.transpose();
-	// Eq. (3.13): H_map and its Jacobian at the current estimate.
-	const ValueJacobian h = relativeGeometry(stackedPositions(ids));
-	return core_.addMeasurement(variables(ids), h.jacobian, 0.5 * (R_map + R_map.transpose()),
-								relativeDifference(z.value, h.value));	// eq. (3.15)
+	// Eq. (3.13): H_map and its Jacobian at x_lin. The core adds
+	// J^T R^-1 (nu + J x^) at the current estimate x^, eq. (3.15); at x_lin
+	// the term is J^T R^-1 (z - H(x_lin) + J x_lin), hence nu below.
+	const ValueJacobian h = relativeGeometry(x_lin);
+	const Eigen::VectorXd nu = relativeDifference(z.value, h.value) + h.jacobian * (x_lin - stackedPositions(ids));
+	return core_.addMeasurement(variables(ids), h.jacobian, 0.5 * (R_map + R_map.transpose()), nu);
 }
 
 bool FeatureMap::movedSince(const RelativeTerm& t, double threshold_m) const
@@ -82,13 +96,14 @@ bool FeatureMap::movedSince(const RelativeTerm& t, double threshold_m) const
 
 std::size_t FeatureMap::relinearise(double threshold_m)
 {
+	for (std::size_t i = 0; i < ids_.size(); ++i) shared_point_[i] = position(ids_[i]);
 	std::size_t n = 0;
 	for (auto& t : terms_)
 		if (t.active && (threshold_m <= 0 || movedSince(t, threshold_m)))
 		{
 			core_.withdraw(t.term);
-			t.term = relativeTerm(t.ids, t.points);
 			t.linearised_at = stackedPositions(t.ids);
+			t.term = relativeTerm(t.ids, t.points, t.linearised_at);
 			++n;
 		}
 	return n;
