@@ -5,8 +5,41 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
+#include <cmath>
+
 namespace esif::dslam
 {
+namespace
+{
+/// Eq. (3.17) linearised at y: the prior information plus z_loc's.
+struct NormalEquations
+{
+	Eigen::MatrixXd info;
+	Eigen::VectorXd eta;
+};
+
+NormalEquations linearisedAt(const KidnappedInput& in, const Eigen::VectorXd& y, const NormalEquations& prior)
+{
+	NormalEquations ne = prior;
+	const int n = static_cast<int>(y.size());
+	for (std::size_t i = 0; i < in.z_loc.size(); ++i)
+	{
+		const int col = 3 + 2 * static_cast<int>(i);
+		const auto h = predictRangeBearing(y.head<3>(), in.sensor_on_robot, y.segment<2>(col));
+		Eigen::Matrix<double, 2, Eigen::Dynamic> H = Eigen::MatrixXd::Zero(2, n);
+		H.leftCols<3>() = h.d_robot;
+		H.middleCols<2>(col) = h.d_landmark;
+		Eigen::Vector2d nu = in.z_loc[i].z - h.z;
+		nu(1) = wrapAngle(nu(1));
+		const Eigen::Matrix2d Rinv = in.z_loc[i].R.inverse();  // 2x2 measurement noise
+		ne.info.noalias() += H.transpose() * Rinv * H;
+		ne.eta.noalias() += H.transpose() * Rinv * (nu + H * y);
+	}
+	return ne;
+}
+}  // namespace
+
 GaussianState solveKidnappedRobot(const KidnappedInput& in)
 {
 	const int m1 = static_cast<int>(in.z_loc.size());
@@ -15,38 +48,50 @@ GaussianState solveKidnappedRobot(const KidnappedInput& in)
 		throw NumericalError("kidnapped robot: needs at least two mapped features in view");
 
 	// Linearisation point: robot by eq. (3.18), features from the map.
-	Eigen::VectorXd y0(n);
-	y0 << in.initial_robot, in.features;
+	Eigen::VectorXd y(n);
+	y << in.initial_robot, in.features;
 
 	// Prior information: zero on the robot, the map's on the features.
-	const Eigen::LLT<Eigen::MatrixXd> prior(in.features_cov);
-	if (prior.info() != Eigen::Success) throw NumericalError("kidnapped robot: map covariance not positive definite");
-	Eigen::MatrixXd info = Eigen::MatrixXd::Zero(n, n);
-	info.bottomRightCorner(2 * m1, 2 * m1) = prior.solve(Eigen::MatrixXd::Identity(2 * m1, 2 * m1));
-	Eigen::VectorXd eta = info * y0;  // the prior mean is y0's feature part
+	const Eigen::LLT<Eigen::MatrixXd> prior_llt(in.features_cov);
+	if (prior_llt.info() != Eigen::Success)
+		throw NumericalError("kidnapped robot: map covariance not positive definite");
+	NormalEquations prior{Eigen::MatrixXd::Zero(n, n), Eigen::VectorXd::Zero(n)};
+	prior.info.bottomRightCorner(2 * m1, 2 * m1) = prior_llt.solve(Eigen::MatrixXd::Identity(2 * m1, 2 * m1));
+	prior.eta = prior.info * y;	 // the prior mean is y's feature part
 
-	// Update with z_loc, eq. (3.17): information-form EIF step at y0.
-	for (int i = 0; i < m1; ++i)
-	{
-		const auto h = predictRangeBearing(y0.head<3>(), in.sensor_on_robot, y0.segment<2>(3 + 2 * i));
-		Eigen::Matrix<double, 2, Eigen::Dynamic> H = Eigen::MatrixXd::Zero(2, n);
-		H.leftCols<3>() = h.d_robot;
-		H.middleCols<2>(3 + 2 * i) = h.d_landmark;
-		Eigen::Vector2d nu = in.z_loc[i].z - h.z;
-		nu(1) = wrapAngle(nu(1));
-		const Eigen::Matrix2d Rinv = in.z_loc[i].R.inverse();  // 2x2 measurement noise
-		info.noalias() += H.transpose() * Rinv * H;
-		eta.noalias() += H.transpose() * Rinv * (nu + H * y0);
-	}
-
-	const Eigen::LLT<Eigen::MatrixXd> llt(info);
-	if (llt.info() != Eigen::Success) throw NumericalError("kidnapped robot: the robot pose is not observable");
+	// 1 mm and 1e-6 rad: far below the measurement noise.
+	constexpr double kConverged = 1e-3;
 	GaussianState out;
-	out.mean = llt.solve(eta);
+	for (int it = 0; it < std::max(1, in.iterations); ++it)
+	{
+		const NormalEquations ne = linearisedAt(in, y, prior);
+		const Eigen::LLT<Eigen::MatrixXd> llt(ne.info);
+		if (llt.info() != Eigen::Success) throw NumericalError("kidnapped robot: the robot pose is not observable");
+		out.mean = llt.solve(ne.eta);
+		out.mean(2) = y(2) + wrapAngle(out.mean(2) - y(2));
+		out.cov = llt.solve(Eigen::MatrixXd::Identity(n, n));  // (3 + 2 m1)^2: small by construction
+		Eigen::VectorXd step = out.mean - y;
+		y = out.mean;
+		if (step.head<2>().norm() < kConverged && std::abs(step(2)) < kConverged * 1e-3) break;
+	}
 	out.mean(2) = wrapAngle(out.mean(2));
-	out.cov = llt.solve(Eigen::MatrixXd::Identity(n, n));  // (3 + 2 m1)^2: small by construction
 	out.cov = 0.5 * (out.cov + out.cov.transpose()).eval();
 	return out;
+}
+
+double kidnappedFitChi2(const KidnappedInput& in, const GaussianState& solution)
+{
+	double chi2 = 0;
+	for (std::size_t i = 0; i < in.z_loc.size(); ++i)
+	{
+		const auto h = predictRangeBearing(solution.mean.head<3>(), in.sensor_on_robot,
+										   solution.mean.segment<2>(3 + 2 * static_cast<int>(i)));
+		Eigen::Vector2d nu = in.z_loc[i].z - h.z;
+		nu(1) = wrapAngle(nu(1));
+		chi2 += nu.dot(in.z_loc[i].R.ldlt().solve(nu));
+	}
+	const Eigen::VectorXd df = solution.mean.tail(in.features.size()) - in.features;
+	return chi2 + df.dot(in.features_cov.ldlt().solve(df));
 }
 
 }  // namespace esif::dslam
