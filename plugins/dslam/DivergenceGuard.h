@@ -50,6 +50,8 @@ class DivergenceGuard
 	/// throws NumericalError at the max_disagreeing_scans-th disagreement
 	/// in a row.
 	void fusion(bool agreed);
+	/// Disagreements in a row so far.
+	int disagreeingInARow() const { return disagreeing_in_a_row_; }
 
    private:
 	double factor_;

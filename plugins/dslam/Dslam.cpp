@@ -29,7 +29,8 @@ void Dslam::configure(const ConfigSection& section)
 	if (params_.confirm_new_features)
 		confirmation_.emplace(chi2GateBound(params_.outlier_chi2_quantile, 2),
 							  static_cast<std::size_t>(params_.confirmation_window_steps));
-	map_->keepRelativeTerms(params_.relinearise_every_steps > 0);
+	map_->keepRelativeTerms(params_.relinearise_every_steps > 0 || params_.relinearise_on_correction_m > 0);
+	map_->shareLinearisationPoints(params_.map_linearisation == MapLinearisation::Shared);
 }
 
 StepReport Dslam::processStep(const StepInput& step)
@@ -60,36 +61,59 @@ StepReport Dslam::processStep(const StepInput& step)
 	if (obs.all.empty()) return report;
 
 	localize(obs, sensor);
-	updateMap(obs, sensor);
-	map_->recover(local_.robot().head<2>());
+	updateAndRecoverMap(obs, sensor);
 	if (params_.relinearise_every_steps > 0 && ++steps_since_relinearisation_ >= params_.relinearise_every_steps)
-		relinearise();
+		relinearise(1);
 	guard_.check(map_->ids(), map_->core().state(), local_.robot());
 	return report;
 }
 
-void Dslam::relinearise()
+void Dslam::relinearise(int passes)
 {
-	const std::size_t n = map_->relinearise(params_.relinearise_threshold_m);
-	if (n > 0) map_->recover(local_.robot().head<2>());
+	for (int pass = 0; pass < passes; ++pass)
+	{
+		const std::size_t n = map_->relinearise(params_.relinearise_threshold_m);
+		tally_.relinearised_terms += n;
+		if (n == 0) break;
+		map_->recover(local_.robot().head<2>());
+	}
 	steps_since_relinearisation_ = 0;
 	++tally_.relinearisations;
-	tally_.relinearised_terms += n;
+}
+
+void Dslam::updateAndRecoverMap(const Observed& obs, const Pose2& sensor)
+{
+	// The relative geometry of the features this scan sees, before and after
+	// (offsets from the first, so that a common translation does not count).
+	std::vector<LandmarkId> seen;
+	for (const auto& m : obs.all)
+		if (map_->contains(m.id)) seen.push_back(m.id);
+	std::vector<Eigen::Vector2d> before;
+	for (LandmarkId id : seen) before.push_back(map_->position(id) - map_->position(seen.front()));
+
+	updateMap(obs, sensor);
+	map_->recover(local_.robot().head<2>());
+	if (params_.relinearise_on_correction_m <= 0 || seen.size() < 2) return;
+	double change = 0;
+	for (std::size_t i = 1; i < seen.size(); ++i)
+		change = std::max(change, (map_->position(seen[i]) - map_->position(seen.front()) - before[i]).norm());
+	if (change <= params_.relinearise_on_correction_m) return;
+	++tally_.corrections_relinearised;
+	relinearise(params_.relinearise_iterations);
 }
 
 void Dslam::finish()
 {
-	if (params_.relinearise_every_steps > 0 && map_ && map_->featureCount() > 0) relinearise();
+	if (params_.relinearise_every_steps > 0 && map_ && map_->featureCount() > 0) relinearise(1);
 }
 
 StepReport Dslam::associateScan(const StepInput& step)
 {
 	const auto& ms = step.scan->measurements;
 	const bool all_have_ids = std::all_of(ms.begin(), ms.end(), [](const RangeBearing& m) { return m.id.has_value(); });
-	if (params_.association.association == AssociationMode::KnownIds ||
-		(params_.association.association == AssociationMode::Auto && all_have_ids))
-		return associateByIds(step);
-	return associateByTrackingThenMap(*step.scan);
+	associated_by_ids_ = params_.association.association == AssociationMode::KnownIds ||
+		(params_.association.association == AssociationMode::Auto && all_have_ids);
+	return associated_by_ids_ ? associateByIds(step) : associateByTrackingThenMap(*step.scan);
 }
 
 StepReport Dslam::associateByTrackingThenMap(const Scan& scan)
@@ -326,6 +350,7 @@ void Dslam::fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor)
 	for (std::size_t k = 0; k < ids.size(); ++k) in.features.segment<2>(2 * k) = map_->position(ids[k]);
 	in.features_cov = map_->covariance(ids);
 	in.sensor_on_robot = sensor;
+	in.iterations = params_.kidnapped_iterations;
 	const Eigen::Vector3d z_rob = robotRelativeToPair(obs.points.point(order[0]), obs.points.point(order[1]));
 	in.initial_robot = robotFromPair(in.features.segment<2>(0), in.features.segment<2>(2), z_rob);
 
@@ -346,7 +371,12 @@ void Dslam::fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor)
 	guard_.fusion(agree);
 	if (!agree)
 	{
-		++tally_.ci_disagreements;	// a wrong match or a poorly known pair: keep the local estimate
+		++tally_.ci_disagreements;	// a wrong match or a poorly known pair: keep the local estimate ...
+		if (relocalisationDue(in, *from_map))
+		{
+			local_.setState(from_map->mean, from_map->cov);	 // ... unless the local SLAM is the one lost
+			++tally_.relocalisations;
+		}
 		return;
 	}
 	try
@@ -369,6 +399,17 @@ void Dslam::fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor)
 	{
 		++tally_.ci_failures;
 	}
+}
+
+bool Dslam::relocalisationDue(const KidnappedInput& in, const GaussianState& from_map) const
+{
+	// Without IDs a run of disagreements is as likely a wrong association
+	// (the map's estimate then fits its wrong pairs): on long_gap, relocalising
+	// there turned every detected divergence into a silent 18 m error.
+	const int due = params_.relocalise_after_disagreeing_scans;
+	if (!associated_by_ids_ || due <= 0 || guard_.disagreeingInARow() < due) return false;
+	const int dof = kidnappedFitDof(in);
+	return dof > 0 && kidnappedFitChi2(in, from_map) <= chi2GateBound(params_.fusion_gate_chi2_quantile, dof);
 }
 
 bool Dslam::robotEstimatesAgree(const GaussianState& local, const GaussianState& from_map) const
@@ -478,6 +519,8 @@ CostFigures Dslam::costFigures() const
 	add("tracked_matches", static_cast<double>(tally_.tracked_matches));
 	add("relinearisations", static_cast<double>(tally_.relinearisations));
 	add("relinearised_terms", static_cast<double>(tally_.relinearised_terms));
+	add("corrections_relinearised", static_cast<double>(tally_.corrections_relinearised));
+	add("relocalisations", static_cast<double>(tally_.relocalisations));
 	add("ci_omega_mean", tally_.ci_fusions ? tally_.omega_sum / static_cast<double>(tally_.ci_fusions) : 0.0);
 	if (association_)
 	{

@@ -17,9 +17,11 @@
 /// Beyond the book: measurements failing a chi-square gate against the local
 /// SLAM or, jointly on z_map, against the map are rejected whatever the
 /// association (OutlierGate.h); a diverging map stops the run
-/// (DivergenceGuard.h); every relinearise_every_steps steps the map updates
-/// whose features moved are evaluated again at the current estimate
-/// (DslamParams.h says why).
+/// (DivergenceGuard.h); the map updates share one linearisation point per
+/// feature, and every relinearise_every_steps steps, or at once after a
+/// large correction, those whose features moved are evaluated again at the
+/// current estimate; the kidnapped-robot solution is iterated (DslamParams.h
+/// says why).
 
 #include "AdmissibleChain.h"
 #include "DivergenceGuard.h"
@@ -71,10 +73,20 @@ class Dslam : public FilterPlugin
 	void holdFirstSightings(const StepInput& step, StepReport& report);
 	void rejectOutliers(const Scan& scan, StepReport& report);
 	void rejectReobservationOutliers(const Scan& scan, StepReport& report);
-	void relinearise();
+	/// Up to `passes` relinearisations of the map updates, each followed by
+	/// a recovery; stops when no update moved.
+	void relinearise(int passes);
+	/// The map update and recovery of this scan, relinearised at once when
+	/// they changed the relative geometry of the scan's mapped features by
+	/// more than relinearise_on_correction_m.
+	void updateAndRecoverMap(const Observed& obs, const Pose2& sensor);
 	Observed observed(const Scan& scan, const StepReport& report) const;
 	void localize(const Observed& obs, const Pose2& sensor);
 	void fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor);
+	/// After relocalise_after_disagreeing_scans disagreements in a row,
+	/// whether the map's estimate fits its scan well enough to replace the
+	/// local SLAM (DslamParams.h).
+	bool relocalisationDue(const dslam::KidnappedInput& in, const dslam::GaussianState& from_map) const;
 	bool robotEstimatesAgree(const dslam::GaussianState& local, const dslam::GaussianState& from_map) const;
 	void updateMap(const Observed& obs, const Pose2& sensor);
 	void applyVirtualObservation(const Pose2& sensor);
@@ -93,6 +105,7 @@ class Dslam : public FilterPlugin
 	std::unordered_set<LandmarkId> started_;	  ///< features reported New so far
 	LandmarkId next_own_id_ = 0;
 	int steps_since_relinearisation_ = 0;
+	bool associated_by_ids_ = false;  ///< this scan's associations come from landmark IDs
 
 	struct Tally
 	{
@@ -103,6 +116,8 @@ class Dslam : public FilterPlugin
 					relinearisations = 0;
 		double omega_sum = 0;
 		std::size_t relinearised_terms = 0;
+		std::size_t corrections_relinearised = 0;  ///< relinearisations triggered by a large correction
+		std::size_t relocalisations = 0;
 	} tally_;
 };
 

@@ -35,6 +35,10 @@ void DslamParams::declare(ParamBinder& b)
 		   "fuse the map's and the local SLAM's robot estimates only when they agree at this chi-square "
 		   "confidence; 1 = off (the book)",
 		   Bounds{0, 1, true, false});
+	b.integer("relocalise_after_disagreeing_scans", relocalise_after_disagreeing_scans,
+			  "after this many disagreements in a row on scans associated by IDs, replace the local SLAM by the "
+			  "map's estimate when that fits the scan at the fusion gate's quantile; 0 = never",
+			  Bounds::nonNegative());
 	b.flag("confirm_new_features", confirm_new_features,
 		   "map a feature only when a second sighting agrees with its first at the outlier gate; false = map it "
 		   "at its first sighting (the book)");
@@ -55,6 +59,20 @@ void DslamParams::declare(ParamBinder& b)
 		   "relinearise only the map updates whose features' relative geometry moved more than this since their "
 		   "last evaluation [m]; 0 = all",
 		   Bounds::nonNegative());
+	b.real("relinearise_on_correction_m", relinearise_on_correction_m,
+		   "relinearise at once after a map update that changes the relative geometry of the scan's features by "
+		   "more than this [m]; 0 = off",
+		   Bounds::nonNegative());
+	b.integer("relinearise_iterations", relinearise_iterations,
+			  "passes of the relinearisation after such a correction (each stops early when no update moved)",
+			  Bounds::atLeast(1));
+	b.enumeration<MapLinearisation>("map_linearisation", map_linearisation,
+									{{"shared", MapLinearisation::Shared}, {"current", MapLinearisation::Current}},
+						"map updates linearised at one point per feature, shared by all updates and moved only by "
+						"relinearisation (shared), or at the estimate of their time (current, the book)");
+	b.integer("kidnapped_iterations", kidnapped_iterations,
+			  "Gauss-Newton iterations of the kidnapped-robot solution, eq. (3.17)-(3.18); 1 = the book's single step",
+			  Bounds::atLeast(1));
 	recovery.declare(b);
 }
 

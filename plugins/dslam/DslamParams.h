@@ -15,6 +15,16 @@ enum class AdmissiblePolicy
 	Skip	  ///< inadmissible scans do not update the map (loses their information)
 };
 
+/// Where the map updates are linearised.
+enum class MapLinearisation
+{
+	/// One point per feature, shared by all updates and moved only by
+	/// relinearisation (FeatureMap::shareLinearisationPoints explains why).
+	Shared,
+	/// The estimate at each update's time, as the book's EIF.
+	Current
+};
+
 /// What covariance intersection fuses (Sec. 3.1.4.4).
 enum class FusionScope
 {
@@ -69,6 +79,17 @@ struct DslamParams
 	/// wrong match after the gap moved the robot 30 m through the fusion.
 	/// Off in configs/vicpark/dslam.ini for the reason given above.
 	double fusion_gate_chi2_quantile = 0.9999;
+	/// After this many disagreements in a row, on scans associated by
+	/// landmark IDs, the local SLAM is replaced by the map's estimate (robot
+	/// and features in view) if that fits the scan: its eq. (3.17) cost is inside the fusion gate's chi-square
+	/// quantile (kidnappedFitChi2). The local SLAM is an EKF; like any, it
+	/// grows over-confident in its heading over a long run, and once it
+	/// is, covariance intersection keeps it (it minimises the fused
+	/// covariance) and the gate refuses the map's estimate: on long_gap,
+	/// the robot came back to the start 12 m off, claiming 2.3 m, with the
+	/// map right. 0 = never (the run then stops as diverged after
+	/// divergence_disagreeing_scans).
+	int relocalise_after_disagreeing_scans = 5;
 	/// A feature is mapped only once a second sighting agrees with its first
 	/// at the outlier gate's quantile (NewFeatureConfirmation.h); false maps
 	/// it at its first sighting, as the book. On configs/sim/wrong_ids.ini
@@ -102,6 +123,24 @@ struct DslamParams
 	/// the update's f1) moved more than this since they were evaluated [m];
 	/// 0 = all. 1 cm is a tenth of the range noise.
 	double relinearise_threshold_m = 0.01;
+	/// After a map update that changes the relative geometry of the scan's
+	/// features by more than this (a loop closure: metres), the map updates
+	/// are relinearised at once, up to `relinearise_iterations` passes
+	/// (Gauss-Newton on the static map). 0 = only every
+	/// relinearise_every_steps. The update that closes long_gap's loop,
+	/// linearised where the features were 3.5 m off, left 76 features
+	/// outside their 99.9% ellipse until the next periodic pass, and the
+	/// robot was localised on that map in between.
+	double relinearise_on_correction_m = 0.2;
+	int relinearise_iterations = 5;
+	MapLinearisation map_linearisation = MapLinearisation::Shared;
+	/// Gauss-Newton iterations of the kidnapped-robot solution (eq.
+	/// 3.17-3.18, KidnappedRobot.h); 1 = the book's single linearised step.
+	/// At loop closure the reference pair may pair an old, precise feature
+	/// with one mapped after a gap, metres off: eq. (3.18) then starts the
+	/// robot tens of degrees off, and one step from there put long_gap's
+	/// robot 8 m off with 0.2 m standard deviation.
+	int kidnapped_iterations = 10;
 
 	SparseRecoveryParams recovery;	///< recovery, reordering, n0, ... (Sec. 3.3)
 
