@@ -68,8 +68,9 @@ void DslamParams::declare(ParamBinder& b)
 			  Bounds::atLeast(1));
 	b.enumeration<MapLinearisation>("map_linearisation", map_linearisation,
 									{{"shared", MapLinearisation::Shared}, {"current", MapLinearisation::Current}},
-						"map updates linearised at one point per feature, shared by all updates and moved only by "
-						"relinearisation (shared), or at the estimate of their time (current, the book)");
+									"map updates linearised at one point per feature, shared by all updates and moved "
+									"only by relinearisation (shared), or at the estimate of their time (current, the "
+									"book)");
 	b.integer("kidnapped_iterations", kidnapped_iterations,
 			  "Gauss-Newton iterations of the kidnapped-robot solution, eq. (3.17)-(3.18); 1 = the book's single step",
 			  Bounds::atLeast(1));
