@@ -9,7 +9,13 @@
 
 namespace esif
 {
-EkfSlamCore::EkfSlamCore()
+namespace
+{
+/// The planar cross-product matrix J = [0 -1; 1 0] times v: d(R(phi) v)/dphi.
+Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
+}  // namespace
+
+EkfSlamCore::EkfSlamCore(JacobianPoints points) : points_(points)
 {
 	reserve(64);
 	x_.setZero();
@@ -38,13 +44,20 @@ void EkfSlamCore::predict(const OdometryIncrement& u)
 	const auto J = composeJacobians(robot(), delta);
 	x_.head<3>() = compose(robot(), delta);
 
-	// Eq. (1.8) with the Jacobian F = blkdiag(d_a, I): only robot rows/cols change.
+	// d_a = [I, J (p_{k+1|k} - p_{k|k}); 0, 1]; FEJ (JacobianPoints) takes
+	// the position difference from the prior p_{k|k-1} instead.
+	Eigen::Matrix3d F = J.d_a;
+	if (useFirstEstimates())
+		F.topRightCorner<2, 1>() = perp(x_.head<2>() - robot_prior_.head<2>());
+	robot_prior_ = robot();
+
+	// Eq. (1.8) with the Jacobian blkdiag(F, I): only robot rows/cols change.
 	const std::size_t m = n_ - 3;
 	Eigen::Matrix3d Prr = P_.topLeftCorner<3, 3>();
-	P_.topLeftCorner<3, 3>() = J.d_a * Prr * J.d_a.transpose() + J.d_b * u.cov * J.d_b.transpose();
+	P_.topLeftCorner<3, 3>() = F * Prr * F.transpose() + J.d_b * u.cov * J.d_b.transpose();
 	if (m > 0)
 	{
-		const Eigen::MatrixXd Prm = J.d_a * P_.block(0, 3, 3, m);
+		const Eigen::MatrixXd Prm = F * P_.block(0, 3, 3, m);
 		P_.block(0, 3, 3, m) = Prm;
 		P_.block(3, 0, m, 3) = Prm.transpose();
 	}
@@ -53,7 +66,20 @@ void EkfSlamCore::predict(const OdometryIncrement& u)
 
 RangeBearingPrediction EkfSlamCore::predictMeasurement(std::size_t i, const Pose2& sensor_on_robot) const
 {
-	return predictRangeBearing(robot(), sensor_on_robot, landmark(i));
+	return measurementModel(i, sensor_on_robot, x_, useFirstEstimates());
+}
+
+RangeBearingPrediction EkfSlamCore::measurementModel(
+	std::size_t i, const Pose2& sensor_on_robot, const Eigen::VectorXd& at, bool first_estimates) const
+{
+	auto h = predictRangeBearing(at.head<3>(), sensor_on_robot, at.segment<2>(3 + 2 * i));
+	if (first_estimates)
+	{
+		const auto fej = predictRangeBearing(robot_prior_, sensor_on_robot, first_estimates_[i]);
+		h.d_robot = fej.d_robot;
+		h.d_landmark = fej.d_landmark;
+	}
+	return h;
 }
 
 Eigen::MatrixXd EkfSlamCore::predictionCovariance(
@@ -83,8 +109,8 @@ Eigen::MatrixXd EkfSlamCore::predictionCovariance(
 	return S;
 }
 
-EkfSlamCore::Linearisation EkfSlamCore::linearise(
-	const std::vector<Match>& matches, const Pose2& sensor_on_robot, const Eigen::VectorXd& at) const
+EkfSlamCore::Linearisation EkfSlamCore::linearise(const std::vector<Match>& matches, const Pose2& sensor_on_robot,
+												 const Eigen::VectorXd& at, bool first_estimates) const
 {
 	const std::size_t m = matches.size(), n = n_;
 	const auto P = P_.topLeftCorner(n, n);
@@ -96,7 +122,7 @@ EkfSlamCore::Linearisation EkfSlamCore::linearise(
 	for (std::size_t j = 0; j < m; ++j)
 	{
 		const std::size_t il = 3 + 2 * matches[j].landmark;
-		h[j] = predictRangeBearing(at.head<3>(), sensor_on_robot, at.segment<2>(il));
+		h[j] = measurementModel(matches[j].landmark, sensor_on_robot, at, first_estimates);
 		lin.PHt.middleCols<2>(2 * j).noalias() =
 			P.leftCols<3>() * h[j].d_robot.transpose() + P.middleCols<2>(il) * h[j].d_landmark.transpose();
 		lin.innovation.segment<2>(2 * j) = matches[j].z - h[j].z;
@@ -140,7 +166,7 @@ UpdateOutcome EkfSlamCore::update(
 	// until one moves no state entry by more than the tolerance. Each costs
 	// O(n m^2); P is updated once, with H at the last linearisation point.
 	const Eigen::VectorXd x0 = x_.head(n);
-	Linearisation lin = linearise(matches, sensor_on_robot, x0);
+	Linearisation lin = linearise(matches, sensor_on_robot, x0, useFirstEstimates());
 	Eigen::VectorXd x_next = stateAfter(lin);
 	out.linearisations = 1;
 	if (iterated.max_iterations > 1)
@@ -149,7 +175,7 @@ UpdateOutcome EkfSlamCore::update(
 		while (out.linearisations < iterated.max_iterations)
 		{
 			const Eigen::VectorXd x_i = x_next;
-			lin = linearise(matches, sensor_on_robot, x_i);
+			lin = linearise(matches, sensor_on_robot, x_i, false);
 			x_next = stateAfter(lin);
 			++out.linearisations;
 			Eigen::VectorXd step = x_next - x_i;
@@ -203,12 +229,19 @@ std::size_t EkfSlamCore::addLandmark(const Eigen::Vector2d& z, const Eigen::Matr
 	const std::size_t i = n_;
 	reserve(n_ + 2);
 	x_.segment<2>(i) = init.position;
+	first_estimates_.push_back(init.position);
+
+	// G_x = [I, J (p_L - p_R)]; FEJ (JacobianPoints) takes it about the
+	// robot's prior p_{k|k-1}, so that G_x maps the robot's rotation
+	// direction [J p_{k|k-1}; 1] onto J p_L, the new landmark's.
+	Eigen::Matrix<double, 2, 3> Gx = init.d_robot;
+	if (useFirstEstimates()) Gx.col(2) = perp(init.position - robot_prior_.head<2>());
 
 	// Cross-covariance with everything known so far: G_x P_r,: (O(n)).
-	const Eigen::MatrixXd cross = init.d_robot * P_.topLeftCorner(3, n_);
+	const Eigen::MatrixXd cross = Gx * P_.topLeftCorner(3, n_);
 	P_.block(i, 0, 2, n_) = cross;
 	P_.block(0, i, n_, 2) = cross.transpose();
-	P_.block<2, 2>(i, i) = init.d_robot * P_.topLeftCorner<3, 3>() * init.d_robot.transpose() +
+	P_.block<2, 2>(i, i) = Gx * P_.topLeftCorner<3, 3>() * Gx.transpose() +
 		init.d_measurement * R * init.d_measurement.transpose();
 	n_ += 2;
 	return landmarkCount() - 1;
@@ -217,18 +250,29 @@ std::size_t EkfSlamCore::addLandmark(const Eigen::Vector2d& z, const Eigen::Matr
 void EkfSlamCore::retainLandmarks(const std::vector<std::size_t>& keep)
 {
 	std::vector<Eigen::Index> rows = {0, 1, 2};
+	std::vector<Eigen::Vector2d> first_estimates;
 	for (std::size_t i : keep)
 	{
 		if (i >= landmarkCount()) throw std::invalid_argument("EkfSlamCore::retainLandmarks: no such landmark");
 		rows.push_back(static_cast<Eigen::Index>(3 + 2 * i));
 		rows.push_back(static_cast<Eigen::Index>(4 + 2 * i));
+		first_estimates.push_back(first_estimates_[i]);
 	}
 	const Eigen::VectorXd x = x_(rows);
 	const Eigen::MatrixXd P = P_(rows, rows);
-	setState(x, P);
+	replaceState(x, P);
+	first_estimates_ = std::move(first_estimates);
 }
 
 void EkfSlamCore::setState(const Eigen::VectorXd& x, const Eigen::MatrixXd& P)
+{
+	replaceState(x, P);
+	robot_prior_ = robot();
+	first_estimates_.clear();
+	for (std::size_t i = 0; i < landmarkCount(); ++i) first_estimates_.push_back(landmark(i));
+}
+
+void EkfSlamCore::replaceState(const Eigen::VectorXd& x, const Eigen::MatrixXd& P)
 {
 	const auto n = static_cast<std::size_t>(x.size());
 	if (n < 3 || (n - 3) % 2 != 0 || P.rows() != x.size() || P.cols() != x.size())
