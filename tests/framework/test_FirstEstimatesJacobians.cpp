@@ -195,6 +195,25 @@ TEST(FirstEstimatesJacobians, NewLandmarkIsLinearisedAboutTheRobotPrior)
 	EXPECT_LT((Eigen::MatrixXd(core.covariance()) - expected).cwiseAbs().maxCoeff(), kDenseTolerance);
 }
 
+TEST(FirstEstimatesJacobians, IteratedUpdateMovesTheMeanButUpdatesPAtTheFejPoints)
+{
+	// Robot 1.2 m and 6 deg off the prior: the FEJ linear model misses, the
+	// update is iterated (Gauss-Newton at the iterates) for the mean, while
+	// P gets the FEJ linearisation's reduction, so the null space survives.
+	EkfSlamCore plain = movedFejCore();
+	const Pose2 truth = plain.robot() + Pose2(-1.0, 0.6, 6 * kDeg);
+	std::vector<EkfSlamCore::Match> matches;
+	for (std::size_t i = 0; i < 3; ++i)
+		matches.push_back({i, predictRangeBearing(truth, kSensor, plain.landmark(i)).z, kR});
+	EkfSlamCore iterated = plain;
+	plain.update(matches, kSensor);
+	const auto outcome = iterated.update(matches, kSensor, IteratedUpdate{10, 1.0, 1e-6});
+	ASSERT_GT(outcome.linearisations, 1);
+	EXPECT_GT((Eigen::VectorXd(iterated.state()) - Eigen::VectorXd(plain.state())).cwiseAbs().maxCoeff(), 0.01);
+	EXPECT_LT((Eigen::MatrixXd(iterated.covariance()) - Eigen::MatrixXd(plain.covariance())).cwiseAbs().maxCoeff(),
+			  1e-12);
+}
+
 TEST(FirstEstimatesJacobians, RetainLandmarksKeepsFirstEstimatesAndSetStateResetsThem)
 {
 	EkfSlamCore core = movedFejCore();
