@@ -7,7 +7,7 @@ namespace esif
 void EkfSlam::configure(const ConfigSection& section)
 {
 	loadParams(params_, section);
-	filter_ = LandmarkEkf(params_);
+	filter_ = LandmarkEkf(params_.association, 0, params_.jacobians);
 }
 
 CostFigures EkfSlam::costFigures() const

@@ -5,7 +5,8 @@
 /// is the framework's LandmarkEkf (shared with the local-map builder of the
 /// map-joining filters); this plugin exposes it to the host, section [ekf].
 
-#include <esif/ekf/EkfAssociationParams.h>
+#include "EkfSlamParams.h"
+
 #include <esif/ekf/LandmarkEkf.h>
 #include <esif/plugin/FilterPlugin.h>
 
@@ -26,7 +27,7 @@ class EkfSlam : public FilterPlugin
 	Formulation formulation() const override { return Formulation::EkfSlam; }
 
    private:
-	EkfAssociationParams params_;
+	EkfSlamParams params_;
 	LandmarkEkf filter_;
 };
 

@@ -16,11 +16,12 @@ namespace
 constexpr double kDeg = M_PI / 180.0;
 }
 
-LandmarkEkf::LandmarkEkf(const EkfAssociationParams& params, LandmarkId first_own_id)
+LandmarkEkf::LandmarkEkf(const EkfAssociationParams& params, LandmarkId first_own_id, JacobianPoints jacobians)
 	: params_(params),
 	  gate_distance2_new_(chi2Quantile(params.new_landmark_chi2_quantile, 2)),
 	  id_gate_distance2_(params.idGateDistance2()),
 	  iterated_{params.update_iterations, params.relinearise_above_d2},
+	  core_(jacobians),
 	  next_own_id_(first_own_id)
 {
 }

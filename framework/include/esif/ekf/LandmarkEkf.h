@@ -51,8 +51,9 @@ class LandmarkEkf
    public:
 	/// Robot at the origin with zero covariance. Landmarks the filter creates
 	/// for measurements without an ID are numbered from `first_own_id` up,
-	/// skipping IDs already in the map.
-	explicit LandmarkEkf(const EkfAssociationParams& params = {}, LandmarkId first_own_id = 0);
+	/// skipping IDs already in the map. `jacobians`: JacobianPoints of the core.
+	explicit LandmarkEkf(const EkfAssociationParams& params = {}, LandmarkId first_own_id = 0,
+						 JacobianPoints jacobians = JacobianPoints::Current);
 
 	/// One step: predict, associate, update, add new landmarks. Returns one
 	/// Association per measurement. Throws InputError when association =
