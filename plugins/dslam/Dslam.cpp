@@ -70,34 +70,26 @@ StepReport Dslam::processStep(const StepInput& step)
 
 void Dslam::relinearise(int passes)
 {
-	for (int pass = 0; pass < passes; ++pass)
-	{
-		const std::size_t n = map_->relinearise(params_.relinearise_threshold_m);
-		tally_.relinearised_terms += n;
-		if (n == 0) break;
-		map_->recover(local_.robot().head<2>());
-	}
+	tally_.relinearised_terms +=
+		map_->relineariseUntilSettled(params_.relinearise_threshold_m, passes, local_.robot().head<2>());
 	steps_since_relinearisation_ = 0;
 	++tally_.relinearisations;
 }
 
 void Dslam::updateAndRecoverMap(const Observed& obs, const Pose2& sensor)
 {
-	// The relative geometry of the features this scan sees, before and after
-	// (offsets from the first, so that a common translation does not count).
+	// The relative geometry of the mapped features this scan sees, before
+	// and after the update.
 	std::vector<LandmarkId> seen;
 	for (const auto& m : obs.all)
 		if (map_->contains(m.id)) seen.push_back(m.id);
-	std::vector<Eigen::Vector2d> before;
-	for (LandmarkId id : seen) before.push_back(map_->position(id) - map_->position(seen.front()));
+	const Eigen::VectorXd before = map_->positions(seen);
 
 	updateMap(obs, sensor);
 	map_->recover(local_.robot().head<2>());
-	if (params_.relinearise_on_correction_m <= 0 || seen.size() < 2) return;
-	double change = 0;
-	for (std::size_t i = 1; i < seen.size(); ++i)
-		change = std::max(change, (map_->position(seen[i]) - map_->position(seen.front()) - before[i]).norm());
-	if (change <= params_.relinearise_on_correction_m) return;
+	if (params_.relinearise_on_correction_m <= 0 || seen.size() < 2 ||
+		map_->relativeChangeSince(seen, before) <= params_.relinearise_on_correction_m)
+		return;
 	++tally_.corrections_relinearised;
 	relinearise(params_.relinearise_iterations);
 }

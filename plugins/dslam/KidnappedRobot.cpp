@@ -19,19 +19,32 @@ struct NormalEquations
 	Eigen::VectorXd eta;
 };
 
+/// Measurement i of z_loc predicted at the state y = [robot; features],
+/// and its residual z - h(y), bearing wrapped.
+struct Prediction
+{
+	RangeBearingPrediction h;
+	Eigen::Vector2d residual;
+};
+
+Prediction predicted(const KidnappedInput& in, const Eigen::VectorXd& y, std::size_t i)
+{
+	Prediction p{predictRangeBearing(y.head<3>(), in.sensor_on_robot, y.segment<2>(3 + 2 * static_cast<int>(i))), {}};
+	p.residual = in.z_loc[i].z - p.h.z;
+	p.residual(1) = wrapAngle(p.residual(1));
+	return p;
+}
+
 NormalEquations linearisedAt(const KidnappedInput& in, const Eigen::VectorXd& y, const NormalEquations& prior)
 {
 	NormalEquations ne = prior;
 	const int n = static_cast<int>(y.size());
 	for (std::size_t i = 0; i < in.z_loc.size(); ++i)
 	{
-		const int col = 3 + 2 * static_cast<int>(i);
-		const auto h = predictRangeBearing(y.head<3>(), in.sensor_on_robot, y.segment<2>(col));
+		const auto [h, nu] = predicted(in, y, i);
 		Eigen::Matrix<double, 2, Eigen::Dynamic> H = Eigen::MatrixXd::Zero(2, n);
 		H.leftCols<3>() = h.d_robot;
-		H.middleCols<2>(col) = h.d_landmark;
-		Eigen::Vector2d nu = in.z_loc[i].z - h.z;
-		nu(1) = wrapAngle(nu(1));
+		H.middleCols<2>(3 + 2 * static_cast<int>(i)) = h.d_landmark;
 		const Eigen::Matrix2d Rinv = in.z_loc[i].R.inverse();  // 2x2 measurement noise
 		ne.info.noalias() += H.transpose() * Rinv * H;
 		ne.eta.noalias() += H.transpose() * Rinv * (nu + H * y);
@@ -59,8 +72,9 @@ GaussianState solveKidnappedRobot(const KidnappedInput& in)
 	prior.info.bottomRightCorner(2 * m1, 2 * m1) = prior_llt.solve(Eigen::MatrixXd::Identity(2 * m1, 2 * m1));
 	prior.eta = prior.info * y;	 // the prior mean is y's feature part
 
-	// 1 mm and 1e-6 rad: far below the measurement noise.
-	constexpr double kConverged = 1e-3;
+	// Converged when a step moves the robot less than these: far below the
+	// measurement noise.
+	constexpr double kConvergedM = 1e-3, kConvergedRad = 1e-6;
 	GaussianState out;
 	for (int it = 0; it < std::max(1, in.iterations); ++it)
 	{
@@ -72,7 +86,7 @@ GaussianState solveKidnappedRobot(const KidnappedInput& in)
 		out.cov = llt.solve(Eigen::MatrixXd::Identity(n, n));  // (3 + 2 m1)^2: small by construction
 		Eigen::VectorXd step = out.mean - y;
 		y = out.mean;
-		if (step.head<2>().norm() < kConverged && std::abs(step(2)) < kConverged * 1e-3) break;
+		if (step.head<2>().norm() < kConvergedM && std::abs(step(2)) < kConvergedRad) break;
 	}
 	out.mean(2) = wrapAngle(out.mean(2));
 	out.cov = 0.5 * (out.cov + out.cov.transpose()).eval();
@@ -84,10 +98,7 @@ double kidnappedFitChi2(const KidnappedInput& in, const GaussianState& solution)
 	double chi2 = 0;
 	for (std::size_t i = 0; i < in.z_loc.size(); ++i)
 	{
-		const auto h = predictRangeBearing(solution.mean.head<3>(), in.sensor_on_robot,
-										   solution.mean.segment<2>(3 + 2 * static_cast<int>(i)));
-		Eigen::Vector2d nu = in.z_loc[i].z - h.z;
-		nu(1) = wrapAngle(nu(1));
+		const Eigen::Vector2d nu = predicted(in, solution.mean, i).residual;
 		chi2 += nu.dot(in.z_loc[i].R.ldlt().solve(nu));
 	}
 	const Eigen::VectorXd df = solution.mean.tail(in.features.size()) - in.features;

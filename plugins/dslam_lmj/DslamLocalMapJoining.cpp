@@ -358,13 +358,8 @@ void DslamLocalMapJoining::relinearise(const Eigen::Vector2d& reference)
 	// Evaluating the updates again at the current estimate is a Gauss-Newton
 	// step of the static map problem (no robot, no prediction: nothing is
 	// marginalised, so nothing is lost by doing so).
-	for (int pass = 0; pass < params_.relinearise_iterations; ++pass)
-	{
-		const std::size_t n = global_->relinearise(params_.relinearise_threshold_m);
-		tally_.relinearised_terms += n;
-		if (n == 0) break;
-		global_->recover(reference);
-	}
+	tally_.relinearised_terms +=
+		global_->relineariseUntilSettled(params_.relinearise_threshold_m, params_.relinearise_iterations, reference);
 }
 
 void DslamLocalMapJoining::recordEnds(Fusion& fusion, const std::vector<std::size_t>& originals,

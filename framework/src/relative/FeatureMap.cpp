@@ -1,5 +1,6 @@
 #include <esif/relative/FeatureMap.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace esif::relative
@@ -25,7 +26,7 @@ std::vector<VarId> FeatureMap::variables(const std::vector<LandmarkId>& ids) con
 	return vars;
 }
 
-Eigen::VectorXd FeatureMap::stackedPositions(const std::vector<LandmarkId>& ids) const
+Eigen::VectorXd FeatureMap::positions(const std::vector<LandmarkId>& ids) const
 {
 	Eigen::VectorXd xy(2 * ids.size());
 	for (std::size_t i = 0; i < ids.size(); ++i) xy.segment<2>(2 * i) = position(ids[i]);
@@ -34,7 +35,7 @@ Eigen::VectorXd FeatureMap::stackedPositions(const std::vector<LandmarkId>& ids)
 
 Eigen::VectorXd FeatureMap::linearisationPoints(const std::vector<LandmarkId>& ids) const
 {
-	if (!share_points_) return stackedPositions(ids);
+	if (!share_points_) return positions(ids);
 	Eigen::VectorXd xy(2 * ids.size());
 	for (std::size_t i = 0; i < ids.size(); ++i)
 		xy.segment<2>(2 * i) = shared_point_[static_cast<std::size_t>(var_of_.at(ids[i]).value)];
@@ -81,17 +82,18 @@ UpdateTerm FeatureMap::relativeTerm(const std::vector<LandmarkId>& ids, const Po
 	// J^T R^-1 (nu + J x^) at the current estimate x^, eq. (3.15); at x_lin
 	// the term is J^T R^-1 (z - H(x_lin) + J x_lin), hence nu below.
 	const ValueJacobian h = relativeGeometry(x_lin);
-	const Eigen::VectorXd nu = relativeDifference(z.value, h.value) + h.jacobian * (x_lin - stackedPositions(ids));
+	const Eigen::VectorXd nu = relativeDifference(z.value, h.value) + h.jacobian * (x_lin - positions(ids));
 	return core_.addMeasurement(variables(ids), h.jacobian, 0.5 * (R_map + R_map.transpose()), nu);
 }
 
-bool FeatureMap::movedSince(const RelativeTerm& t, double threshold_m) const
+double FeatureMap::relativeChangeSince(const std::vector<LandmarkId>& ids, const Eigen::VectorXd& then) const
 {
-	const Eigen::VectorXd now = stackedPositions(t.ids);
-	const Eigen::Vector2d shift = now.head<2>() - t.linearised_at.head<2>();
+	const Eigen::VectorXd now = positions(ids);
+	const Eigen::Vector2d shift = now.head<2>() - then.head<2>();
+	double largest = 0;
 	for (Eigen::Index i = 2; i < now.size(); i += 2)
-		if ((now.segment<2>(i) - t.linearised_at.segment<2>(i) - shift).norm() > threshold_m) return true;
-	return false;
+		largest = std::max(largest, (now.segment<2>(i) - then.segment<2>(i) - shift).norm());
+	return largest;
 }
 
 std::size_t FeatureMap::relinearise(double threshold_m)
@@ -99,14 +101,27 @@ std::size_t FeatureMap::relinearise(double threshold_m)
 	for (std::size_t i = 0; i < ids_.size(); ++i) shared_point_[i] = position(ids_[i]);
 	std::size_t n = 0;
 	for (auto& t : terms_)
-		if (t.active && (threshold_m <= 0 || movedSince(t, threshold_m)))
+		if (t.active && (threshold_m <= 0 || relativeChangeSince(t.ids, t.linearised_at) > threshold_m))
 		{
 			core_.withdraw(t.term);
-			t.linearised_at = stackedPositions(t.ids);
+			t.linearised_at = positions(t.ids);
 			t.term = relativeTerm(t.ids, t.points, t.linearised_at);
 			++n;
 		}
 	return n;
+}
+
+std::size_t FeatureMap::relineariseUntilSettled(double threshold_m, int passes, const Eigen::Vector2d& reference)
+{
+	std::size_t total = 0;
+	for (int pass = 0; pass < passes; ++pass)
+	{
+		const std::size_t n = relinearise(threshold_m);
+		total += n;
+		if (n == 0) break;
+		recover(reference);
+	}
+	return total;
 }
 
 MapUpdate FeatureMap::updateAnchor(const std::vector<LandmarkId>& ids, const PointSet& points)
@@ -120,7 +135,7 @@ MapUpdate FeatureMap::updateAnchor(const std::vector<LandmarkId>& ids, const Poi
 		}
 	const auto n = static_cast<Eigen::Index>(points.xy.size());
 	update.term = core_.addMeasurement(variables(ids), Eigen::MatrixXd::Identity(n, n), points.cov,
-									   points.xy - stackedPositions(ids));
+									   points.xy - positions(ids));
 	markSupported(ids);
 	return update;
 }

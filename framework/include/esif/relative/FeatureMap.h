@@ -90,6 +90,17 @@ class FeatureMap
 	/// translation, so a translated cluster needs none); 0 = all terms.
 	/// Returns the number of terms relinearised.
 	std::size_t relinearise(double threshold_m = 0);
+	/// Gauss-Newton on the static map: up to `passes` relinearise() calls,
+	/// each followed by recover(reference), stopping at the first that
+	/// relinearises nothing. Returns the number of terms relinearised.
+	std::size_t relineariseUntilSettled(double threshold_m, int passes, const Eigen::Vector2d& reference);
+
+	/// The features `ids`' positions, stacked [x1, y1, x2, y2, ...].
+	Eigen::VectorXd positions(const std::vector<LandmarkId>& ids) const;
+	/// How far the relative geometry of `ids` has moved since they stood at
+	/// `then` (stacked, as positions()): the largest change of a feature's
+	/// offset from the first. A common translation does not count.
+	double relativeChangeSince(const std::vector<LandmarkId>& ids, const Eigen::VectorXd& then) const;
 
 	/// x = I^-1 i (eq. 3.24), reordering about `robot_xy` when needed.
 	void recover(const Eigen::Vector2d& robot_xy);
@@ -105,7 +116,6 @@ class FeatureMap
    private:
 	VarId createFeature(LandmarkId id, const Eigen::Vector2d& position);
 	std::vector<VarId> variables(const std::vector<LandmarkId>& ids) const;
-	Eigen::VectorXd stackedPositions(const std::vector<LandmarkId>& ids) const;
 	void markSupported(const std::vector<LandmarkId>& ids);
 
 	/// A kept relative update: its measurement and the term now applied.
@@ -117,7 +127,6 @@ class FeatureMap
 		Eigen::VectorXd linearised_at;	///< where `term` was evaluated (the features' stacked points)
 		bool active = true;
 	};
-	bool movedSince(const RelativeTerm& t, double threshold_m) const;
 	/// Eq. (3.13)-(3.15) linearised at `x_lin` (the features' stacked
 	/// linearisation points).
 	UpdateTerm relativeTerm(const std::vector<LandmarkId>& ids, const PointSet& points, const Eigen::VectorXd& x_lin);
