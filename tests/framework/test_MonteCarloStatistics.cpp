@@ -167,6 +167,44 @@ TEST(EstimationErrors, TheInitialPoseHasNoNeesEvenWithACovarianceFloor)
 	EXPECT_NEAR(*rows[1].nees, 1.0, 1e-12);	 // 0.1^2 / 0.01
 }
 
+TEST(EstimationErrors, ThePoseNeesIsSplitByTheMarginalsOfPositionAndHeading)
+{
+	// x and heading correlated (0.5), y independent, all variances 1; the
+	// error (1, 0, 1). Whole pose: (1, 1) [[1, .5], [.5, 1]]^-1 (1, 1)^T
+	// = (1 - .5 - .5 + 1) / 0.75 = 4/3. Position alone (marginal I): 1;
+	// heading alone: 1. The split is of the marginals, not the conditionals,
+	// so it does not add up to the whole.
+	esif::GroundTruth truth;
+	truth.path = {esif::Pose2(0, 0, 0), esif::Pose2(0, 0, 0)};
+	Eigen::Matrix3d P = Eigen::Matrix3d::Identity();
+	P(0, 2) = P(2, 0) = 0.5;
+	const std::vector<esif::TrajectoryPoint> trajectory = {{0, 0, {{0, 0, 0}, Eigen::Matrix3d::Zero()}},
+														   {1, 0.1, {{1, 0, 1}, P}}};
+	const auto rows = esif::poseErrors(truth, trajectory);
+	ASSERT_EQ(rows.size(), 2u);
+	EXPECT_FALSE(rows[0].position_nees);
+	EXPECT_FALSE(rows[0].heading_nees);
+	EXPECT_NEAR(*rows[1].nees, 4.0 / 3.0, 1e-12);
+	EXPECT_NEAR(*rows[1].position_nees, 1.0, 1e-12);
+	EXPECT_NEAR(*rows[1].heading_nees, 1.0, 1e-12);
+
+	// The file carries the split and reads it back exactly; a file of the
+	// earlier layout (no split) still reads, with the split absent.
+	esif::test::TempDir tmp;
+	const std::string path = tmp.file("pose_errors.csv");
+	esif::writeTextAtomically(path, esif::poseErrorsCsv(rows));
+	const auto back = esif::readPoseErrors(path);
+	ASSERT_EQ(back.size(), 2u);
+	EXPECT_EQ(back[1].position_nees, rows[1].position_nees);
+	EXPECT_EQ(back[1].heading_nees, rows[1].heading_nees);
+	esif::writeTextAtomically(path, "step,ex_m,ey_m,eth_rad,nees\n1,0,0,0,2.5\n");
+	const auto older = esif::readPoseErrors(path);
+	ASSERT_EQ(older.size(), 1u);
+	EXPECT_EQ(older[0].nees, 2.5);
+	EXPECT_FALSE(older[0].position_nees);
+	EXPECT_FALSE(older[0].heading_nees);
+}
+
 /// A finished run folder with the given rows, wall time and wrong associations.
 void writeRunFolder(
 	const std::string& dir, const std::vector<esif::PoseError>& poses, const std::vector<esif::LandmarkError>& lms,
@@ -179,9 +217,11 @@ void writeRunFolder(
 		"{\n  \"wall_s\": " + std::to_string(wall_s) + ",\n  \"da_wrong\": " + std::to_string(da_wrong) + "\n}\n");
 }
 
-esif::PoseError pose(std::size_t step, double ex, double ey, double eth, std::optional<double> nees)
+esif::PoseError pose(std::size_t step, double ex, double ey, double eth, std::optional<double> nees,
+					 std::optional<double> position_nees = std::nullopt,
+					 std::optional<double> heading_nees = std::nullopt)
 {
-	return {step, Eigen::Vector3d(ex, ey, eth), nees};
+	return {step, Eigen::Vector3d(ex, ey, eth), nees, position_nees, heading_nees};
 }
 
 esif::LandmarkError landmark(esif::LandmarkId id, double ex, double ey, double nees)
@@ -267,6 +307,43 @@ TEST(MonteCarloCollect, AggregatesAFixedSetOfRunFoldersAsCheckedByHand)
 		EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/" + f)) << f;
 	const std::string csv = esif::test::readText(dir + "/summary.csv");
 	EXPECT_NE(csv.find("\nekf,2,3,6.75,"), std::string::npos) << csv;
+}
+
+TEST(MonteCarloCollect, SplitsThePoseAneesIntoPositionAndHeadingAsCheckedByHand)
+{
+	esif::test::TempDir tmp;
+	const std::string dir = tmp.file("mc");
+	auto plan = esif::CampaignPlan::create("scenario.ini", {"ekf.ini"}, 1, 2);
+	esif::ensureDirectory(dir);
+	esif::writeTextAtomically(esif::campaign_layout::manifest(dir), plan.iniText());
+	// Heading NEES 9 and 7 at step 1: ANEES 8, above the 1-dof bound for 2
+	// runs (chi2inv(.975, 2) / 2 = 3.689); position 1 and 3: 2, inside.
+	// Step 2 has position NEES 4 in run 1 only (run 2 has none there).
+	writeRunFolder(esif::campaign_layout::runFolder(dir, "ekf", 1),
+				   {pose(1, 0, 0, 0, 10.0, 1.0, 9.0), pose(2, 0, 0, 0, 6.0, 4.0, 2.0)}, {}, 1.0, 0);
+	writeRunFolder(esif::campaign_layout::runFolder(dir, "ekf", 2),
+				   {pose(1, 0, 0, 0, 10.0, 3.0, 7.0), pose(2, 0, 0, 0, std::nullopt)}, {}, 1.0, 0);
+	const esif::CampaignCollection c = esif::collectCampaign(dir, esif::CampaignPlan::load(dir));
+	ASSERT_EQ(c.configs.size(), 1u);
+	const ConfigStatistics& s = c.configs[0];
+	ASSERT_EQ(s.steps.size(), 2u);
+	EXPECT_DOUBLE_EQ(*s.steps[0].anees_position, 2.0);
+	EXPECT_DOUBLE_EQ(*s.steps[0].anees_heading, 8.0);
+	EXPECT_NEAR(s.steps[0].bounds_heading.hi, 7.3777589 / 2, 1e-6);
+	EXPECT_FALSE(s.steps[0].bounds_heading.contains(*s.steps[0].anees_heading));
+	EXPECT_TRUE(s.steps[0].bounds_position.contains(*s.steps[0].anees_position));
+	EXPECT_DOUBLE_EQ(*s.steps[1].anees_position, 4.0);
+	EXPECT_NEAR(s.steps[1].bounds_position.lo, esif::aneesBounds(2, 1).lo, 1e-15);
+	EXPECT_DOUBLE_EQ(*s.pose_position_anees_mean, (2.0 + 4.0) / 2);
+	EXPECT_DOUBLE_EQ(*s.pose_heading_anees_mean, (8.0 + 2.0) / 2);
+
+	const std::string md = esif::writeCampaignOutputs(dir, esif::CampaignPlan::load(dir), c);
+	EXPECT_NE(md.find("| 3 / 5 |"), std::string::npos) << md;
+	const std::string per_step = esif::test::readText(dir + "/per_step.csv");
+	// Step 1: position ANEES 2 with [chi2inv(.025, 4), chi2inv(.975, 4)] / 2 =
+	// [0.2422, 5.5716], heading 8 with [chi2inv(.025, 2), chi2inv(.975, 2)] / 2.
+	EXPECT_NE(per_step.find(",2,0.2422092785439"), std::string::npos) << per_step;
+	EXPECT_NE(per_step.find(",8,0.0253178079842898"), std::string::npos) << per_step;
 }
 
 TEST(MonteCarloCollect, AMalformedErrorFileIsOneLineNamingIt)

@@ -27,6 +27,11 @@ std::vector<PoseError> poseErrors(const GroundTruth& truth, const std::vector<Tr
 		// covariance is zero or the tiny floor of a first zero move (1e-10:
 		// its NEES of a zero error would be a meaningless 0, below any bound).
 		if (tp.step > 0 && tp.pose.cov.trace() > 0) row.nees = nees(row.error, tp.pose.cov);
+		if (row.nees)
+		{
+			row.position_nees = nees(row.error.head<2>(), tp.pose.cov.topLeftCorner<2, 2>());
+			row.heading_nees = nees(row.error.tail<1>(), tp.pose.cov.bottomRightCorner<1, 1>());
+		}
 		rows.push_back(row);
 	}
 	return rows;

@@ -27,7 +27,7 @@ double sortedQuantile(const std::vector<double>& v, double p)
 /// What the runs hold at one step.
 struct StepAccumulator
 {
-	std::vector<double> nees;
+	std::vector<double> nees, position_nees, heading_nees;
 	std::vector<double> position_errors;
 	double heading_sq = 0;
 };
@@ -39,6 +39,13 @@ struct LandmarkAccumulator
 	std::size_t n = 0;
 };
 
+double mean(const std::vector<double>& v)
+{
+	double sum = 0;
+	for (const double x : v) sum += x;
+	return sum / static_cast<double>(v.size());
+}
+
 StepStatistics stepStatistics(std::size_t step, const StepAccumulator& acc)
 {
 	StepStatistics s;
@@ -46,10 +53,18 @@ StepStatistics stepStatistics(std::size_t step, const StepAccumulator& acc)
 	s.runs = acc.nees.size();
 	if (s.runs > 0)
 	{
-		double sum = 0;
-		for (const double v : acc.nees) sum += v;
-		s.anees = sum / static_cast<double>(s.runs);
+		s.anees = mean(acc.nees);
 		s.bounds = aneesBounds(3, s.runs);
+	}
+	if (!acc.position_nees.empty())
+	{
+		s.anees_position = mean(acc.position_nees);
+		s.bounds_position = aneesBounds(2, acc.position_nees.size());
+	}
+	if (!acc.heading_nees.empty())
+	{
+		s.anees_heading = mean(acc.heading_nees);
+		s.bounds_heading = aneesBounds(1, acc.heading_nees.size());
 	}
 	const std::size_t reached = acc.position_errors.size();
 	if (reached > 0)
@@ -75,21 +90,28 @@ void addPoseStatistics(const std::vector<CampaignRunErrors>& runs, ConfigStatist
 		{
 			auto& acc = by_step[row.step];
 			if (row.nees) acc.nees.push_back(*row.nees);
+			if (row.position_nees) acc.position_nees.push_back(*row.position_nees);
+			if (row.heading_nees) acc.heading_nees.push_back(*row.heading_nees);
 			acc.position_errors.push_back(row.error.head<2>().norm());
 			acc.heading_sq += row.error(2) * row.error(2);
 		}
 	double anees_sum = 0;
 	std::size_t with_anees = 0, inside = 0;
+	std::vector<double> position, heading;
 	for (const auto& [step, acc] : by_step)
 	{
 		out.steps.push_back(stepStatistics(step, acc));
 		const auto& s = out.steps.back();
+		if (s.anees_position) position.push_back(*s.anees_position);
+		if (s.anees_heading) heading.push_back(*s.anees_heading);
 		if (!s.anees) continue;
 		anees_sum += *s.anees;
 		++with_anees;
 		if (s.bounds.contains(*s.anees)) ++inside;
 	}
 	out.pose_bounds = aneesBounds(3, runs.size());
+	if (!position.empty()) out.pose_position_anees_mean = mean(position);
+	if (!heading.empty()) out.pose_heading_anees_mean = mean(heading);
 	if (with_anees == 0) return;
 	out.pose_anees_mean = anees_sum / static_cast<double>(with_anees);
 	out.pose_steps_inside_fraction = static_cast<double>(inside) / static_cast<double>(with_anees);

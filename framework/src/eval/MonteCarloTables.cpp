@@ -43,7 +43,7 @@ const char* const kSummaryColumns =
 	"landmark_anees,landmark_bound_lo,landmark_bound_hi,landmarks_inside_fraction,landmarks_scored,"
 	"trajectory_rmse_mean_m,trajectory_rmse_std_m,landmark_rmse_mean_m,landmark_rmse_std_m,"
 	"final_position_rmse_m,wall_s_median,wall_s_p25,wall_s_p75,wall_s_min,wall_s_max,da_wrong_total,"
-	"runs_with_da_wrong";
+	"runs_with_da_wrong,pose_position_anees_mean,pose_heading_anees_mean";
 
 /// The RMSE over runs of the position at the last step all runs have.
 double finalPositionRmse(const ConfigStatistics& c)
@@ -64,7 +64,8 @@ std::string monteCarloSummaryCsv(const std::vector<ConfigStatistics>& configs, s
 			std::to_string(c.landmarks.size()), full(c.trajectory_rmse_m.mean), full(c.trajectory_rmse_m.stddev),
 			full(c.landmark_rmse_m.mean), full(c.landmark_rmse_m.stddev), full(finalPositionRmse(c)),
 			full(c.wall_s.median), full(c.wall_s.p25), full(c.wall_s.p75), full(c.wall_s.min), full(c.wall_s.max),
-			std::to_string(c.da_wrong_total), std::to_string(c.runs_with_da_wrong)};
+			std::to_string(c.da_wrong_total), std::to_string(c.runs_with_da_wrong), full(c.pose_position_anees_mean),
+			full(c.pose_heading_anees_mean)};
 		for (std::size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + cells[i];
 		out += "\n";
 	}
@@ -75,14 +76,15 @@ std::string monteCarloSummaryMarkdown(
 	const std::string& title, const std::vector<ConfigStatistics>& configs, const CampaignGaps& gaps)
 {
 	std::string out = "# " + title + "\n\n";
-	out += "| config | N | pose ANEES (mean over steps) | 95% bounds (3N dof) | steps inside | landmark ANEES | "
-		   "95% bounds (2N dof) | landmarks inside | trajectory RMSE [m] | landmark RMSE [m] | time per run [s] | "
-		   "wrong associations |\n";
-	out += "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+	out += "| config | N | pose ANEES (mean over steps) | 95% bounds (3N dof) | steps inside | "
+		   "position / heading ANEES | landmark ANEES | 95% bounds (2N dof) | landmarks inside | "
+		   "trajectory RMSE [m] | landmark RMSE [m] | time per run [s] | wrong associations |\n";
+	out += "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 	for (const auto& c : configs)
 	{
 		out += "| " + c.name + " | " + std::to_string(c.runs) + " | " + rounded(c.pose_anees_mean) + " | " +
 			   band(c.pose_bounds) + " | " + percent(c.pose_steps_inside_fraction) + " | " +
+			   rounded(c.pose_position_anees_mean) + " / " + rounded(c.pose_heading_anees_mean) + " | " +
 			   rounded(c.landmark_anees) + " | " + band(c.landmark_bounds) + " | " +
 			   percent(c.landmarks_inside_fraction) + " | " + rounded(c.trajectory_rmse_m.mean) + " ± " +
 			   rounded(c.trajectory_rmse_m.stddev, 2) + " | " + rounded(c.landmark_rmse_m.mean) + " ± " +
@@ -92,7 +94,10 @@ std::string monteCarloSummaryMarkdown(
 	}
 	out += "\nPose ANEES: at each step the mean over runs of the pose NEES (3 dof), averaged over the steps; "
 		   "\"steps inside\": the share of steps whose ANEES lies inside its two-sided 95% chi-square bounds "
-		   "[chi2inv(0.025, 3N), chi2inv(0.975, 3N)] / N. Landmark ANEES: the mean NEES (2 dof) of the final "
+		   "[chi2inv(0.025, 3N), chi2inv(0.975, 3N)] / N. \"Position / heading\": the same mean over steps "
+		   "of the NEES of the pose's position (2 dof, ideal 2) and of its heading (1 dof, ideal 1) alone, "
+		   "which tells which part of the pose is over- or under-confident (per step with bounds in "
+		   "per_step.csv). Landmark ANEES: the mean NEES (2 dof) of the final "
 		   "landmarks over all runs and landmarks, held against the bounds of one landmark over N runs (the "
 		   "landmarks of a run share the robot's error, so they are not independent draws); \"landmarks "
 		   "inside\": the share of landmarks whose own ANEES over the runs that mapped them is inside its "
@@ -112,13 +117,18 @@ std::string monteCarloPerStepCsv(const std::vector<ConfigStatistics>& configs)
 {
 	std::string out =
 		"config,step,runs,anees,bound_lo,bound_hi,position_rmse_m,heading_rmse_rad,position_error_p10_m,"
-		"position_error_p90_m\n";
+		"position_error_p90_m,anees_position,bound_position_lo,bound_position_hi,anees_heading,bound_heading_lo,"
+		"bound_heading_hi\n";
+	const auto withBounds = [](const std::optional<double>& anees, const AneesBounds& b) {
+		return full(anees) + "," + (anees ? full(b.lo) + "," + full(b.hi) : std::string(","));
+	};
 	for (const auto& c : configs)
 		for (const auto& s : c.steps)
-			out += c.name + "," + std::to_string(s.step) + "," + std::to_string(s.runs) + "," + full(s.anees) + "," +
-				   (s.runs ? full(s.bounds.lo) + "," + full(s.bounds.hi) : std::string(",")) + "," +
-				   full(s.position_rmse_m) + "," + full(s.heading_rmse_rad) + "," + full(s.position_error_p10_m) +
-				   "," + full(s.position_error_p90_m) + "\n";
+			out += c.name + "," + std::to_string(s.step) + "," + std::to_string(s.runs) + "," +
+				   withBounds(s.anees, s.bounds) + "," + full(s.position_rmse_m) + "," + full(s.heading_rmse_rad) +
+				   "," + full(s.position_error_p10_m) + "," + full(s.position_error_p90_m) + "," +
+				   withBounds(s.anees_position, s.bounds_position) + "," +
+				   withBounds(s.anees_heading, s.bounds_heading) + "\n";
 	return out;
 }
 

@@ -16,7 +16,8 @@ namespace esif
 {
 namespace
 {
-const char* const kPoseHeader = "step,ex_m,ey_m,eth_rad,nees";
+const char* const kPoseHeader = "step,ex_m,ey_m,eth_rad,nees,nees_position,nees_heading";
+const char* const kPoseHeaderWithoutSplit = "step,ex_m,ey_m,eth_rad,nees";
 const char* const kLandmarkHeader = "true_id,ex_m,ey_m,nees";
 
 void appendNumber(std::string& out, double v)
@@ -29,7 +30,6 @@ void appendNees(std::string& out, const std::optional<double>& v)
 {
 	out += ',';
 	if (v) number_text::append(out, *v);
-	out += '\n';
 }
 
 /// The comma-separated fields of `line`.
@@ -69,16 +69,21 @@ std::optional<double> parseNees(const std::string& field, const std::string& whe
 }
 
 /// Calls `row(fields, where)` for every line after the header, which must
-/// be `header`; each line must have `columns` fields.
+/// be `header` or, when given, `older_header` (a prefix of it: an earlier
+/// version of the file); each line must have as many fields as the header
+/// the file has.
 void readCsv(
-	const std::string& path, const std::string& header, std::size_t columns,
-	const std::function<void(const std::vector<std::string>&, const std::string&)>& row)
+	const std::string& path, const std::string& header,
+	const std::function<void(const std::vector<std::string>&, const std::string&)>& row,
+	const char* older_header = nullptr)
 {
 	std::ifstream in(path);
 	if (!in) throw InputError(path + ": cannot open (missing: was the run given ground truth?)");
 	std::string line;
-	if (!std::getline(in, line) || fieldsOf(line) != fieldsOf(header))
+	if (!std::getline(in, line) ||
+		(fieldsOf(line) != fieldsOf(header) && (!older_header || fieldsOf(line) != fieldsOf(older_header))))
 		throw InputError(path + ":1: expected the header '" + header + "'");
+	const std::size_t columns = fieldsOf(line).size();
 	for (std::size_t number = 2; std::getline(in, line); ++number)
 	{
 		if (line.empty()) continue;
@@ -100,6 +105,9 @@ std::string poseErrorsCsv(const std::vector<PoseError>& rows)
 		out += std::to_string(r.step);
 		for (int i = 0; i < 3; ++i) appendNumber(out, r.error(i));
 		appendNees(out, r.nees);
+		appendNees(out, r.position_nees);
+		appendNees(out, r.heading_nees);
+		out += '\n';
 	}
 	return out;
 }
@@ -112,6 +120,7 @@ std::string landmarkErrorsCsv(const std::vector<LandmarkError>& rows)
 		out += std::to_string(r.true_id);
 		for (int i = 0; i < 2; ++i) appendNumber(out, r.error(i));
 		appendNees(out, r.nees);
+		out += '\n';
 	}
 	return out;
 }
@@ -126,20 +135,26 @@ void writeEstimationErrorFiles(
 std::vector<PoseError> readPoseErrors(const std::string& path)
 {
 	std::vector<PoseError> rows;
-	readCsv(path, kPoseHeader, 5, [&](const std::vector<std::string>& f, const std::string& where) {
+	const auto parse = [&](const std::vector<std::string>& f, const std::string& where) {
 		PoseError r;
 		r.step = static_cast<std::size_t>(parseInteger(f[0], where));
 		for (int i = 0; i < 3; ++i) r.error(i) = parseNumber(f[1 + i], where);
 		r.nees = parseNees(f[4], where);
+		if (f.size() > 5)
+		{
+			r.position_nees = parseNees(f[5], where);
+			r.heading_nees = parseNees(f[6], where);
+		}
 		rows.push_back(r);
-	});
+	};
+	readCsv(path, kPoseHeader, parse, kPoseHeaderWithoutSplit);
 	return rows;
 }
 
 std::vector<LandmarkError> readLandmarkErrors(const std::string& path)
 {
 	std::vector<LandmarkError> rows;
-	readCsv(path, kLandmarkHeader, 4, [&](const std::vector<std::string>& f, const std::string& where) {
+	readCsv(path, kLandmarkHeader, [&](const std::vector<std::string>& f, const std::string& where) {
 		LandmarkError r;
 		r.true_id = static_cast<LandmarkId>(parseInteger(f[0], where));
 		for (int i = 0; i < 2; ++i) r.error(i) = parseNumber(f[1 + i], where);

@@ -24,6 +24,11 @@ struct PoseError
 	/// e^T P^-1 e (3 dof); none at the initial pose (step 0, known exactly),
 	/// with a zero covariance, or when P is not positive definite.
 	std::optional<double> nees;
+	/// The same split by the pose's marginals, to tell which part of the pose
+	/// is over- or under-confident: position (2 dof, the x-y block of P) and
+	/// heading (1 dof, e_theta^2 / P_theta_theta); none where `nees` is none.
+	std::optional<double> position_nees;
+	std::optional<double> heading_nees;
 };
 
 /// A landmark of the final map minus its true position.

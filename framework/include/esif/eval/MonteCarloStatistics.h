@@ -74,6 +74,10 @@ struct StepStatistics
 	std::size_t runs = 0;  ///< runs with a NEES at this step (N_k)
 	std::optional<double> anees;  ///< none when no run has a NEES here (initial pose)
 	AneesBounds bounds;	 ///< for N_k runs; zeros when runs = 0
+	/// The same over the runs' position (2 dof) and heading (1 dof) NEES
+	/// (PoseError), with their bounds for N_k runs; none when no run has one.
+	std::optional<double> anees_position, anees_heading;
+	AneesBounds bounds_position, bounds_heading;
 	/// Over all runs reaching the step: sqrt(mean |e_xy|^2) [m] and
 	/// sqrt(mean e_theta^2) [rad], and the 10th and 90th percentiles of |e_xy|.
 	double position_rmse_m = 0;
@@ -102,6 +106,9 @@ struct ConfigStatistics
 	std::optional<double> pose_anees_mean;
 	std::optional<double> pose_steps_inside_fraction;
 	AneesBounds pose_bounds;  ///< 3N dof: the bounds of a step all N runs reach
+	/// Means over the steps of ANEES_k split into position (2 dof) and
+	/// heading (1 dof): which part of the pose is over- or under-confident.
+	std::optional<double> pose_position_anees_mean, pose_heading_anees_mean;
 	std::optional<double> landmark_anees;  ///< mean NEES over all (run, landmark) pairs
 	AneesBounds landmark_bounds;  ///< 2N dof (see the file comment)
 	std::optional<double> landmarks_inside_fraction;  ///< of landmarks with ANEES_j inside their bounds

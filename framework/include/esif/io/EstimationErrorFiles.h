@@ -3,10 +3,13 @@
 /// A run's errors against ground truth as two CSV files of its run folder,
 /// written when ground truth is known, so that a Monte Carlo campaign can
 /// average them over runs (`esif montecarlo`):
-///   pose_errors.csv      step,ex_m,ey_m,eth_rad,nees   (one row per step)
+///   pose_errors.csv      step,ex_m,ey_m,eth_rad,nees,nees_position,nees_heading
+///                        (one row per step)
 ///   landmark_errors.csv  true_id,ex_m,ey_m,nees        (final map)
-/// An empty nees field means none (initial pose, covariance not positive
+/// An empty NEES field means none (initial pose, covariance not positive
 /// definite). Numbers are written in their shortest exact form (round trip).
+/// Pose files of earlier versions (step,ex_m,ey_m,eth_rad,nees) are still
+/// read, without the split NEES, so older campaign folders stay usable.
 
 #include <esif/eval/EstimationErrors.h>
 
