@@ -6,6 +6,8 @@
 // unobservable rotation), where the plain EKF shrinks it; (3) the FEJ points
 // under retainLandmarks and setState.
 
+#include <NumericJacobian.h>
+
 #include <esif/ekf/EkfSlamCore.h>
 
 #include <Eigen/Dense>
@@ -25,39 +27,20 @@ constexpr double kDeg = M_PI / 180.0;
 /// The book's sensor noise (Sec. 1.3.3): 0.1 m range, 1 deg bearing.
 const Eigen::Matrix2d kR = Eigen::Vector2d(0.01, std::pow(1 * kDeg, 2)).asDiagonal();
 
-/// Central differences of a function of the robot pose at `at`. With
-/// step 1e-6 the truncation error is ~1e-12 times the third derivative
-/// (<= 1/range^2 ~ 0.1 here) and the round-off ~1e-16 / 1e-6 = 1e-10.
-template <int Rows, typename F>
-Eigen::Matrix<double, Rows, 3> numericRobotJacobian(F f, const Pose2& at)
-{
-	constexpr double step = 1e-6;
-	Eigen::Matrix<double, Rows, 3> J;
-	for (int c = 0; c < 3; ++c)
-	{
-		Pose2 plus = at, minus = at;
-		plus(c) += step;
-		minus(c) -= step;
-		J.col(c) = (f(plus) - f(minus)) / (2 * step);
-	}
-	return J;
-}
+/// Central differences (NumericJacobian.h) with step 1e-6: the truncation
+/// error is ~1e-12 times the third derivative (<= 1/range^2 ~ 0.1 here) and
+/// the round-off ~1e-16 / 1e-6 = 1e-10.
+constexpr double kStep = 1e-6;
 
 /// The range-bearing Jacobians at (robot, landmark) by central differences.
 Eigen::Matrix<double, 2, 5> numericMeasurementJacobian(const Pose2& robot, const Eigen::Vector2d& landmark)
 {
-	const auto h = [](const Pose2& r, const Eigen::Vector2d& l) { return predictRangeBearing(r, kSensor, l).z; };
-	Eigen::Matrix<double, 2, 5> H;
-	H.leftCols<3>() = numericRobotJacobian<2>([&](const Pose2& r) { return h(r, landmark); }, robot);
-	constexpr double step = 1e-6;
-	for (int c = 0; c < 2; ++c)
-	{
-		Eigen::Vector2d plus = landmark, minus = landmark;
-		plus(c) += step;
-		minus(c) -= step;
-		H.col(3 + c) = (h(robot, plus) - h(robot, minus)) / (2 * step);
-	}
-	return H;
+	Eigen::VectorXd at(5);
+	at << robot, landmark;
+	const auto h = [](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+		return predictRangeBearing(v.head<3>(), kSensor, v.tail<2>()).z;
+	};
+	return test::numericJacobian(h, at, kStep, {1});
 }
 
 /// An FEJ core whose robot prior differs from its estimate (an update moved
@@ -110,7 +93,8 @@ TEST(FirstEstimatesJacobians, PredictionUsesTheMotionJacobianAtTheRobotPrior)
 	// FEJ's F = [I, J (p_{k+1|k} - p_{k|k-1}); 0, 1] is the motion model's
 	// Jacobian at the prior x_{k|k-1} for the motion carrying it to x_{k+1|k}.
 	const Pose2 motion_from_prior = inverseCompose(prior, next);
-	const Eigen::Matrix3d F = numericRobotJacobian<3>([&](const Pose2& a) { return compose(a, motion_from_prior); }, prior);
+	const Eigen::Matrix3d F = test::numericJacobian(
+		[&](const Eigen::VectorXd& a) -> Eigen::VectorXd { return compose(a, motion_from_prior); }, prior, kStep, {2});
 	Eigen::MatrixXd Fn = Eigen::MatrixXd::Identity(P0.rows(), P0.cols());
 	Fn.topLeftCorner<3, 3>() = F;
 	Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(P0.rows(), P0.cols());
@@ -183,8 +167,11 @@ TEST(FirstEstimatesJacobians, NewLandmarkIsLinearisedAboutTheRobotPrior)
 	// measurement of the new landmark's position from there.
 	const Pose2 prior = core.robotPrior();
 	const Eigen::Vector2d z_prior = predictRangeBearing(prior, kSensor, position).z;
-	const auto Gx = numericRobotJacobian<2>(
-		[&](const Pose2& r) { return landmarkFromRangeBearing(r, kSensor, z_prior(0), z_prior(1)).position; }, prior);
+	const Eigen::Matrix<double, 2, 3> Gx = test::numericJacobian(
+		[&](const Eigen::VectorXd& r) -> Eigen::VectorXd {
+			return landmarkFromRangeBearing(r, kSensor, z_prior(0), z_prior(1)).position;
+		},
+		prior, kStep);
 	const auto Gz = landmarkFromRangeBearing(core.robot(), kSensor, z(0), z(1)).d_measurement;
 	const auto n = P0.rows();
 	Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n + 2, n);
