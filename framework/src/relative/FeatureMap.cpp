@@ -62,7 +62,7 @@ MapUpdate FeatureMap::updateRelative(const std::vector<LandmarkId>& ids, const P
 			update.new_features.push_back(ids[i]);
 		}
 	const Eigen::VectorXd x_lin = linearisationPoints(ids);
-	update.term = relativeTerm(ids, points, x_lin);
+	update.term = relativeTerm(ids, points, x_lin, positions(ids));
 	if (keep_terms_)
 	{
 		update.relative_index = static_cast<long>(terms_.size());
@@ -73,7 +73,7 @@ MapUpdate FeatureMap::updateRelative(const std::vector<LandmarkId>& ids, const P
 }
 
 UpdateTerm FeatureMap::relativeTerm(const std::vector<LandmarkId>& ids, const PointSet& points,
-									const Eigen::VectorXd& x_lin)
+									const Eigen::VectorXd& x_lin, const Eigen::VectorXd& x_now)
 {
 	const ValueJacobian z = relativeGeometry(points.xy);  // z_map, eq. (3.8); dT2
 	// Eq. (3.9): R_map = dT2 (dT1 R_old dT1^T) dT2^T; points.cov holds the bracket.
@@ -82,13 +82,17 @@ UpdateTerm FeatureMap::relativeTerm(const std::vector<LandmarkId>& ids, const Po
 	// J^T R^-1 (nu + J x^) at the current estimate x^, eq. (3.15); at x_lin
 	// the term is J^T R^-1 (z - H(x_lin) + J x_lin), hence nu below.
 	const ValueJacobian h = relativeGeometry(x_lin);
-	const Eigen::VectorXd nu = relativeDifference(z.value, h.value) + h.jacobian * (x_lin - positions(ids));
+	const Eigen::VectorXd nu = relativeDifference(z.value, h.value) + h.jacobian * (x_lin - x_now);
 	return core_.addMeasurement(variables(ids), h.jacobian, 0.5 * (R_map + R_map.transpose()), nu);
 }
 
 double FeatureMap::relativeChangeSince(const std::vector<LandmarkId>& ids, const Eigen::VectorXd& then) const
 {
-	const Eigen::VectorXd now = positions(ids);
+	return relativeChange(positions(ids), then);
+}
+
+double FeatureMap::relativeChange(const Eigen::VectorXd& now, const Eigen::VectorXd& then)
+{
 	const Eigen::Vector2d shift = now.head<2>() - then.head<2>();
 	double largest = 0;
 	for (Eigen::Index i = 2; i < now.size(); i += 2)
@@ -98,16 +102,19 @@ double FeatureMap::relativeChangeSince(const std::vector<LandmarkId>& ids, const
 
 std::size_t FeatureMap::relinearise(double threshold_m)
 {
-	for (std::size_t i = 0; i < ids_.size(); ++i) shared_point_[i] = position(ids_[i]);
+	if (share_points_)
+		for (std::size_t i = 0; i < ids_.size(); ++i) shared_point_[i] = position(ids_[i]);
 	std::size_t n = 0;
 	for (auto& t : terms_)
-		if (t.active && (threshold_m <= 0 || relativeChangeSince(t.ids, t.linearised_at) > threshold_m))
-		{
-			core_.withdraw(t.term);
-			t.linearised_at = positions(t.ids);
-			t.term = relativeTerm(t.ids, t.points, t.linearised_at);
-			++n;
-		}
+	{
+		if (!t.active) continue;
+		Eigen::VectorXd now = positions(t.ids);
+		if (threshold_m > 0 && relativeChange(now, t.linearised_at) <= threshold_m) continue;
+		core_.withdraw(t.term);
+		t.term = relativeTerm(t.ids, t.points, now, now);
+		t.linearised_at = std::move(now);
+		++n;
+	}
 	return n;
 }
 

@@ -128,8 +128,11 @@ class FeatureMap
 		bool active = true;
 	};
 	/// Eq. (3.13)-(3.15) linearised at `x_lin` (the features' stacked
-	/// linearisation points).
-	UpdateTerm relativeTerm(const std::vector<LandmarkId>& ids, const PointSet& points, const Eigen::VectorXd& x_lin);
+	/// linearisation points), `x_now` their current estimate (positions()).
+	UpdateTerm relativeTerm(const std::vector<LandmarkId>& ids, const PointSet& points, const Eigen::VectorXd& x_lin,
+							const Eigen::VectorXd& x_now);
+	/// relativeChangeSince() between two stacked position vectors.
+	static double relativeChange(const Eigen::VectorXd& now, const Eigen::VectorXd& then);
 	/// Where an update on `ids` is linearised: their shared points, or their
 	/// current estimate.
 	Eigen::VectorXd linearisationPoints(const std::vector<LandmarkId>& ids) const;
