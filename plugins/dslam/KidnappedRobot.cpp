@@ -76,19 +76,21 @@ GaussianState solveKidnappedRobot(const KidnappedInput& in)
 	// measurement noise.
 	constexpr double kConvergedM = 1e-3, kConvergedRad = 1e-6;
 	GaussianState out;
+	Eigen::LLT<Eigen::MatrixXd> llt;
 	for (int it = 0; it < std::max(1, in.iterations); ++it)
 	{
 		const NormalEquations ne = linearisedAt(in, y, prior);
-		const Eigen::LLT<Eigen::MatrixXd> llt(ne.info);
+		llt.compute(ne.info);
 		if (llt.info() != Eigen::Success) throw NumericalError("kidnapped robot: the robot pose is not observable");
 		out.mean = llt.solve(ne.eta);
 		out.mean(2) = y(2) + wrapAngle(out.mean(2) - y(2));
-		out.cov = llt.solve(Eigen::MatrixXd::Identity(n, n));  // (3 + 2 m1)^2: small by construction
 		Eigen::VectorXd step = out.mean - y;
 		y = out.mean;
 		if (step.head<2>().norm() < kConvergedM && std::abs(step(2)) < kConvergedRad) break;
 	}
 	out.mean(2) = wrapAngle(out.mean(2));
+	// The covariance of the last linearisation, the one the mean came from.
+	out.cov = llt.solve(Eigen::MatrixXd::Identity(n, n));  // (3 + 2 m1)^2: small by construction
 	out.cov = 0.5 * (out.cov + out.cov.transpose()).eval();
 	return out;
 }
