@@ -229,13 +229,20 @@ esif::LandmarkError landmark(esif::LandmarkId id, double ex, double ey, double n
 	return {id, Eigen::Vector2d(ex, ey), nees};
 }
 
+/// An empty campaign folder in `tmp`: one config (ekf.ini), seeds 1..runs.
+std::string campaignFolder(const esif::test::TempDir& tmp, int runs)
+{
+	const std::string dir = tmp.file("mc");
+	esif::ensureDirectory(dir);
+	esif::writeTextAtomically(esif::campaign_layout::manifest(dir),
+							  esif::CampaignPlan::create("scenario.ini", {"ekf.ini"}, 1, runs).iniText());
+	return dir;
+}
+
 TEST(MonteCarloCollect, AggregatesAFixedSetOfRunFoldersAsCheckedByHand)
 {
 	esif::test::TempDir tmp;
-	const std::string dir = tmp.file("mc");
-	auto plan = esif::CampaignPlan::create("scenario.ini", {"ekf.ini"}, 1, 3);
-	esif::ensureDirectory(dir);
-	esif::writeTextAtomically(esif::campaign_layout::manifest(dir), plan.iniText());
+	const std::string dir = campaignFolder(tmp, 3);
 	// Run 1 (seed 1) and run 2 (seed 2) finished; run 3 failed.
 	writeRunFolder(
 		esif::campaign_layout::runFolder(dir, "ekf", 1),
@@ -312,10 +319,7 @@ TEST(MonteCarloCollect, AggregatesAFixedSetOfRunFoldersAsCheckedByHand)
 TEST(MonteCarloCollect, SplitsThePoseAneesIntoPositionAndHeadingAsCheckedByHand)
 {
 	esif::test::TempDir tmp;
-	const std::string dir = tmp.file("mc");
-	auto plan = esif::CampaignPlan::create("scenario.ini", {"ekf.ini"}, 1, 2);
-	esif::ensureDirectory(dir);
-	esif::writeTextAtomically(esif::campaign_layout::manifest(dir), plan.iniText());
+	const std::string dir = campaignFolder(tmp, 2);
 	// Heading NEES 9 and 7 at step 1: ANEES 8, above the 1-dof bound for 2
 	// runs (chi2inv(.975, 2) / 2 = 3.689); position 1 and 3: 2, inside.
 	// Step 2 has position NEES 4 in run 1 only (run 2 has none there).

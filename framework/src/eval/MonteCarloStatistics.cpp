@@ -142,9 +142,7 @@ void addLandmarkStatistics(const std::vector<CampaignRunErrors>& runs, ConfigSta
 		s.rmse_m = std::sqrt(acc.sq / static_cast<double>(acc.n));
 		if (s.runs > 0)
 		{
-			double sum = 0;
-			for (const double v : acc.nees) sum += v;
-			s.anees = sum / static_cast<double>(s.runs);
+			s.anees = mean(acc.nees);
 			s.bounds = aneesBounds(2, s.runs);
 			++with_anees;
 			if (s.bounds.contains(s.anees)) ++inside;
