@@ -63,7 +63,7 @@ struct CeresFullParams
 	/// Levenberg-Marquardt stalls in the re-solve after a long loop (chi2 per
 	/// residual 6.8 at its iteration cap, 7.7 x dof at the end), where the
 	/// dogleg reaches the optimum (chi2 = dof) in 21 iterations. Both reach the
-	/// same optimum on Victoria Park and grid1225_large; the dogleg in half the
+	/// same optimum on Victoria Park and grid1225_large; the dogleg in 0.72 of the
 	/// time on the latter.
 	TrustRegion trust_region_strategy = TrustRegion::Dogleg;
 	/// Ceres' Levenberg-Marquardt damps with mu D, D = diag(J^T J) clamped to
