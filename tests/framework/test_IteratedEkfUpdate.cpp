@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <map>
+#include <random>
 
 namespace
 {
@@ -98,6 +99,54 @@ TEST(IteratedEkfUpdate, ReachesTheMapEstimateOfTheScan)
 	const Eigen::MatrixXd P = iterated.covariance();
 	EXPECT_EQ((P - P.transpose()).cwiseAbs().maxCoeff(), 0.0);
 	EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(P).info(), Eigen::Success);
+}
+
+/// The scan's posterior cost (x - x0)' P0^-1 (x - x0) + sum r' R^-1 r,
+/// densely (small n: reference only).
+double denseScanCost(const EkfSlamCore& prior, const std::vector<EkfSlamCore::Match>& matches, const Eigen::VectorXd& x)
+{
+	Eigen::VectorXd dx = x - prior.state();
+	dx(2) = wrapAngle(dx(2));
+	double cost = dx.dot(Eigen::MatrixXd(prior.covariance()).ldlt().solve(dx));
+	for (const auto& m : matches)
+	{
+		Eigen::Vector2d r = m.z - predictRangeBearing(x.head<3>(), kSensor, x.segment<2>(3 + 2 * m.landmark)).z;
+		r(1) = wrapAngle(r(1));
+		cost += r.dot(m.R.inverse() * r);
+	}
+	return cost;
+}
+
+TEST(IteratedEkfUpdate, NeverTakesAnIterateThatRaisesTheScanCost)
+{
+	// Gauss-Newton has no step control: from a poor linearisation an
+	// iterate can land uphill (on clusters.ini, noise seed 4, such updates
+	// left the EKF 2.0 m off with mean landmark NEES 160; 0.34 m without).
+	// Robots far off their prior, in heading above all, make such steps;
+	// the update must end no higher than where it started iterating.
+	std::mt19937 rng(7);
+	std::normal_distribution<double> gauss;
+	int uphill = 0, iterated_updates = 0;
+	for (int trial = 0; trial < 200; ++trial)
+	{
+		const EkfSlamCore prior = uncertainCore();
+		const Pose2 truth =
+			prior.robot() + Pose2(1.5 * gauss(rng), 1.5 * gauss(rng), 25 * kDeg * gauss(rng));
+		std::vector<EkfSlamCore::Match> matches;
+		for (std::size_t i = 0; i < 3; ++i)
+			matches.push_back({i, predictRangeBearing(truth, kSensor, prior.landmark(i)).z, kR});
+		EkfSlamCore plain = prior, iterated = prior;
+		plain.update(matches, kSensor);
+		const auto out = iterated.update(matches, kSensor, {10, 1.0, 1e-10});
+		if (out.linearisations > 1) ++iterated_updates;
+		if (out.stopped_uphill) ++uphill;
+		EXPECT_LE(denseScanCost(prior, matches, iterated.state()),
+				  denseScanCost(prior, matches, plain.state()) * (1 + 1e-9) + 1e-9)
+			<< "trial " << trial;
+	}
+	std::cout << iterated_updates << " of 200 updates iterated, " << uphill << " stopped at an uphill iterate\n";
+	// The guard is exercised, not only the easy cases (measured: 77 of the 193 iterated).
+	EXPECT_GT(uphill, 0);
 }
 
 TEST(IteratedEkfUpdate, AWellLinearisedUpdateIsNotIterated)

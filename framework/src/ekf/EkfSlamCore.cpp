@@ -167,6 +167,9 @@ UpdateOutcome EkfSlamCore::update(
 	// until one moves no state entry by more than the tolerance. Each costs
 	// O(n m^2); P is updated once, with H at the last linearisation point,
 	// or with FEJ (JacobianPoints) at the FEJ points, to keep the null space.
+	// Gauss-Newton has no step control, and from a poor linearisation it can
+	// step uphill: an iterate is only taken while it lowers the scan's
+	// posterior cost (scanCost), else the last accepted one stands.
 	const Eigen::VectorXd x0 = x_.head(n);
 	Linearisation lin = linearise(matches, sensor_on_robot, x0, useFirstEstimates());
 	Eigen::VectorXd x_next = stateAfter(lin);
@@ -175,17 +178,29 @@ UpdateOutcome EkfSlamCore::update(
 		out.linearisation_error_d2 = linearisationError(matches, sensor_on_robot, lin, x0, x_next);
 	std::optional<Linearisation> at_fej_points;
 	if (out.linearisation_error_d2 > iterated.min_linearisation_error_d2)
+	{
+		double cost = scanCost(matches, sensor_on_robot, lin, x_next);
 		while (out.linearisations < iterated.max_iterations)
 		{
 			const Eigen::VectorXd x_i = x_next;
-			if (useFirstEstimates() && !at_fej_points) at_fej_points = std::move(lin);
-			lin = linearise(matches, sensor_on_robot, x_i, false);
-			x_next = stateAfter(lin);
+			Linearisation at_x_i = linearise(matches, sensor_on_robot, x_i, false);
+			Eigen::VectorXd x_candidate = stateAfter(at_x_i);
 			++out.linearisations;
+			const double candidate_cost = scanCost(matches, sensor_on_robot, at_x_i, x_candidate);
+			if (!(candidate_cost < cost))
+			{
+				out.stopped_uphill = true;
+				break;
+			}
+			if (useFirstEstimates() && !at_fej_points) at_fej_points = std::move(lin);
+			lin = std::move(at_x_i);
+			x_next = std::move(x_candidate);
+			cost = candidate_cost;
 			Eigen::VectorXd step = x_next - x_i;
 			step(2) = wrapAngle(step(2));
 			if (step.lpNorm<Eigen::Infinity>() <= iterated.tolerance) break;
 		}
+	}
 
 	// P -= W W^T (K S K^T of eq. 1.9) as one symmetric rank update.
 	x_.head(n) = x_next;
@@ -223,6 +238,25 @@ double EkfSlamCore::linearisationError(const std::vector<Match>& matches, const 
 		worst = std::max(worst, e.dot(match.R.ldlt().solve(e)));
 	}
 	return worst;
+}
+
+double EkfSlamCore::scanCost(const std::vector<Match>& matches, const Pose2& sensor_on_robot,
+							 const Linearisation& lin, const Eigen::VectorXd& x) const
+{
+	// x - x0 = P H^T a with a = S^-1 innovation (stateAfter), so the prior
+	// term (x - x0)^T P^-1 (x - x0) is a^T H P H^T a = a^T (S - R) a.
+	const Eigen::VectorXd a = lin.llt.solve(lin.innovation);
+	Eigen::MatrixXd HPHt = lin.S;
+	for (std::size_t j = 0; j < matches.size(); ++j) HPHt.block<2, 2>(2 * j, 2 * j) -= matches[j].R;
+	double cost = a.dot(HPHt * a);
+	for (const Match& match : matches)
+	{
+		const std::size_t il = 3 + 2 * match.landmark;
+		Eigen::Vector2d r = match.z - predictRangeBearing(x.head<3>(), sensor_on_robot, x.segment<2>(il)).z;
+		r(1) = wrapAngle(r(1));
+		cost += r.dot(match.R.ldlt().solve(r));
+	}
+	return cost;
 }
 
 Eigen::VectorXd EkfSlamCore::stateAfter(const Linearisation& lin) const

@@ -45,6 +45,7 @@ StepReport LandmarkEkf::processScan(const StepInput& step)
 		++iterated_updates_;
 		relinearisations_ += static_cast<std::size_t>(outcome.linearisations - 1);
 	}
+	if (outcome.stopped_uphill) ++stopped_uphill_;
 	for (const auto& m : matches) confirmed_.insert(ids_[m.landmark]);
 	dropLandmarks(unconfirmed_failing_);
 	addNewLandmarks(*step.scan, report);

@@ -95,6 +95,8 @@ struct UpdateOutcome
 	int linearisations = 0;	 ///< 0 without matches, 1 for the plain EKF update
 	/// Of the first linearisation (IteratedUpdate), 0 when not iterating.
 	double linearisation_error_d2 = 0;
+	/// An iterate raised the scan's posterior cost and was not taken.
+	bool stopped_uphill = false;
 };
 
 class EkfSlamCore
@@ -214,6 +216,11 @@ class EkfSlamCore
 							  const Linearisation& at_x0, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1) const;
 	/// The prior mean plus the gain of `lin` times its innovation.
 	Eigen::VectorXd stateAfter(const Linearisation& lin) const;
+	/// The scan's posterior cost (negative log, up to a constant) at the
+	/// state x that `lin` gives (stateAfter): prior Mahalanobis distance of
+	/// x from the prior mean plus the whitened measurement residuals at x.
+	double scanCost(const std::vector<Match>& matches, const Pose2& sensor_on_robot, const Linearisation& lin,
+					const Eigen::VectorXd& x) const;
 	void reserve(std::size_t dim);
 	void symmetrise();
 

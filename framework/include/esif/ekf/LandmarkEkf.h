@@ -82,6 +82,8 @@ class LandmarkEkf
 	std::size_t iteratedUpdates() const { return iterated_updates_; }
 	/// Their linearisations beyond the first.
 	std::size_t relinearisations() const { return relinearisations_; }
+	/// Iterated updates that stopped at an iterate raising the scan's cost.
+	std::size_t iterationsStoppedUphill() const { return stopped_uphill_; }
 
 	PoseEstimate robotPose() const;
 	/// Robot pose and every landmark with its marginal covariance.
@@ -120,6 +122,7 @@ class LandmarkEkf
 	std::size_t id_gate_drops_ = 0;
 	std::size_t iterated_updates_ = 0;
 	std::size_t relinearisations_ = 0;
+	std::size_t stopped_uphill_ = 0;
 };
 
 }  // namespace esif
