@@ -15,6 +15,10 @@ void DslamLmjParams::declare(ParamBinder& b)
 		   "reference features f1, f2 of a local map at least this far apart [m]", Bounds::positive());
 	b.real("reference_min_clearance_m", reference_min_clearance_m,
 		   "no other feature of the map within this of f1 or f2 [m]", Bounds::nonNegative());
+	b.real("reference_pair_chi2_quantile", reference_pair_chi2_quantile,
+		   "between fusions, the robot placed by a pair must agree with the open map's start composed with its pose "
+		   "in that map within this chi-square quantile (3 dof); 1 = off",
+		   Bounds{0, 1, true, false});
 	b.integer("relinearise_iterations", relinearise_iterations,
 			  "Gauss-Newton passes over the global map after each fusion (every map update evaluated again at the "
 			  "current estimate); 0 = never (the book)",

@@ -27,6 +27,12 @@ struct DslamLmjParams : MapLevelAssociationParams
 	/// ... whose members have no other feature of the map this close [m]:
 	/// an angle alpha_i12 is undefined when d_1i -> 0.
 	double reference_min_clearance_m = 0.2;
+	/// Between fusions, a pair of the open map places the robot (Sec. 4.4.1)
+	/// only if that pose and the open map's start composed with the robot's
+	/// pose in it agree within this chi-square quantile (3 dof); a misread
+	/// feature carries a neighbour's ID and fails it. 1 = every pair is
+	/// trusted (the book).
+	double reference_pair_chi2_quantile = 0.9999;
 	/// After each fusion, Gauss-Newton passes over the global map: every
 	/// earlier update (eq. 4.17) evaluated again at the current estimate
 	/// (FeatureMap::relinearise), until none moved. 0 = never (the book's

@@ -3,6 +3,7 @@
 #include "PairFrame.h"
 #include "ReferenceChoice.h"
 
+#include <esif/association/Chi2.h>
 #include <esif/core/Errors.h>
 #include <esif/localmap/LocalMapMerge.h>
 #include <esif/localmap/SettledReports.h>
@@ -22,6 +23,15 @@ namespace
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Squared Mahalanobis distance between two estimates of the same robot
+/// pose, their errors taken as independent (heading wrapped).
+double mahalanobis2(const PoseEstimate& a, const PoseEstimate& b)
+{
+	Eigen::Vector3d d = toPose2(a.mean) - toPose2(b.mean);
+	d(2) = wrapAngle(d(2));
+	return d.dot((a.cov + b.cov).ldlt().solve(d));
+}
 
 /// x (+) r with first-order covariance; the two independent.
 PoseEstimate composeIndependent(const PoseEstimate& x, const PoseEstimate& r)
@@ -472,18 +482,27 @@ PoseEstimate DslamLocalMapJoining::robotPose() const
 		global_ids.push_back(g.value_or(-1));
 		if (g) mapped.push_back(static_cast<int>(i));
 	}
-	if (const auto pair = chooseReferenceFeatures(
-			points, mapped, params_.reference_min_separation_m, params_.reference_min_clearance_m))
+	// ... else its pose in the open map composed onto the map's start.
+	const PoseEstimate composed = composeIndependent(openMapFrame(), local);
+	const double agree = chi2GateBound(params_.reference_pair_chi2_quantile, 3);
+	while (const auto pair = chooseReferenceFeatures(
+			   points, mapped, params_.reference_min_separation_m, params_.reference_min_clearance_m))
 	{
 		const auto [a, b] = *pair;
 		const auto rows = robotAndPairRows(a, b);
 		const Eigen::MatrixXd local_cov = Eigen::MatrixXd(open.core().covariance())(rows, rows);
 		const LandmarkId g1 = global_ids[a], g2 = global_ids[b];
-		return robotFromPairs(toPose2(local.mean), points[a], points[b], local_cov, global_->position(g1),
-							  global_->position(g2), pairCovariance(g1, g2));
+		const PoseEstimate placed = robotFromPairs(toPose2(local.mean), points[a], points[b], local_cov,
+												   global_->position(g1), global_->position(g2), pairCovariance(g1, g2));
+		// A feature mapped from a misread carries a neighbour's ID: a pair
+		// holding it puts the robot metres from where the open map's start
+		// puts it (configs/sim/wrong_ids.ini). Such a pair is passed over
+		// (reference_pair_chi2_quantile).
+		if (mahalanobis2(placed, composed) <= agree) return placed;
+		mapped.erase(std::remove_if(mapped.begin(), mapped.end(), [&](int i) { return i == a || i == b; }),
+					 mapped.end());
 	}
-	// ... else its pose in the open map composed onto the map's start.
-	return composeIndependent(openMapFrame(), local);
+	return composed;
 }
 
 Estimate DslamLocalMapJoining::estimate() const
