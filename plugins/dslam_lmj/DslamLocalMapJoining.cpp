@@ -482,7 +482,8 @@ PoseEstimate DslamLocalMapJoining::robotPose() const
 		global_ids.push_back(g.value_or(-1));
 		if (g) mapped.push_back(static_cast<int>(i));
 	}
-	// ... else its pose in the open map composed onto the map's start.
+	// ... else its pose in the open map composed onto the map's start, which
+	// also checks every pair.
 	const PoseEstimate composed = composeIndependent(openMapFrame(), local);
 	const double agree = chi2GateBound(params_.reference_pair_chi2_quantile, 3);
 	while (const auto pair = chooseReferenceFeatures(
