@@ -37,7 +37,7 @@ TEST(CeresFullBooksim, DefaultSettingsReachTheOptimumOfTheWholeRun)
 	// chi-square(residuals - parameters); 4 standard deviations leave a 6e-5
 	// chance of a false alarm (as in test_CeresFullSimulated). Measured
 	// (seed 1): chi2 463128 for 463690 dof, -0.58 sigma; the stalled
-	// Levenberg-Marquardt run ended at 3.56e6, +3400 sigma.
+	// Levenberg-Marquardt run ended at 3.56e6, +3200 sigma.
 	const double score = (c.at("chi2") - dof) / std::sqrt(2 * dof);
 	std::cout << "booksim, " << c.at("solves") << " solves, " << c.at("iterations") << " iterations: chi2 "
 			  << c.at("chi2") << " for " << dof << " dof (" << score << " sigma)\n";
