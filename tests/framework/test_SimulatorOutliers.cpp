@@ -40,11 +40,6 @@ using namespace esif;
 
 namespace
 {
-Scenario loadScenario(const std::string& relative_path)
-{
-	return Scenario::fromConfig(ConfigFile::load(test::sourcePath(relative_path)));
-}
-
 /// configs/sim/grid196.ini with `extra` keys added (or overriding).
 Scenario grid196With(const std::string& extra)
 {
@@ -104,7 +99,7 @@ TEST(SimulatorOutliers, DefaultsAreOffAndExplicitZerosChangeNothing)
 	EXPECT_FALSE(defaults.hasClusterPairs());
 
 	// Keys set to their defaults: the same steps, bit for bit.
-	Scenario plain = loadScenario("configs/sim/small.ini");
+	Scenario plain = test::loadScenario("configs/sim/small.ini");
 	const auto a = simulateAll(plain);
 	ConfigFile config = ConfigFile::load(test::sourcePath("configs/sim/small.ini"));
 	config.set("simulation", "wrong_id_rate", "0");
@@ -156,7 +151,7 @@ TEST(SimulatorOutliers, BadValuesAreConfigErrorsNamingTheKey)
 TEST(SimulatorOutliers, WrongIdsAtTheirRateAmongTheNearestLandmarks)
 {
 	SimulationSummary clean_summary, summary;
-	const Scenario clean_scenario = loadScenario("configs/sim/grid196.ini");
+	const Scenario clean_scenario = test::loadScenario("configs/sim/grid196.ini");
 	const auto clean = simulateAll(clean_scenario, &clean_summary);
 	const double rate = 0.05;  // high enough that the relative tolerance is tight (+-9 %)
 	const auto noisy = simulateAll(grid196With("wrong_id_rate = " + std::to_string(rate)), &summary);
@@ -200,7 +195,7 @@ TEST(SimulatorOutliers, WrongIdsAtTheirRateAmongTheNearestLandmarks)
 TEST(SimulatorOutliers, WrongIdsConfigHasOnePercent)
 {
 	SimulationSummary summary;
-	const Scenario s = loadScenario("configs/sim/wrong_ids.ini");
+	const Scenario s = test::loadScenario("configs/sim/wrong_ids.ini");
 	EXPECT_EQ(s.wrong_id_rate, 0.01);
 	simulateAll(s, &summary);
 	expectBinomial(summary.wrong_id_measurements, summary.measurements, 0.01, "wrong_ids.ini");
@@ -213,7 +208,7 @@ TEST(SimulatorOutliers, ClutterIsPoissonUniformInTheSensedAreaWithFreshIds)
 	SimulationSummary summary;
 	const double rate = 0.5;
 	const Scenario s = grid196With("spurious_rate = 0.5");
-	const auto clean = simulateAll(loadScenario("configs/sim/grid196.ini"));
+	const auto clean = simulateAll(test::loadScenario("configs/sim/grid196.ini"));
 	const auto noisy = simulateAll(s, &summary);
 	ASSERT_EQ(clean.size(), noisy.size());
 	const double half_fov = s.sensor_fov_deg * M_PI / 360;
@@ -272,7 +267,7 @@ TEST(SimulatorOutliers, ClutterIsPoissonUniformInTheSensedAreaWithFreshIds)
 /// uniformly random direction, with its own ID; both measured.
 TEST(SimulatorOutliers, ClusterPairsAreExactlyTheirDistanceApart)
 {
-	const Scenario s = loadScenario("configs/sim/clusters.ini");
+	const Scenario s = test::loadScenario("configs/sim/clusters.ini");
 	EXPECT_EQ(s.cluster_pair_distance_m, 0.2);
 	const Simulator sim(s);
 	const std::size_t grid = 196;
@@ -311,7 +306,7 @@ TEST(SimulatorOutliers, ClusterPairsAreExactlyTheirDistanceApart)
 /// landmark in view for about 28 m, checked against the geometry.
 TEST(SimulatorOutliers, LongGapConfigDrivesLongStretchesWithNothingInView)
 {
-	const Scenario s = loadScenario("configs/sim/long_gap.ini");
+	const Scenario s = test::loadScenario("configs/sim/long_gap.ini");
 	SimulationSummary summary;
 	const auto steps = simulateAll(s, &summary);
 	const Simulator sim(s);

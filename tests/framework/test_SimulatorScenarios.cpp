@@ -32,11 +32,6 @@ using namespace esif;
 
 namespace
 {
-Scenario loadScenario(const std::string& relative_path)
-{
-	return Scenario::fromConfig(ConfigFile::load(test::sourcePath(relative_path)));
-}
-
 Scenario scenarioFromText(const std::string& text)
 {
 	Scenario s;
@@ -96,15 +91,15 @@ TEST(SimulatorScenarios, DefaultsHaveNoBandAndNoScriptAndConfigsAreValid)
 	{
 		SCOPED_TRACE(name);
 		Scenario s;
-		ASSERT_NO_THROW(s = loadScenario(std::string("configs/sim/") + name + ".ini"));
+		ASSERT_NO_THROW(s = test::loadScenario(std::string("configs/sim/") + name + ".ini"));
 		EXPECT_NO_THROW(s.validate());
 	}
 }
 
 TEST(SimulatorScenarios, Grid5000HasTheDensityOfGrid1225)
 {
-	const Scenario big = loadScenario("configs/sim/grid5000.ini");
-	const Scenario book = loadScenario("configs/sim/grid1225.ini");
+	const Scenario big = test::loadScenario("configs/sim/grid5000.ini");
+	const Scenario book = test::loadScenario("configs/sim/grid1225.ini");
 	EXPECT_EQ(Simulator(big).features().size(), 5041u);
 	EXPECT_NEAR(big.featureSpacing(), book.featureSpacing(), 1e-6);
 	EXPECT_EQ(big.sensor_max_range_m, book.sensor_max_range_m);
@@ -282,7 +277,7 @@ TEST(SimulatorScenarios, SimulateCommandNamesFileAndKeyOfABadWaypoint)
 /// none for noise, which does not change the true path or what is visible.
 TEST(SimulatorScenarios, FeaturelessConfigHasLongRunsOfScansBelowTwoMeasurements)
 {
-	const Scenario s = loadScenario("configs/sim/featureless.ini");
+	const Scenario s = test::loadScenario("configs/sim/featureless.ini");
 	std::vector<std::size_t> counts;
 	std::vector<std::set<LandmarkId>> ids;
 	const SimulationSummary summary = Simulator(s).simulate([&](const SimulatedStep& step) {
@@ -328,7 +323,7 @@ TEST(SimulatorScenarios, FeaturelessConfigHasLongRunsOfScansBelowTwoMeasurements
 TEST(SimulatorScenarios, Grid196RawlogIsReproducedExactly)
 {
 	test::TempDir dir;
-	const Scenario s = loadScenario("configs/sim/grid196.ini");
+	const Scenario s = test::loadScenario("configs/sim/grid196.ini");
 	Simulator(s).writeRawlog(dir.file("grid196.rawlog"));
 	const std::string committed = test::sourcePath("rawlogs/grid196");
 	const std::string content = readGzBytes(dir.file("grid196.rawlog"));
@@ -371,7 +366,7 @@ TEST(SimulatorScenarios, TheMeasurementEstimateOfTheSizeCheckMatchesASimulation)
 	for (const char* name : {"grid196", "clutter", "clusters"})
 	{
 		SCOPED_TRACE(name);
-		const Scenario s = loadScenario(std::string("configs/sim/") + name + ".ini");
+		const Scenario s = test::loadScenario(std::string("configs/sim/") + name + ".ini");
 		const SimulationSummary summary = Simulator(s).simulate([](const SimulatedStep&) {});
 		const double estimate = s.expectedMeasurementsPerScan() * s.steps;
 		EXPECT_GE(estimate, static_cast<double>(summary.measurements));

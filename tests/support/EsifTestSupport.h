@@ -11,6 +11,7 @@
 #include <esif/io/StatsJson.h>
 #include <esif/plugin/PluginLoader.h>
 #include <esif/run/Replay.h>
+#include <esif/sim/Scenario.h>
 
 #include <gtest/gtest.h>
 
@@ -124,6 +125,13 @@ inline std::map<std::string, double> countersOf(const FilterPlugin& plugin)
 	std::map<std::string, double> out;
 	for (const auto& [name, value] : plugin.costFigures().counters) out[name] = value;
 	return out;
+}
+
+/// The scenario of a committed INI file, `relative_path` from the source
+/// root (e.g. "configs/sim/long_gap.ini").
+inline Scenario loadScenario(const std::string& relative_path)
+{
+	return Scenario::fromConfig(ConfigFile::load(sourcePath(relative_path)));
 }
 
 /// Runs `esif simulate` on configs/sim/small.ini (200 steps, 16 features),

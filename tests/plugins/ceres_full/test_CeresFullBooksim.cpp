@@ -23,7 +23,7 @@ using namespace esif;
 TEST(CeresFullBooksim, DefaultSettingsReachTheOptimumOfTheWholeRun)
 {
 	test::TempDir dir;
-	const Scenario scenario = Scenario::fromConfig(ConfigFile::load(test::sourcePath("configs/sim/booksim.ini")));
+	const Scenario scenario = test::loadScenario("configs/sim/booksim.ini");
 	const std::string path = dir.file("booksim.rawlog");
 	Simulator(scenario).writeRawlog(path);
 	const Rawlog log = readRawlog(path);

@@ -182,7 +182,7 @@ TEST(CeresFullSafeguards, APoseOnALandmarkIsFlaggedAndTheRunStillWritesEveryOutp
 /// measurement of it and cannot recover (the convex Huber loss can).
 double landmarkRmseWithOutliers(const std::string& section, double* robust_loss_used)
 {
-	Scenario s = Scenario::fromConfig(ConfigFile::load(test::sourcePath("configs/sim/small.ini")));
+	Scenario s = test::loadScenario("configs/sim/small.ini");
 	const Simulator sim(s);
 	auto plugin = test::makePlugin("CeresFullSlam", section);
 	std::optional<Pose2> start;

@@ -102,7 +102,7 @@ TEST(CeresFullMonteCarlo, LandmarkAndFinalPoseNeesAreConsistentOverIndependentRu
 	// has at most their variance 4, so over 20 independent runs the grand
 	// mean has standard deviation <= sqrt(4/20) = 0.45: 3 sigma gives
 	// [0.66, 3.34] around 2. The final pose (3 dof, variance 6): [1.36, 4.64].
-	const Scenario base = Scenario::fromConfig(ConfigFile::load(test::sourcePath("configs/sim/small.ini")));
+	const Scenario base = test::loadScenario("configs/sim/small.ini");
 	const int runs = 20;
 	double landmark_nees = 0, pose_nees = 0, chi2 = 0, dof = 0;
 	for (int seed = 1; seed <= runs; ++seed)

@@ -162,7 +162,7 @@ TEST(DslamRobustness, WithoutIdsSurvivesLongStretchesWithNothingInView)
 	// long_gap, and about half the noise draws stop as diverged there).
 	test::TempDir dir;
 	const std::string log = dir.file("long_gap.rawlog");
-	Scenario scenario = Scenario::fromConfig(ConfigFile::load(test::sourcePath("configs/sim/long_gap.ini")));
+	Scenario scenario = test::loadScenario("configs/sim/long_gap.ini");
 	scenario.steps = 1400;
 	Simulator(scenario).writeRawlog(log);
 	const Stats ids = runCli("configs/dslam.ini", log, dir.file("ids"));
@@ -224,7 +224,7 @@ TEST(DslamRobustness, LongGapLoopClosureKeepsTheMapConsistentWithIds)
 	for (const int noise_seed : {3, 11, 12})
 	{
 		test::TempDir dir;
-		Scenario scenario = Scenario::fromConfig(ConfigFile::load(test::sourcePath("configs/sim/long_gap.ini")));
+		Scenario scenario = test::loadScenario("configs/sim/long_gap.ini");
 		scenario.noise_seed = noise_seed;
 		const std::string path = dir.file("long_gap.rawlog");
 		Simulator(scenario).writeRawlog(path);
@@ -248,7 +248,7 @@ TEST(DslamRobustness, RelinearisedMapIsConsistentOnGrid1225)
 {
 	// The first 3000 steps of grid1225 (book Sec. 3.5), 361 features.
 	test::TempDir dir;
-	Scenario scenario = Scenario::fromConfig(ConfigFile::load(test::sourcePath("configs/sim/grid1225.ini")));
+	Scenario scenario = test::loadScenario("configs/sim/grid1225.ini");
 	scenario.steps = 3000;
 	const std::string path = dir.file("grid1225_3000.rawlog");
 	Simulator(scenario).writeRawlog(path);

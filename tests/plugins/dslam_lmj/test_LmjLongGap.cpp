@@ -49,7 +49,7 @@ struct LmjRun
 LmjRun runLongGap(int noise_seed, int steps, const std::string& extra = "")
 {
 	test::TempDir dir;
-	auto scenario = Scenario::fromConfig(ConfigFile::load(test::sourcePath("configs/sim/long_gap.ini")));
+	auto scenario = test::loadScenario("configs/sim/long_gap.ini");
 	scenario.noise_seed = noise_seed;
 	Simulator(scenario).writeRawlog(dir.file("long_gap.rawlog"));
 	const Rawlog log = readRawlog(dir.file("long_gap.rawlog"));

@@ -21,7 +21,7 @@ using namespace esif;
 TEST(EkfClusters, IteratedUpdatesStayConsistentOnTheDrawWhereGaussNewtonSteppedUphill)
 {
 	test::TempDir dir;
-	Scenario scenario = Scenario::fromConfig(ConfigFile::load(test::sourcePath("configs/sim/clusters.ini")));
+	Scenario scenario = test::loadScenario("configs/sim/clusters.ini");
 	scenario.noise_seed = 4;
 	const std::string path = dir.file("clusters_4.rawlog");
 	Simulator(scenario).writeRawlog(path);

@@ -34,7 +34,7 @@ class EkfLongGap : public ::testing::Test
 	{
 		dir = new test::TempDir;
 		const auto scenario =
-			Scenario::fromConfig(ConfigFile::load(test::sourcePath("configs/sim/long_gap.ini")));
+			test::loadScenario("configs/sim/long_gap.ini");
 		Simulator(scenario).writeRawlog(dir->file("long_gap.rawlog"));
 		log = new Rawlog(readRawlog(dir->file("long_gap.rawlog")));
 	}

@@ -110,7 +110,7 @@ struct NoiseFree
 
 	NoiseFree()
 	{
-		Scenario s = Scenario::fromConfig(ConfigFile::load(test::sourcePath("configs/sim/small.ini")));
+		Scenario s = test::loadScenario("configs/sim/small.ini");
 		s.std_range_m = s.std_bearing_deg = s.std_speed_mps = s.std_turn_rate_deg_s = 0;
 		Simulator(s).writeRawlog(dir.file("free.rawlog"));
 		RawlogReadOptions options;
