@@ -25,6 +25,12 @@ namespace
 /// sizes, six methods, fresh factorisation of 10 000 scalars every step)
 /// stays under about three minutes on two cores.
 constexpr int kDefaultSteps = 400;
+/// Bounds of the command line, so a typo cannot allocate gigabytes: 20,000
+/// features is four times the largest map of the book's experiments (a
+/// sparse state of 40,000 scalars); the dense inverse, O(n^2) memory, runs up
+/// to 5,000 features (a 10,000-dimensional matrix, 800 MB).
+constexpr int kMinFeatures = 20, kMaxFeatures = 20000, kMaxDenseFeatures = 5000;
+constexpr int kMaxSteps = 100000;
 
 std::vector<int> parseSizes(const std::string& text)
 {
@@ -41,8 +47,9 @@ std::vector<int> parseSizes(const std::string& text)
 		{
 			used = 0;
 		}
-		if (used != item.size() || v < 20)
-			throw ConfigError("esif bench sparse: --features: '" + item + "' is not a whole number >= 20");
+		if (used != item.size() || v < kMinFeatures || v > kMaxFeatures)
+			throw ConfigError("esif bench sparse: --features: '" + printableToken(item) + "' is not a whole number in [" +
+							  std::to_string(kMinFeatures) + ", " + std::to_string(kMaxFeatures) + "]");
 		sizes.push_back(v);
 	}
 	if (sizes.empty()) throw ConfigError("esif bench sparse: --features: no size given");
@@ -59,7 +66,8 @@ std::vector<std::string> parseMethods(const std::string& text)
 		{
 			std::string list;
 			for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-			throw ConfigError("esif bench sparse: --methods: unknown method '" + m + "' (known: " + list + ")");
+			throw ConfigError(
+				"esif bench sparse: --methods: unknown method '" + printableToken(m) + "' (known: " + list + ")");
 		}
 	return methods;
 }
@@ -81,20 +89,23 @@ int benchCommand(int argc, char** argv)
 		"method,features,steps,us_per_step,factor_nnz,reorders. Details go to stderr.",
 		' ', "");
 	TCLAP::UnlabeledValueArg<std::string> what("benchmark", "which benchmark: sparse", true, "", "sparse", cmd);
-	TCLAP::ValueArg<std::string> features("", "features", "comma-separated map sizes (features)", false,
+	TCLAP::ValueArg<std::string> features("", "features", "comma-separated map sizes (features, 20 to 20000)", false,
 										  "300,1225,5000", "N,N,...", cmd);
 	TCLAP::ValueArg<int> steps("", "steps", "timed steps per size (default 400)", false, kDefaultSteps, "N", cmd);
 	TCLAP::ValueArg<std::string> methods("", "methods",
-										 "comma-separated methods (dense_inverse runs at the smallest size only)",
+										 "comma-separated methods (dense_inverse runs at the smallest size only, "
+										 "and only up to 5000 features)",
 										 false, joined(sparseBenchMethods()), "A,B,...", cmd);
 	TCLAP::ValueArg<int> n0("", "n0", "the book's n0: trailing dimension that triggers a reordering", false,
 							SparseRecoveryParams{}.n0, "N", cmd);
 	TCLAP::ValueArg<int> seed("", "seed", "noise seed", false, 1, "N", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 	if (what.getValue() != "sparse")
-		throw ConfigError("esif bench: unknown benchmark '" + what.getValue() + "' (known: sparse)");
-	if (steps.getValue() < 1) throw ConfigError("esif bench sparse: --steps: must be >= 1");
-	if (n0.getValue() < 1) throw ConfigError("esif bench sparse: --n0: must be >= 1");
+		throw ConfigError("esif bench: unknown benchmark '" + printableToken(what.getValue()) + "' (known: sparse)");
+	if (steps.getValue() < 1 || steps.getValue() > kMaxSteps)
+		throw ConfigError("esif bench sparse: --steps: must be in [1, " + std::to_string(kMaxSteps) + "]");
+	if (n0.getValue() < 1 || n0.getValue() > 2 * kMaxFeatures)
+		throw ConfigError("esif bench sparse: --n0: must be in [1, " + std::to_string(2 * kMaxFeatures) + "]");
 
 	const auto sizes = parseSizes(features.getValue());
 	const auto method_list = parseMethods(methods.getValue());
@@ -109,7 +120,8 @@ int benchCommand(int argc, char** argv)
 	for (int size : sizes)
 		for (const auto& method : method_list)
 		{
-			if (method == "dense_inverse" && size != smallest) continue;  // O(n^3) per step
+			if (method == "dense_inverse" && (size != smallest || size > kMaxDenseFeatures))
+				continue;  // O(n^3) per step, O(n^2) memory
 			const SparseBenchResult r =
 				runSparseBenchmark(method, size, steps.getValue(), params, static_cast<unsigned>(seed.getValue()));
 			std::printf("%s,%d,%d,%.1f,%zu,%zu\n", r.method.c_str(), r.features, r.steps, r.us_per_step, r.factor_nnz,

@@ -4,12 +4,27 @@
 
 #include <mrpt/3rdparty/tclap/StdOutput.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace esif::app
 {
 namespace
 {
+/// TCLAP's message with every word (which may be the user's token) shown
+/// by printableToken: printable ASCII, cut at 80 characters.
+std::string printableWords(const std::string& text)
+{
+	std::string out;
+	for (std::size_t at = 0; at < text.size();)
+	{
+		const std::size_t end = std::min(text.find(' ', at), text.size());
+		out += printableToken(text.substr(at, end - at)) + (end < text.size() ? " " : "");
+		at = end + 1;
+	}
+	return out;
+}
+
 /// Usage errors become one ConfigError line instead of TCLAP's multi-line
 /// message; --help keeps TCLAP's full usage text.
 class OneLineOutput : public TCLAP::StdOutput
@@ -19,7 +34,7 @@ class OneLineOutput : public TCLAP::StdOutput
 	{
 		std::string what = e.error();
 		if (e.argId() != " ") what = e.argId() + ": " + what;
-		throw ConfigError(cmd.getProgramName() + ": " + what + " (see --help)");
+		throw ConfigError(cmd.getProgramName() + ": " + printableWords(what) + " (see --help)");
 	}
 };
 }  // namespace

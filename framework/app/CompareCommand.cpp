@@ -11,6 +11,8 @@
 #include <esif/eval/RunDifference.h>
 #include <esif/io/AtomicFile.h>
 #include <esif/io/MapOverlay.h>
+#include <esif/io/GroundTruth.h>
+#include <esif/io/OutputApart.h>
 #include <esif/io/RunFolder.h>
 #include <esif/io/TerminationCleanup.h>
 #include <esif/io/RunOutputReader.h>
@@ -238,6 +240,28 @@ bool isOutsideRunFolder(const std::string& reference)
 		   fs::is_regular_file(fs::path(reference) / "landmarks.txt");
 }
 
+/// Every input of the comparison, for requireOutputApart: the configs, the
+/// rawlog with its ground truth or the local-map folder, the reference
+/// result and a reference run folder outside the comparison.
+/// Empty strings stand for options not given.
+std::vector<NamedInput> compareInputs(
+	const std::vector<std::string>& configs, const std::string& rawlog, const std::string& local_maps,
+	const std::string& ground_truth, const std::string& reference_result, const std::string& outside_reference)
+{
+	std::vector<NamedInput> inputs;
+	for (const auto& c : configs) inputs.push_back({"the config", c});
+	if (!rawlog.empty())
+	{
+		inputs.push_back({"the rawlog", rawlog});
+		for (const auto& file : groundTruthFilesOf(ground_truth.empty() ? groundTruthPrefixFor(rawlog) : ground_truth))
+			inputs.push_back({"the ground truth", file});
+	}
+	inputs.push_back({"the local-map folder", local_maps});
+	inputs.push_back({"the reference result", reference_result});
+	inputs.push_back({"the reference run", outside_reference});
+	return inputs;
+}
+
 /// Runs every config in run order; a failed run is a row of its own and
 /// the others still run, except those taking their data association from
 /// it (rows "not run").
@@ -394,6 +418,10 @@ int compareCommand(int argc, char** argv)
 	const auto order = runOrder(planned, sources);
 	if (ref) warnAboutUnrelatedIds(planned, sources, *ref);
 	const auto checked = checkConfigs(config_list, plugin_folder, local_maps.isSet());
+	requireOutputApart(
+		out.getValue(), compareInputs(
+							config_list, rawlog.getValue(), local_maps.getValue(), ground_truth.getValue(),
+							reference_result.getValue(), outside_reference.value_or("")));
 
 	// The comparison's folder is all-or-nothing like a run's; the runs are
 	// written inside its partial folder.

@@ -12,6 +12,7 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
+#include <esif/io/OutputApart.h>
 #include <esif/run/MonteCarloCollect.h>
 #include <esif/run/RunSetup.h>
 #include <esif/sim/Scenario.h>
@@ -80,8 +81,7 @@ void collectAndReport(const std::string& dir, const CampaignPlan& plan)
 int runOneJob(const std::string& dir, const std::string& id)
 {
 	const CampaignPlan plan = CampaignPlan::load(dir);
-	SimulationLocks locks;
-	const JobOutcome outcome = runCampaignJob(dir, plan, campaign_layout::parseJobId(plan, id), locks);
+	const JobOutcome outcome = runCampaignJob(dir, plan, campaign_layout::parseJobId(plan, id));
 	if (outcome.exit_code != 0)
 		std::cerr << "esif montecarlo: " << outcome.id << " failed (exit " << outcome.exit_code
 				  << "): " << outcome.error_line << "\n";
@@ -114,9 +114,9 @@ int monteCarloCommand(int argc, char** argv)
 		' ', ESIF_VERSION);
 	TCLAP::ValueArg<std::string> scenario("s", "scenario", "scenario INI with a [simulation] section", false, "", "INI", cmd);
 	TCLAP::ValueArg<std::string> configs("c", "configs", "comma-separated filter configs", false, "", "A.ini,B.ini,...", cmd);
-	TCLAP::ValueArg<int> runs("n", "runs", "number of runs (noise seeds)", false, 0, "N", cmd);
+	TCLAP::ValueArg<int> runs("n", "runs", "number of runs (noise seeds), 1 to 100000", false, 0, "N", cmd);
 	TCLAP::ValueArg<std::string> out("o", "out", "campaign folder", false, "", "DIR", cmd);
-	TCLAP::ValueArg<int> jobs("j", "jobs", "runs at a time (default: the number of cores)", false, 0, "J", cmd);
+	TCLAP::ValueArg<int> jobs("j", "jobs", "runs at a time, 1 to 256 (default: the number of cores)", false, 0, "J", cmd);
 	TCLAP::ValueArg<int> seed0("", "seed0", "noise seed of the first run (default 1)", false, 1, "S", cmd);
 	TCLAP::ValueArg<std::string> emit_jobs(
 		"", "emit-jobs", "write one shell command per unfinished run to FILE instead of running them", false, "",
@@ -145,11 +145,14 @@ int monteCarloCommand(int argc, char** argv)
 	}
 	if (!scenario.isSet() || !configs.isSet() || !runs.isSet())
 		throw ConfigError("esif montecarlo: --scenario, --configs and --runs are required (see --help)");
-	if (runs.getValue() < 1) throw ConfigError("esif montecarlo: --runs " + std::to_string(runs.getValue()) + ": must be >= 1");
+	if (runs.getValue() < 1 || runs.getValue() > kMaxCampaignRuns)
+		throw ConfigError("esif montecarlo: --runs " + std::to_string(runs.getValue()) + ": must be in [1, " +
+						  std::to_string(kMaxCampaignRuns) + "]");
 	if (seed0.getValue() < 0 || seed0.getValue() > INT_MAX - runs.getValue())
 		throw ConfigError("esif montecarlo: --seed0 " + std::to_string(seed0.getValue()) + ": must be >= 0 and leave room for --runs seeds");
-	if (jobs.isSet() && jobs.getValue() < 1)
-		throw ConfigError("esif montecarlo: --jobs " + std::to_string(jobs.getValue()) + ": must be >= 1");
+	if (jobs.isSet() && (jobs.getValue() < 1 || jobs.getValue() > kMaxCampaignJobs))
+		throw ConfigError("esif montecarlo: --jobs " + std::to_string(jobs.getValue()) + ": must be in [1, " +
+						  std::to_string(kMaxCampaignJobs) + "]");
 	if (jobs.isSet() && emit_jobs.isSet())
 		throw ConfigError("esif montecarlo: --jobs applies to local runs, not to --emit-jobs");
 	const auto config_list = splitCommas(configs.getValue());
@@ -158,6 +161,10 @@ int monteCarloCommand(int argc, char** argv)
 	checkConfigs(config_list);
 
 	const std::string dir = out.getValue();
+	std::vector<NamedInput> inputs{{"the scenario", scenario.getValue()}};
+	for (const auto& c : config_list) inputs.push_back({"the config", c});
+	if (emit_jobs.isSet()) requireOutputApart(emit_jobs.getValue(), inputs, "--emit-jobs");
+	requireOutputApart(dir, inputs);
 	const CampaignPlan plan =
 		planCampaign(dir, CampaignPlan::create(scenario.getValue(), config_list, seed0.getValue(), runs.getValue()));
 	ensureDirectory(dir);

@@ -6,7 +6,9 @@
 #include "ChildProcess.h"
 
 #include <esif/io/AtomicFile.h>
+#include <esif/io/FolderLock.h>
 #include <esif/io/ProgressBar.h>
+#include <esif/io/RunFolder.h>
 #include <esif/io/TerminationCleanup.h>
 
 #include <algorithm>
@@ -16,8 +18,9 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <mutex>
+#include <system_error>
 #include <thread>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -25,39 +28,35 @@ namespace esif::app
 {
 namespace
 {
-/// A partial simulation folder beside the final one, unique to this
-/// process and call.
-std::string simStaging(const std::string& final_folder)
-{
-	static std::atomic<unsigned> counter{0};
-	const fs::path f(final_folder);
-	return (f.parent_path() / ("." + f.filename().string() + ".partial-" + std::to_string(::getpid()) + "-" +
-							   std::to_string(counter++)))
-		.string();
-}
-
-/// Simulates `noise_seed` into its sim folder unless it is there: into a
-/// partial folder first, then renamed into place in one step.
+/// Simulates `noise_seed` into its sim folder unless it is there. Under
+/// the seed's folder lock (processes of a job list and threads of the local
+/// pool that need the same seed wait for the first), partial folders of
+/// killed simulations are removed, then it is simulated into a partial
+/// folder of this process and renamed into place in one step.
 ChildResult ensureSimulation(const std::string& dir, const CampaignPlan& plan, int noise_seed)
 {
-	const std::string folder = campaign_layout::simFolder(dir, noise_seed);
+	const fs::path folder = campaign_layout::simFolder(dir, noise_seed);
 	std::error_code ec;
 	if (fs::is_directory(folder, ec)) return {};
-	const std::string staging = simStaging(folder);
-	ensureDirectory(staging);
-	termination::addPath(staging);
-	const std::string rawlog = (fs::path(staging) / fs::path(campaign_layout::simRawlog(dir, noise_seed)).filename()).string();
+	ensureDirectory(folder.parent_path().string());
+	const FolderLock lock(folder, LockWait::Yes);
+	if (fs::is_directory(folder, ec)) return {};  // simulated while this job waited
+	removeStalePartials(folder);
+	const fs::path staging = partialFolderOf(folder);
+	ensureDirectory(staging.string());
+	termination::addPath(staging.string());
+	const std::string rawlog = (staging / fs::path(campaign_layout::simRawlog(dir, noise_seed)).filename()).string();
 	ChildResult result = runEsifChild(
 		{"esif", "simulate", "--config", plan.scenario, "--noise-seed", std::to_string(noise_seed), "--out", rawlog},
 		ChildOutput::Kept, "montecarlo");
-	if (result.exit_code == 0 && std::rename(staging.c_str(), folder.c_str()) != 0 && errno != EEXIST &&
-		errno != ENOTEMPTY)
+	if (result.exit_code == 0 && std::rename(staging.c_str(), folder.c_str()) != 0)
 	{
 		result.exit_code = 1;
-		result.error_line = "esif: error: " + folder + ": cannot move the simulation into place: " + std::strerror(errno);
+		result.error_line =
+			"esif: error: " + folder.string() + ": cannot move the simulation into place: " + std::strerror(errno);
 	}
-	fs::remove_all(staging, ec);  // left only when another job put its copy in place first, or on failure
-	termination::removePath(staging);
+	fs::remove_all(staging, ec);  // left only on failure
+	termination::removePath(staging.string());
 	if (result.exit_code != 0) result.error_line = "simulation: " + result.error_line;
 	return result;
 }
@@ -83,23 +82,11 @@ std::string quoted(const std::string& word)
 }
 }  // namespace
 
-std::mutex& SimulationLocks::forSeed(int noise_seed)
-{
-	std::lock_guard<std::mutex> lock(mutex_);
-	auto& slot = locks_[noise_seed];
-	if (!slot) slot = std::make_unique<std::mutex>();
-	return *slot;
-}
-
-JobOutcome runCampaignJob(
-	const std::string& dir, const CampaignPlan& plan, const CampaignJob& job, SimulationLocks& locks)
+JobOutcome runCampaignJob(const std::string& dir, const CampaignPlan& plan, const CampaignJob& job)
 {
 	if (jobState(dir, plan, job) == JobState::Finished) return {campaign_layout::jobId(plan, job), true, 0, ""};
-	{
-		std::lock_guard<std::mutex> lock(locks.forSeed(job.noise_seed));
-		const ChildResult sim = ensureSimulation(dir, plan, job.noise_seed);
-		if (sim.exit_code != 0) return recordOutcome(dir, plan, job, sim);
-	}
+	const ChildResult sim = ensureSimulation(dir, plan, job.noise_seed);
+	if (sim.exit_code != 0) return recordOutcome(dir, plan, job, sim);
 	const std::string out = campaign_layout::runFolder(dir, plan.names[job.config], job.noise_seed);
 	ensureDirectory(fs::path(out).parent_path().string());
 	const ChildResult run = runEsifChild(
@@ -113,7 +100,6 @@ std::vector<JobOutcome> runCampaignJobs(
 	const std::string& dir, const CampaignPlan& plan, const std::vector<CampaignJob>& jobs, unsigned threads)
 {
 	std::vector<JobOutcome> outcomes(jobs.size());
-	SimulationLocks locks;
 	std::atomic<std::size_t> next{0}, done{0};
 	std::mutex report;
 	ProgressBar bar("montecarlo", jobs.size(), true);
@@ -121,7 +107,7 @@ std::vector<JobOutcome> runCampaignJobs(
 	const auto work = [&] {
 		for (std::size_t i; (i = next++) < jobs.size();)
 		{
-			outcomes[i] = runCampaignJob(dir, plan, jobs[i], locks);
+			outcomes[i] = runCampaignJob(dir, plan, jobs[i]);
 			std::lock_guard<std::mutex> lock(report);
 			if (outcomes[i].exit_code != 0)
 			{
@@ -133,7 +119,18 @@ std::vector<JobOutcome> runCampaignJobs(
 		}
 	};
 	std::vector<std::thread> pool;
-	for (unsigned t = 0; t < std::max(1u, threads); ++t) pool.emplace_back(work);
+	try
+	{
+		for (std::size_t t = 0; t < std::min<std::size_t>(std::max(1u, threads), jobs.size()); ++t)
+			pool.emplace_back(work);
+	}
+	catch (const std::system_error& e)
+	{
+		// The system's thread limit: go on with the threads that started.
+		std::cerr << "esif montecarlo: warning: " << pool.size() << " of " << threads
+				  << " threads could be started (" << e.what() << ")\n";
+	}
+	if (pool.empty()) work();
 	for (auto& t : pool) t.join();
 	bar.finish();
 	return outcomes;

@@ -8,9 +8,6 @@
 
 #include <esif/run/MonteCarloCampaign.h>
 
-#include <map>
-#include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -24,25 +21,15 @@ struct JobOutcome
 	std::string error_line;
 };
 
-/// Keeps threads of one process from simulating the same noise seed twice
-/// (processes of a job list may: the simulation folder is put in place by
-/// one rename, so the first one wins and the others' copy is dropped).
-class SimulationLocks
-{
-   public:
-	std::mutex& forSeed(int noise_seed);
-
-   private:
-	std::mutex mutex_;
-	std::map<int, std::unique_ptr<std::mutex>> locks_;
-};
-
 /// Runs one job in `dir`; a failure (of the simulation or the run) is
 /// recorded in its failure file, a success removes an earlier record.
-JobOutcome runCampaignJob(
-	const std::string& dir, const CampaignPlan& plan, const CampaignJob& job, SimulationLocks& locks);
+JobOutcome runCampaignJob(const std::string& dir, const CampaignPlan& plan, const CampaignJob& job);
 
-/// Runs `jobs` on `threads` threads with a progress bar and a time-left
+/// Largest --jobs: every job is a child process of up to a few hundred MB.
+inline constexpr int kMaxCampaignJobs = 256;
+
+/// Runs `jobs` on `threads` threads (no more than there are jobs; fewer
+/// when the system cannot start that many) with a progress bar and a time-left
 /// estimate on stderr (when it is a terminal); a failed job is reported
 /// on a line of its own as it happens. Returns the outcomes in job order.
 std::vector<JobOutcome> runCampaignJobs(

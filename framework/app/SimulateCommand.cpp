@@ -9,6 +9,7 @@
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 #include <esif/io/GroundTruth.h>
+#include <esif/io/OutputApart.h>
 #include <esif/sim/MeasurementTruth.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>
@@ -71,6 +72,7 @@ int simulateCommand(int argc, char** argv)
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 
 	ConfigFile config = ConfigFile::load(config_arg.getValue());
+	Scenario::checkSections(config);  // before the overrides below add [simulation]
 	// Through the INI so the seed is validated like any other value.
 	if (seed_arg.isSet()) config.set("simulation", "seed", std::to_string(seed_arg.getValue()));
 	if (noise_seed_arg.isSet()) config.set("simulation", "noise_seed", std::to_string(noise_seed_arg.getValue()));
@@ -86,12 +88,18 @@ int simulateCommand(int argc, char** argv)
 		throw ConfigError(config_arg.getValue() + ": " + e.what());
 	}
 
+	// The rawlog and the ground-truth files beside it: none may be the config.
+	const std::string prefix = groundTruthPrefixFor(out_arg.getValue());
+	std::vector<std::string> written = groundTruthFilesOf(prefix);
+	written.push_back(out_arg.getValue());
+	written.push_back(measurementTruthFileOf(prefix));
+	for (const auto& file : written) requireOutputApart(file, {{"the scenario", config_arg.getValue()}});
+
 	const auto start = std::chrono::steady_clock::now();
 	const Simulator simulator(scenario);
 	const SimulationSummary s = simulator.writeRawlog(out_arg.getValue());
 	const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-	const std::string prefix = groundTruthPrefixFor(out_arg.getValue());
 	std::printf(
 		"Simulated %s (seed %d, noise seed %u) in %.1f s: %zu steps, %zu measurements, %zu of %zu features seen, "
 		"%.2f measurements per scan on average, true path length %.1f m. Ground truth in %s_ground_truth.txt "

@@ -8,6 +8,8 @@
 #include <esif/io/TerminationCleanup.h>
 
 #include <cstring>
+#include <filesystem>
+#include <new>
 #include <iostream>
 #include <string>
 
@@ -38,15 +40,13 @@ void printUsage(std::ostream& out)
 	for (const auto& c : kSubcommands) out << "  " << c.name << std::string(12 - std::strlen(c.name), ' ') << c.summary << "\n";
 }
 
-/// Exit codes: 1 bad input, config or command line; 2 no/unknown command;
-/// 3 numerical failure; 4 unexpected internal error.
+/// Exit codes: 1 bad input, config or command line (a missing or unknown
+/// command too); 3 numerical failure or out of memory; 4 unexpected
+/// internal error; 128 + N stopped by signal N.
 int dispatch(int argc, char** argv)
 {
 	if (argc < 2)
-	{
-		printUsage(std::cerr);
-		return 2;
-	}
+		throw esif::ConfigError("no command given (usage: esif <command> [options]; esif --help lists the commands)");
 	const std::string name = argv[1];
 	if (name == "--help" || name == "-h" || name == "help")
 	{
@@ -61,8 +61,16 @@ int dispatch(int argc, char** argv)
 			argv[1] = prog.data();
 			return c.run(argc - 1, argv + 1);
 		}
-	std::cerr << "esif: unknown command '" << name << "' (esif --help lists the commands)\n";
-	return 2;
+	throw esif::ConfigError(
+		"unknown command '" + esif::printableToken(name) + "' (usage: esif <command> [options]; esif --help lists "
+		"the commands)");
+}
+/// Prints one error line (control characters escaped, whatever a path or
+/// token holds) and returns `code`.
+int report(const char* kind, const std::string& what, int code)
+{
+	std::cerr << kind << esif::withoutControlCharacters(what) << "\n";
+	return code;
 }
 }  // namespace
 
@@ -79,23 +87,29 @@ int main(int argc, char** argv)
 	}
 	catch (const esif::ConfigError& e)
 	{
-		std::cerr << "esif: error: " << e.what() << "\n";
-		return 1;
+		return report("esif: error: ", e.what(), 1);
 	}
 	catch (const esif::InputError& e)
 	{
-		std::cerr << "esif: error: " << e.what() << "\n";
-		return 1;
+		return report("esif: error: ", e.what(), 1);
 	}
 	catch (const esif::NumericalError& e)
 	{
-		std::cerr << "esif: numerical failure: " << e.what() << "\n";
-		return 3;
+		return report("esif: numerical failure: ", e.what(), 3);
+	}
+	catch (const std::filesystem::filesystem_error& e)
+	{
+		// A path esif could not stat, list or create that no reader checked
+		// first: the path and the system's reason, an input problem.
+		return report("esif: error: ", e.path1().string() + ": " + e.code().message(), 1);
+	}
+	catch (const std::bad_alloc&)
+	{
+		return report("esif: ", "out of memory", 3);
 	}
 	catch (const std::exception& e)
 	{
 		// MRPT exceptions carry a banner and a multi-line stack: one line of reason.
-		std::cerr << "esif: internal error: " << esif::oneLineReason(e.what()) << "\n";
-		return 4;
+		return report("esif: internal error: ", esif::oneLineReason(e.what()), 4);
 	}
 }

@@ -9,6 +9,7 @@
 #include <esif/io/AssociationFile.h>
 
 #include <gtest/gtest.h>
+#include <filesystem>
 #include <fstream>
 
 namespace
@@ -40,7 +41,7 @@ std::string readError(const std::string& path)
 {
 	try
 	{
-		esif::readAssociationFile(path);
+		esif::readAssociationFile(path, 3);
 	}
 	catch (const esif::InputError& e)
 	{
@@ -65,7 +66,7 @@ TEST(AssociationFile, RoundTrip)
 	TempDir dir;
 	const auto path = dir.file("associations.txt");
 	esif::writeAssociationFile(path, threeSteps(), "EkfSlam", "x.rawlog");
-	const auto back = esif::readAssociationFile(path);
+	const auto back = esif::readAssociationFile(path, 3);
 	ASSERT_EQ(back.steps.size(), 3u);
 	ASSERT_EQ(back.steps[0].associations.size(), 2u);
 	EXPECT_EQ(back.steps[0].associations[0].kind, Kind::New);
@@ -101,8 +102,10 @@ TEST(AssociationFile, MalformedRowsNameFileAndLine)
 		{"0 1 new 1\n", ":3: step 0 measurement 1 out of order (expected measurement 0)"},
 		{"2 0 new 1\n0 0 new 2\n", ":4: step 0 after step 2: rows must be in step order"},
 		{"0 0 new 1\n0 0 new 2\n", ":4: step 0 measurement 0 out of order (expected measurement 1)"},
-		{"# steps 4\n", ":3: a second '# steps N' line"},
+		{"# steps 3\n", ":3: a second '# steps N' line"},
 		{"# steps -1\n", ":3: expected '# steps N' with N a whole number"},
+		{"0 0 new -5\n", ":3: landmark_id -5 is not a landmark ID in [0, 2147483647]"},
+		{"0 0 matched 2147483648\n", ":3: landmark_id 2147483648 is not a landmark ID in [0, 2147483647]"},
 	};
 	for (const auto& [rows, expected] : cases)
 	{
@@ -110,6 +113,23 @@ TEST(AssociationFile, MalformedRowsNameFileAndLine)
 		const auto message = readError(path);
 		EXPECT_EQ(message.rfind(path + expected, 0), 0u) << "rows: " << rows << "got: " << message;
 	}
+}
+
+/// The declared step count is the rawlog's, checked before anything is
+/// allocated: a 20-byte file declaring 10^8 (or 2^64 - 1) steps used to
+/// allocate gigabytes (or end in an internal error).
+TEST(AssociationFile, DeclaredStepsMustBeTheRawlogs)
+{
+	TempDir dir;
+	for (const std::string n : {"100000000", "18446744073709551615", "4"})
+	{
+		const auto path = write(dir, "# steps " + n + "\n");
+		EXPECT_EQ(readError(path), path + ":1: recorded for " + n + " steps, the rawlog has 3");
+	}
+	const auto overflow = write(dir, "# steps 18446744073709551616\n");
+	EXPECT_EQ(readError(overflow), overflow + ":1: expected '# steps N' with N a whole number");
+	std::filesystem::create_directory(dir.file("folder"));
+	EXPECT_EQ(readError(dir.file("folder")), dir.file("folder") + ": association file is a folder, not a file");
 }
 
 TEST(AssociationFile, ApplySetsRecordedIdsAndKeepsTrueIds)

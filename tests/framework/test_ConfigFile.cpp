@@ -49,6 +49,30 @@ TEST(ConfigFile, MalformedHeadersAndStrayLinesAreErrors)
 	EXPECT_EQ(errorOf("[esif]\n = 3\n"), "c.ini:2: '= 3' is neither a [section], a key = value line nor a comment");
 }
 
+/// MRPT joins a line ending in '\' with the next (the key there is lost
+/// into the value) and stops reading at a NUL byte (the rest of the file is
+/// silently dropped): both are errors naming the line.
+TEST(ConfigFile, ContinuationLinesAndControlCharactersAreErrors)
+{
+	EXPECT_EQ(errorOf("[esif]\nlabel = ekf \\\nhide_landmark_ids = true\n"),
+			  "c.ini:2: ends in '\\', which MRPT's parser joins with the next line; esif configs have no continued "
+			  "lines: remove the '\\'");
+	EXPECT_EQ(errorOf("; a comment \\\n[esif]\n"),
+			  "c.ini:1: ends in '\\', which MRPT's parser joins with the next line, so that line would be lost in "
+			  "this comment; esif configs have no continued lines: remove the '\\'");
+	EXPECT_NE(errorOf("[a]\nx = 1 // note \\\n\n").find("c.ini:2: ends in '\\'"), std::string::npos)
+		<< "a value ending in '\\' takes in the next line, whatever it holds";
+	EXPECT_EQ(errorOf("# run: esif run \\\n#   --out x\n[esif]\nplugin = A\n"), "")
+		<< "a shell command in comments, continued on a comment line, loses nothing";
+	EXPECT_EQ(errorOf(std::string("[ekf]\njacobians = first_estimates\0\nx = 1\n", 41)),
+			  "c.ini:2: control character 0x00 at column 28 (a NUL byte: MRPT's parser would drop the rest of the "
+			  "file); a config is plain text");
+	EXPECT_EQ(errorOf("[esif]\nlabel = a\x1b[31m\n"),
+			  "c.ini:2: control character 0x1b at column 10; a config is plain text");
+	EXPECT_EQ(errorOf("[esif]\r\n\tlabel = a b\r\n"), "") << "tabs and CR-LF line ends are text";
+	EXPECT_EQ(errorOf("[esif]\nlabel = a\\b\n"), "") << "a backslash inside a value is fine";
+}
+
 TEST(ConfigFile, CommentsBlanksAndIndentationAreFine)
 {
 	const auto c = ConfigFile::fromText("; top\n# also\n\n  [esif]  \r\n\tplugin = EkfSlam ; note\r\nlabel=x\n", "c.ini");

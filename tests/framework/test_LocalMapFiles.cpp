@@ -2,6 +2,7 @@
 
 #include <esif/core/Errors.h>
 #include <esif/localmap/LocalMapFiles.h>
+#include <esif/run/LocalMapBuild.h>
 
 #include <gtest/gtest.h>
 #include <algorithm>
@@ -353,7 +354,7 @@ TEST(LocalMapFiles, BadLinksAndGroundTruth)
 TEST(LocalMapFiles, BadReferenceResult)
 {
 	test::TempDir dir;
-	expectErrorAt([&] { readReferenceResult(dir.path()); }, dir.file("feature.txt"), "no such file");
+	expectErrorAt([&] { readReferenceResult(dir.path()); }, dir.file("feature.txt"), "reference features not found");
 	writeLines(dir.file("feature.txt"), {"1  19.5  -12.4", "2  29.0  -15.0"});
 	const auto ok = readReferenceResult(dir.path());
 	EXPECT_EQ(ok.features.size(), 2u);
@@ -375,7 +376,7 @@ TEST(LocalMapFiles, FailedWriteLeavesNothingHalfWritten)
 	// The target's parent is a file.
 	std::ofstream(dir.file("plain")) << "x\n";
 	expectErrorAt([&] { writeLocalMapFolder(makeFolder(), dir.file("plain") + "/maps"); }, dir.file("plain/maps"),
-				  "cannot create folder");
+				  "cannot create the folder");
 	EXPECT_EQ(test::readText(dir.file("plain")), "x\n");
 	// The target is a file: not replaced.
 	expectErrorAt([&] { writeLocalMapFolder(makeFolder(), dir.file("plain")); }, dir.file("plain"), "not a folder");

@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -261,6 +262,29 @@ std::string errorOfOdometry(const test::TempDir& dir, const mrpt::poses::CPose2D
 		ar << *acts << *frameOf(scan({{1.0f, 3}}));
 	}
 	return errorOf(dir.file("odo.rawlog"));
+}
+
+/// MRPT reads estimationMethod as a raw integer: a value none of its
+/// enumerators has is a corrupt entry, not an odometry to use.
+TEST(RawlogReader, AnOdometryEnumOutsideMrptsValuesIsACorruptEntry)
+{
+	test::TempDir dir;
+	for (const int method : {2, -1, 1000})
+	{
+		auto acts = odometryAction(0.1, 0.01);
+		auto* mv = acts->getBestMovementEstimation().get();
+		ASSERT_NE(mv, nullptr);
+		static_assert(sizeof(mv->estimationMethod) == sizeof(method));
+		std::memcpy(&mv->estimationMethod, &method, sizeof(method));  // as a corrupt file's bytes would set it
+		{
+			mrpt::io::CFileGZOutputStream f(dir.file("enum.rawlog"));
+			auto ar = mrpt::serialization::archiveFrom(f);
+			ar << *acts << *frameOf(scan({{1.0f, 3}}));
+		}
+		EXPECT_EQ(errorOf(dir.file("enum.rawlog")),
+				  dir.file("enum.rawlog") + ": entry 0: odometry estimationMethod = " + std::to_string(method) +
+					  " is none of MRPT's (0 odometry, 1 scan matching): a corrupt entry");
+	}
 }
 
 TEST(RawlogReader, BadOdometryNamesTheEntryAndWhatIsWrong)

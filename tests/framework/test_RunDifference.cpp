@@ -298,7 +298,7 @@ TEST(RunOutputReader, MissingFilesAreNamed)
 	test::TempDir dir;
 	EXPECT_EQ(inputErrorOf([&] { readTrajectoryTum(dir.file("none.tum")); }),
 			  dir.file("none.tum") + ": trajectory not found");
-	EXPECT_EQ(inputErrorOf([&] { readLandmarksTxt(dir.path()); }), dir.path() + ": not a regular file");
+	EXPECT_EQ(inputErrorOf([&] { readLandmarksTxt(dir.path()); }), dir.path() + ": landmark map is a folder, not a file");
 	write(dir, "trajectory.tum", tumRow(0, 0, 0, 0));
 	EXPECT_EQ(inputErrorOf([&] { readRunOutputs(dir.path()); }), dir.file("landmarks.txt") + ": landmark map not found");
 }

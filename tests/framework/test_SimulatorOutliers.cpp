@@ -125,7 +125,7 @@ TEST(SimulatorOutliers, DefaultsAreOffAndExplicitZerosChangeNothing)
 	test::TempDir dir;
 	Simulator(plain).writeRawlog(dir.file("small.rawlog"));
 	EXPECT_FALSE(std::filesystem::exists(measurementTruthFileOf(dir.file("small"))));
-	EXPECT_FALSE(loadMeasurementTruth(dir.file("small")).has_value());
+	EXPECT_FALSE(loadMeasurementTruth(dir.file("small"), 10).has_value());
 }
 
 TEST(SimulatorOutliers, BadValuesAreConfigErrorsNamingTheKey)
@@ -357,7 +357,7 @@ TEST(SimulatorOutliers, MeasurementTruthFileAndTheAuditThatUsesIt)
 	const Simulator sim(s);
 	const SimulationSummary summary = sim.writeRawlog(dir.file("out.rawlog"));
 	const Rawlog log = readRawlog(dir.file("out.rawlog"));
-	const auto truth = loadMeasurementTruth(dir.file("out"));
+	const auto truth = loadMeasurementTruth(dir.file("out"), log.true_ids.size());
 	ASSERT_TRUE(truth);
 	ASSERT_EQ(truth->size(), log.true_ids.size());
 
@@ -416,22 +416,46 @@ TEST(SimulatorOutliers, MeasurementTruthFileErrorsNameFileAndLine)
 	std::ofstream(dir.file("bad_ground_truth_measurement_ids.txt")) << "% header\n0 0 5 5\n0 2 6 6\n";
 	try
 	{
-		loadMeasurementTruth(dir.file("bad"));
+		loadMeasurementTruth(dir.file("bad"), 10);
 		FAIL() << "rows out of order must be an error";
 	}
 	catch (const InputError& e)
 	{
-		EXPECT_NE(std::string(e.what()).find("bad_ground_truth_measurement_ids.txt: line 3"), std::string::npos)
+		EXPECT_NE(std::string(e.what()).find("bad_ground_truth_measurement_ids.txt:3: "), std::string::npos)
 			<< e.what();
 	}
 	std::ofstream(dir.file("worse_ground_truth_measurement_ids.txt")) << "0 0 five 5\n";
-	EXPECT_THROW(loadMeasurementTruth(dir.file("worse")), InputError);
+	EXPECT_THROW(loadMeasurementTruth(dir.file("worse"), 10), InputError);
 
 	// Round trip, with a step without measurements and clutter.
 	MeasurementTruth t = {{{3, 3}, {9, std::nullopt}}, {}, {{4, 7}}};
 	saveMeasurementTruth(t, dir.file("ok"));
-	const auto back = loadMeasurementTruth(dir.file("ok"));
+	const auto back = loadMeasurementTruth(dir.file("ok"), 3);
 	ASSERT_TRUE(back);
 	const std::vector<std::vector<std::optional<LandmarkId>>> expected = {{3, std::nullopt}, {}, {7}};
 	EXPECT_EQ(*back, expected);
+}
+
+/// A 16-byte file naming step 10^9 is refused at its line before anything
+/// is allocated for the steps it implies (it used to allocate 24 GB and end
+/// in std::bad_alloc): steps are bounded by the rawlog's.
+TEST(SimulatorOutliers, MeasurementTruthStepsAreBoundedByTheRawlogs)
+{
+	test::TempDir dir;
+	std::ofstream(dir.file("huge_ground_truth_measurement_ids.txt")) << "1000000000 0 5 5\n";
+	try
+	{
+		loadMeasurementTruth(dir.file("huge"), 3000);
+		FAIL() << "a step beyond the rawlog's must be an error";
+	}
+	catch (const InputError& e)
+	{
+		EXPECT_NE(std::string(e.what()).find("huge_ground_truth_measurement_ids.txt:1: step 1000000000 but the rawlog has 3000 steps"),
+				  std::string::npos)
+			<< e.what();
+	}
+	std::ofstream(dir.file("id_ground_truth_measurement_ids.txt")) << "0 0 5 4294967296\n";
+	EXPECT_THROW(loadMeasurementTruth(dir.file("id"), 10), InputError) << "a true ID beyond int32";
+	std::filesystem::create_directory(dir.file("folder_ground_truth_measurement_ids.txt"));
+	EXPECT_THROW(loadMeasurementTruth(dir.file("folder"), 10), InputError) << "a folder where the file belongs";
 }

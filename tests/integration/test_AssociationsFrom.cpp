@@ -87,7 +87,7 @@ TEST_F(AssociationsFrom, EveryRunWritesAssociationsAndFormulation)
 	EXPECT_NE(stats.find("\"formulation\": \"ekf_slam\""), std::string::npos) << stats;
 	EXPECT_NE(stats.find("\"poses_in_state\": 1"), std::string::npos) << stats;
 
-	const auto recorded = esif::readAssociationFile(dir_->file("jcbb_out/associations.txt"));
+	const auto recorded = esif::readAssociationFile(dir_->file("jcbb_out/associations.txt"), 200);
 	EXPECT_EQ(recorded.steps.size(), 200u);
 	std::size_t rows = 0;
 	for (const auto& s : recorded.steps) rows += s.associations.size();

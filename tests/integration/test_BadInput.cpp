@@ -55,7 +55,8 @@ TEST(BadInput, MissingRawlog)
 TEST(BadInput, UnreadableRawlog)
 {
 	TempDir dir;
-	expectOneErrorLine(runEsif(runArgs(kConfig, dir.path(), dir.file("out"))), "not a regular file");
+	std::filesystem::create_directory(dir.file("folder"));
+	expectOneErrorLine(runEsif(runArgs(kConfig, dir.file("folder"), dir.file("out"))), "rawlog file is a folder, not a file");
 	if (::geteuid() == 0) GTEST_SKIP() << "root reads files whatever their mode";
 	std::filesystem::copy_file(kRawlog, dir.file("locked.rawlog"));
 	std::filesystem::permissions(dir.file("locked.rawlog"), std::filesystem::perms::none);
@@ -172,9 +173,10 @@ TEST(BadInput, MissingConfigAndBadCommandLine)
 	TempDir dir;
 	expectOneErrorLine(runEsif(runArgs(dir.file("none.ini"), kRawlog, dir.file("out"))), "none.ini: config file not found");
 	expectOneErrorLine(runEsif("run --rawlog x"), "esif run: ");
-	const auto r = runEsif("frobnicate");
-	EXPECT_EQ(r.exit_code, 2);
-	EXPECT_EQ(lineCount(r.out), 1u);
+	expectOneErrorLine(runEsif("frobnicate"), "unknown command 'frobnicate' (usage: esif <command>");
+	EXPECT_EQ(runEsif("frobnicate").exit_code, 1) << "a command-line error";
+	expectOneErrorLine(runEsif(""), "no command given (usage: esif <command>");
+	EXPECT_EQ(runEsif("").exit_code, 1);
 }
 
 TEST(BadInput, KnownIdsWithoutIdsNamesTheStep)

@@ -11,6 +11,7 @@
 #include <esif/io/GroundTruth.h>
 #include <esif/io/RunOutputReader.h>
 #include <esif/localmap/LocalMapFiles.h>
+#include <esif/run/LocalMapBuild.h>
 #include <esif/models/Se2.h>
 
 #include <gtest/gtest.h>
@@ -203,7 +204,7 @@ TEST_F(LocalMapsCli, RunOnSim5GivesFiniteRmseAndEveryOutput)
 	ASSERT_EQ(trajectory.size(), 5u);
 	EXPECT_DOUBLE_EQ(trajectory.front().time_s, 1.0);
 	EXPECT_DOUBLE_EQ(trajectory.back().time_s, 5.0);
-	const auto associations = esif::readAssociationFile(out + "/associations.txt");
+	const auto associations = esif::readAssociationFile(out + "/associations.txt", 5);
 	ASSERT_EQ(associations.steps.size(), 5u);
 	EXPECT_EQ(associations.steps[0].associations.size(), folder.maps[0].features.size());
 }
@@ -336,7 +337,7 @@ TEST_F(LocalMapsCli, RawlogRunOfAJoinerDrawsLocalMapTimesAndScoresTheFinalReport
 	EXPECT_TRUE(stats.number("join_us_mean").has_value());
 	EXPECT_EQ(*stats.number("da_wrong"), 0.0);
 	// The final reports name the global landmarks (here the rawlog's IDs).
-	const auto associations = esif::readAssociationFile(out + "/associations.txt");
+	const auto associations = esif::readAssociationFile(out + "/associations.txt", 200);
 	ASSERT_EQ(associations.steps.size(), 200u);
 	const auto landmarks = esif::readLandmarksTxt(out + "/landmarks.txt");
 	std::set<esif::LandmarkId> mapped;

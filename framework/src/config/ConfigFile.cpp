@@ -1,13 +1,11 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
+#include <esif/io/TextInput.h>
 
 #include "IniStructure.h"
 
 #include <mrpt/config/CConfigFileMemory.h>
 
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace esif
 {
@@ -35,12 +33,16 @@ std::map<std::string, std::map<std::string, std::string>> readAll(const mrpt::co
 ConfigFile ConfigFile::load(const std::string& path)
 {
 	// MRPT's CConfigFile silently yields an empty config for a missing file.
-	if (!std::filesystem::is_regular_file(path)) throw ConfigError(path + ": config file not found");
-	std::ifstream in(path);
-	if (!in) throw ConfigError(path + ": cannot read config file");
-	std::stringstream ss;
-	ss << in.rdbuf();
-	return fromText(ss.str(), path);
+	std::string text;
+	try
+	{
+		text = readTextFile(path, "config file");
+	}
+	catch (const InputError& e)
+	{
+		throw ConfigError(e.what());
+	}
+	return fromText(text, path);
 }
 
 ConfigFile ConfigFile::fromText(const std::string& text, const std::string& origin)

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <map>
 #include <sstream>
+#include <vector>
 
 namespace esif
 {
@@ -38,21 +40,57 @@ class FirstSeen
    private:
 	std::map<std::string, int> lines_;
 };
+/// A NUL byte makes MRPT drop the rest of the file, and other control
+/// characters (but tab and carriage return) are never part of a config.
+template <class Fail>
+void checkCharacters(const std::string& raw, int line, const Fail& fail)
+{
+	for (std::size_t i = 0; i < raw.size(); ++i)
+	{
+		const auto c = static_cast<unsigned char>(raw[i]);
+		if (c >= 0x20 || c == '\t' || c == '\r') continue;
+		char code[8];
+		std::snprintf(code, sizeof(code), "0x%02x", c);
+		fail(line, std::string("control character ") + code + " at column " + std::to_string(i + 1) +
+					   (c == 0 ? " (a NUL byte: MRPT's parser would drop the rest of the file)" : "") +
+					   "; a config is plain text");
+	}
+}
 }  // namespace
 
 void checkIniStructure(const std::string& text, const std::string& origin)
 {
-	std::istringstream in(text);
-	std::string raw, section;
+	std::vector<std::string> lines;
+	{
+		std::istringstream in(text);
+		for (std::string raw; std::getline(in, raw);) lines.push_back(raw);
+	}
+	std::string section;
 	FirstSeen sections;
 	std::map<std::string, FirstSeen> keys;	// per lower-cased section
 	const auto fail = [&](int line, const std::string& what) {
 		throw ConfigError(origin + ":" + std::to_string(line) + ": " + what);
 	};
-	for (int line = 1; std::getline(in, raw); ++line)
+	const auto isCommentOrBlank = [](const std::string& s) { return s.empty() || s[0] == ';' || s[0] == '#'; };
+	for (int line = 1; line <= static_cast<int>(lines.size()); ++line)
 	{
+		const std::string& raw = lines[static_cast<std::size_t>(line - 1)];
+		checkCharacters(raw, line, fail);
 		const std::string s = trimmed(raw);
-		if (s.empty() || s[0] == ';' || s[0] == '#') continue;
+		// MRPT joins a line ending in '\' with the next one: a key's value
+		// or a header would take in the next line, and a comment would
+		// swallow a key or header that follows (a shell command quoted in a
+		// comment, continued on a comment line, is harmless).
+		if (!s.empty() && s.back() == '\\')
+		{
+			const bool next_is_text =
+				line < static_cast<int>(lines.size()) && !isCommentOrBlank(trimmed(lines[static_cast<std::size_t>(line)]));
+			if (!isCommentOrBlank(s) || next_is_text)
+				fail(line, "ends in '\\', which MRPT's parser joins with the next line" +
+							   std::string(isCommentOrBlank(s) ? ", so that line would be lost in this comment" : "") +
+							   "; esif configs have no continued lines: remove the '\\'");
+		}
+		if (isCommentOrBlank(s)) continue;
 		if (s[0] == '[')
 		{
 			if (s.size() < 3 || s.back() != ']' || s.find(']') != s.size() - 1)

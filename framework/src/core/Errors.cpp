@@ -1,5 +1,6 @@
 #include <esif/core/Errors.h>
 
+#include <cstdio>
 #include <sstream>
 
 namespace esif
@@ -15,6 +16,41 @@ std::string oneLineReason(const std::string& text)
 		if (!line.empty()) return line;
 	}
 	return text.substr(0, text.find('\n'));
+}
+
+namespace
+{
+std::string hexByte(unsigned char c)
+{
+	char code[5];
+	std::snprintf(code, sizeof(code), "\\x%02x", c);
+	return code;
+}
+}  // namespace
+
+std::string printableToken(const std::string& token, std::size_t max_chars)
+{
+	std::string out;
+	std::size_t shown = 0;
+	for (const char ch : token)
+	{
+		if (shown == max_chars) return out + "...";
+		const auto c = static_cast<unsigned char>(ch);
+		out += c >= 0x20 && c < 0x7f ? std::string(1, ch) : hexByte(c);
+		++shown;
+	}
+	return out;
+}
+
+std::string withoutControlCharacters(const std::string& text)
+{
+	std::string out;
+	for (const char ch : text)
+	{
+		const auto c = static_cast<unsigned char>(ch);
+		out += c < 0x20 || c == 0x7f ? hexByte(c) : std::string(1, ch);
+	}
+	return out;
 }
 
 }  // namespace esif

@@ -5,6 +5,7 @@
 #include <esif/core/Errors.h>
 #include <esif/interop/G2oExport.h>
 #include <esif/io/AssociationFile.h>
+#include <esif/io/OutputApart.h>
 #include <esif/io/RunOutputReader.h>
 #include <esif/run/RunSetup.h>
 
@@ -14,6 +15,7 @@ namespace esif
 {
 G2oExportSummary exportG2o(const G2oExportRequest& request)
 {
+	requireOutputApart(request.out_path, {{"the rawlog", request.rawlog_path}, {"the run folder", request.run_dir.value_or("")}});
 	Rawlog log = readRawlog(request.rawlog_path);
 	std::optional<RunOutputs> initial;
 	if (request.run_dir)
@@ -21,7 +23,7 @@ G2oExportSummary exportG2o(const G2oExportRequest& request)
 		const std::string& dir = *request.run_dir;
 		if (!std::filesystem::is_directory(dir)) throw InputError(dir + ": run folder not found");
 		const std::string associations = (std::filesystem::path(dir) / kAssociationFileName).string();
-		applyAssociations(log, readAssociationFile(associations), associations);
+		applyAssociations(log, readAssociationFile(associations, log.steps.size()), associations);
 		initial = readRunOutputs(dir);
 	}
 	const FullSlamProblem problem =

@@ -4,6 +4,7 @@
 #include <esif/core/Errors.h>
 #include <esif/interop/G2oImport.h>
 #include <esif/io/MapWriter.h>
+#include <esif/io/OutputApart.h>
 #include <esif/io/RunFolder.h>
 
 #include <filesystem>
@@ -32,22 +33,36 @@ std::vector<Pose2> posesOf(const G2oGraph& graph, std::size_t count, const std::
 	return poses;
 }
 
-std::vector<LandmarkEstimate> landmarksOf(const G2oGraph& graph, std::size_t pose_count, const std::string& path)
+/// The landmark vertices, which must be exactly the problem's landmarks
+/// (vertex P + ID, P poses): a file of another rawlog, or with the IDs
+/// shifted, would otherwise be scored against unrelated landmarks.
+std::vector<LandmarkEstimate> landmarksOf(const G2oGraph& graph, const FullSlamProblem& problem, const std::string& path)
 {
 	const double nan = std::numeric_limits<double>::quiet_NaN();
+	const auto pose_count = static_cast<long long>(problem.poses.size());
 	std::vector<LandmarkEstimate> out;
 	for (const auto& [vertex, position] : graph.points)
 	{
-		if (vertex < static_cast<long long>(pose_count))
+		if (vertex < pose_count)
 			throw InputError(
 				path + ": VERTEX_XY " + std::to_string(vertex) + " has a pose's ID (landmark vertices are " +
 				std::to_string(pose_count) + " + landmark ID)");
+		if (!problem.landmarks.count(vertex - pose_count))
+			throw InputError(
+				path + ": VERTEX_XY " + std::to_string(vertex) + " is landmark " + std::to_string(vertex - pose_count) +
+				", which the rawlog's problem does not have (a file of another rawlog?)");
 		LandmarkEstimate l;
-		l.id = vertex - static_cast<long long>(pose_count);
+		l.id = vertex - pose_count;
 		l.mean = position;
 		l.cov << nan, nan, nan, nan;
 		out.push_back(l);
 	}
+	for (const auto& [id, initial] : problem.landmarks)
+		if (!graph.points.count(pose_count + id))
+			throw InputError(
+				path + ": no VERTEX_XY " + std::to_string(pose_count + id) + " for landmark " + std::to_string(id) +
+				" of the rawlog's problem (" + std::to_string(problem.landmarks.size()) + " landmarks, vertices " +
+				std::to_string(pose_count) + " + ID)");
 	return out;
 }
 }  // namespace
@@ -64,7 +79,7 @@ G2oSolution solutionFromG2o(const G2oGraph& graph, const FullSlamProblem& proble
 		p.pose.mean = toTPose2D(poses[problem.step_pose[k]]);
 		s.trajectory.push_back(p);
 	}
-	s.estimate.landmarks = landmarksOf(graph, problem.poses.size(), path);
+	s.estimate.landmarks = landmarksOf(graph, problem, path);
 	if (!s.trajectory.empty()) s.estimate.robot = s.trajectory.back().pose;
 	return s;
 }
@@ -72,6 +87,7 @@ G2oSolution solutionFromG2o(const G2oGraph& graph, const FullSlamProblem& proble
 G2oImportSummary importG2oSolution(
 	const std::string& g2o_path, const std::string& rawlog_path, const std::string& out_dir)
 {
+	requireOutputApart(out_dir, {{"the g2o file", g2o_path}, {"the rawlog", rawlog_path}});
 	const G2oGraph graph = readG2oFile(g2o_path);
 	const FullSlamProblem problem = buildFullSlamProblem(readRawlog(rawlog_path));
 	const G2oSolution solution = solutionFromG2o(graph, problem, g2o_path);

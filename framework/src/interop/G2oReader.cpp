@@ -6,12 +6,13 @@
 
 #include <esif/core/Errors.h>
 #include <esif/interop/G2oFormat.h>
+#include <esif/io/InputBounds.h>
+#include <esif/io/TextInput.h>
 
 #include <Eigen/Cholesky>
 
 #include <charconv>
-#include <fstream>
-#include <filesystem>
+#include <cmath>
 #include <sstream>
 #include <vector>
 
@@ -22,7 +23,7 @@ namespace
 struct Line
 {
 	const std::string& path;
-	int lineno;
+	std::size_t lineno;
 	std::vector<std::string> tokens;
 
 	[[noreturn]] void fail(const std::string& problem) const
@@ -58,6 +59,22 @@ struct Line
 		return v;
 	}
 
+	/// A coordinate [m] within +-kMaxCoordinate_m.
+	double coordinate(std::size_t k) const
+	{
+		const double v = number(k);
+		if (std::abs(v) > kMaxCoordinate_m) fail("'" + tokens[k] + "' is beyond +-1e7 m (a corrupt file?)");
+		return v;
+	}
+
+	/// A heading [rad] within +-kMaxHeading_rad.
+	double heading(std::size_t k) const
+	{
+		const double v = number(k);
+		if (std::abs(v) > kMaxHeading_rad) fail("'" + tokens[k] + "' is beyond +-1e6 rad (a corrupt file?)");
+		return v;
+	}
+
 	/// The symmetric N x N information matrix from its upper triangle at
 	/// tokens[first..]; fails unless it is positive definite.
 	template <int N>
@@ -84,7 +101,7 @@ std::vector<std::string> tokensOf(const std::string& text)
 /// files may define vertices after the edges that use them).
 struct EdgeRef
 {
-	int line;
+	std::size_t line;
 	std::string tag;
 	long long pose;
 	long long other;
@@ -161,37 +178,32 @@ class Reader
 	{
 		l.expect(4, "id x y theta");
 		checkNew(l, l.id(1));
-		graph_.poses.emplace(l.id(1), Pose2(l.number(2), l.number(3), l.number(4)));
+		graph_.poses.emplace(l.id(1), Pose2(l.coordinate(2), l.coordinate(3), l.heading(4)));
 	}
 	void addPoint(const Line& l)
 	{
 		l.expect(3, "id x y");
 		checkNew(l, l.id(1));
-		graph_.points.emplace(l.id(1), Eigen::Vector2d(l.number(2), l.number(3)));
+		graph_.points.emplace(l.id(1), Eigen::Vector2d(l.coordinate(2), l.coordinate(3)));
 	}
 
 	const std::string& path_;
 	G2oGraph graph_;
-	std::map<long long, int> vertex_line_;
+	std::map<long long, std::size_t> vertex_line_;
 	std::vector<EdgeRef> edges_;
 };
 }  // namespace
 
 G2oGraph readG2oFile(const std::string& path)
 {
-	if (!std::filesystem::exists(path)) throw InputError(path + ": g2o file not found");
-	if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": not a regular file");
-	std::ifstream in(path);
-	if (!in) throw InputError(path + ": cannot open the g2o file");
+	TextLineReader in(path, "g2o file");
 	Reader reader(path);
-	std::string text;
-	for (int number = 1; std::getline(in, text); ++number)
+	for (std::string text; in.next(text);)
 	{
-		Line l{path, number, tokensOf(text)};
+		Line l{path, in.lineNumber(), tokensOf(text)};
 		if (l.tokens.empty() || l.tokens[0][0] == '#') continue;
 		reader.readLine(l);
 	}
-	if (in.bad()) throw InputError(path + ": read error");
 	return reader.finish();
 }
 

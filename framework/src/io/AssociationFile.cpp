@@ -7,10 +7,10 @@
 #include <esif/core/Errors.h>
 #include <esif/io/AssociationFile.h>
 #include <esif/io/AtomicFile.h>
+#include <esif/io/InputBounds.h>
+#include <esif/io/TextInput.h>
 
 #include <charconv>
-#include <filesystem>
-#include <fstream>
 #include <optional>
 #include <sstream>
 
@@ -55,49 +55,48 @@ std::vector<std::string> tokensOf(const std::string& line)
 	return out;
 }
 
-[[noreturn]] void failAt(const std::string& path, int lineno, const std::string& problem)
-{
-	throw InputError(path + ":" + std::to_string(lineno) + ": " + problem);
-}
-
-/// The N of a `# steps N` comment; nullopt for any other comment.
-std::optional<std::size_t> stepCountOf(const std::vector<std::string>& toks, const std::string& path, int lineno)
+/// The N of a `# steps N` comment, which must be the rawlog's step count;
+/// nullopt for any other comment.
+std::optional<std::size_t> stepCountOf(
+	const std::vector<std::string>& toks, const TextLineReader& in, std::size_t rawlog_steps)
 {
 	if (toks.size() < 2 || toks[0] != "#" || toks[1] != "steps") return std::nullopt;
 	const auto n = toks.size() == 3 ? parseWhole<std::size_t>(toks[2]) : std::nullopt;
-	if (!n) failAt(path, lineno, "expected '# steps N' with N a whole number");
+	if (!n) in.fail("expected '# steps N' with N a whole number");
+	if (*n != rawlog_steps)
+		in.fail("recorded for " + toks[2] + " steps, the rawlog has " + std::to_string(rawlog_steps));
 	return n;
 }
 
 /// Parses one data row into `out`, checking it continues the file's order
 /// (`previous_step`: the step of the row before, updated).
 void readRow(
-	const std::vector<std::string>& toks, const std::string& path, int lineno, std::size_t& previous_step,
+	const std::vector<std::string>& toks, const TextLineReader& in, std::size_t& previous_step,
 	RecordedAssociations& out)
 {
 	static const std::string kColumns = "'step measurement kind landmark_id'";
 	if (toks.size() != 4)
-		failAt(path, lineno, "expected " + kColumns + ", found " + std::to_string(toks.size()) + " values");
+		in.fail("expected " + kColumns + ", found " + std::to_string(toks.size()) + " values");
 	const auto step = parseWhole<std::size_t>(toks[0]);
 	const auto index = parseWhole<std::size_t>(toks[1]);
 	const auto kind = kindOf(toks[2]);
 	const auto id = parseWhole<LandmarkId>(toks[3]);
 	if (!step || !index || !id)
-		failAt(path, lineno, "step, measurement and landmark_id must be whole numbers (expected " + kColumns + ")");
-	if (!kind) failAt(path, lineno, "kind '" + toks[2] + "' is not new, matched or rejected");
+		in.fail("step, measurement and landmark_id must be whole numbers (expected " + kColumns + ")");
+	if (!kind) in.fail("kind '" + toks[2] + "' is not new, matched or rejected");
 	if (*kind == Association::Kind::Rejected && *id != -1)
-		failAt(path, lineno, "a rejected measurement has landmark_id -1, found " + toks[3]);
+		in.fail("a rejected measurement has landmark_id -1, found " + toks[3]);
+	if (*kind != Association::Kind::Rejected && (*id < 0 || *id > kMaxLandmarkId))
+		in.fail("landmark_id " + toks[3] + " is not a landmark ID in [0, " + std::to_string(kMaxLandmarkId) + "]");
 	if (*step >= out.steps.size())
-		failAt(path, lineno, "step " + toks[0] + " beyond the " + std::to_string(out.steps.size()) + " steps declared");
+		in.fail("step " + toks[0] + " beyond the " + std::to_string(out.steps.size()) + " steps declared");
 	if (*step < previous_step)
-		failAt(
-			path, lineno,
+		in.fail(
 			"step " + toks[0] + " after step " + std::to_string(previous_step) + ": rows must be in step order");
 	previous_step = *step;
 	auto& associations = out.steps[*step].associations;
 	if (*index != associations.size())
-		failAt(
-			path, lineno,
+		in.fail(
 			"step " + toks[0] + " measurement " + toks[1] + " out of order (expected measurement " +
 				std::to_string(associations.size()) + ")");
 	associations.push_back({*kind, *id});
@@ -128,34 +127,29 @@ void writeAssociationFile(
 	writeTextAtomically(path, associationFileText(reports, plugin, rawlog));
 }
 
-RecordedAssociations readAssociationFile(const std::string& path)
+RecordedAssociations readAssociationFile(const std::string& path, std::size_t rawlog_steps)
 {
-	if (!std::filesystem::exists(path)) throw InputError(path + ": association file not found");
-	if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": not a regular file");
-	std::ifstream in(path);
-	if (!in) throw InputError(path + ": cannot open association file");
+	TextLineReader in(path, "association file");
 	RecordedAssociations out;
 	bool declared = false;
 	std::size_t previous_step = 0;
-	std::string line;
-	for (int lineno = 1; std::getline(in, line); ++lineno)
+	for (std::string line; in.next(line);)
 	{
 		const auto toks = tokensOf(line);
 		if (toks.empty()) continue;
 		if (toks[0][0] == '#')
 		{
-			if (const auto n = stepCountOf(toks, path, lineno))
+			if (const auto n = stepCountOf(toks, in, rawlog_steps))
 			{
-				if (declared) failAt(path, lineno, "a second '# steps N' line");
+				if (declared) in.fail("a second '# steps N' line");
 				out.steps.resize(*n);
 				declared = true;
 			}
 			continue;
 		}
-		if (!declared) failAt(path, lineno, "a row before the '# steps N' line");
-		readRow(toks, path, lineno, previous_step, out);
+		if (!declared) in.fail("a row before the '# steps N' line");
+		readRow(toks, in, previous_step, out);
 	}
-	if (in.bad()) throw InputError(path + ": read error");
 	if (!declared) throw InputError(path + ": no '# steps N' line (not an esif associations.txt)");
 	return out;
 }

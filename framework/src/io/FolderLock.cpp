@@ -32,14 +32,18 @@ std::filesystem::path FolderLock::lockFileOf(const std::filesystem::path& folder
 	return folder.parent_path() / ("." + folder.filename().string() + ".lock");
 }
 
-FolderLock::FolderLock(const std::filesystem::path& folder) : path_(lockFileOf(folder).string())
+FolderLock::FolderLock(const std::filesystem::path& folder, LockWait wait) : path_(lockFileOf(folder).string())
 {
 	for (;;)
 	{
 		fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
 		if (fd_ < 0)
 			throw InputError(folder.string() + ": cannot create the lock file " + path_ + ": " + std::strerror(errno));
-		if (::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+		int locked;
+		do
+			locked = ::flock(fd_, LOCK_EX | (wait == LockWait::No ? LOCK_NB : 0));
+		while (locked != 0 && errno == EINTR);
+		if (locked != 0)
 		{
 			const int err = errno;
 			::close(fd_);

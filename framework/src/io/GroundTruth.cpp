@@ -2,11 +2,11 @@
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
 #include <esif/io/GroundTruth.h>
+#include <esif/io/InputBounds.h>
+#include <esif/io/TextInput.h>
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
 namespace esif
@@ -15,14 +15,6 @@ namespace
 {
 std::string landmarkFileOf(const std::string& prefix) { return prefix + "_ground_truth.txt"; }
 std::string pathFileOf(const std::string& prefix) { return prefix + "_ground_truth_robot_path.txt"; }
-
-/// Positions beyond an Earth-sized map (1e7 m) are a corrupt file or the
-/// wrong units, not a SLAM experiment: the errors scored against them would
-/// mean nothing.
-constexpr double kMaxCoordinate_m = 1e7;
-/// Largest landmark ID: the rawlogs carry MRPT's int32 landmark IDs, so a
-/// larger one can never match a measurement.
-constexpr double kMaxLandmarkId = 2147483647.0;
 
 bool isBlankOrComment(const std::string& line)
 {
@@ -67,15 +59,21 @@ class Row
 		return values_[i];
 	}
 
-	double number(std::size_t i) const { return values_[i]; }
+	/// Column `i` as a heading [rad], within +-kMaxHeading_rad.
+	double heading(std::size_t i) const
+	{
+		if (std::abs(values_[i]) > kMaxHeading_rad)
+			fail(i, formatNumber(values_[i]), "must be within +-" + formatNumber(kMaxHeading_rad) + " rad");
+		return values_[i];
+	}
 
 	/// Column `i` as a landmark ID: an integer in [0, kMaxLandmarkId].
 	LandmarkId landmarkId(std::size_t i) const
 	{
 		const double v = values_[i];
 		if (v != std::floor(v)) fail(i, formatNumber(v), "a landmark ID must be an integer, not fractional");
-		if (v < 0 || v > kMaxLandmarkId)
-			fail(i, formatNumber(v), "a landmark ID must be in [0, " + formatNumber(kMaxLandmarkId) + "]");
+		if (v < 0 || v > static_cast<double>(kMaxLandmarkId))
+			fail(i, formatNumber(v), "a landmark ID must be in [0, " + std::to_string(kMaxLandmarkId) + "]");
 		return static_cast<LandmarkId>(v);
 	}
 
@@ -97,15 +95,14 @@ const std::vector<const char*> kPathColumns{"x", "y", "z", "yaw", "pitch", "roll
 
 std::map<LandmarkId, Eigen::Vector2d> readLandmarks(const std::string& file)
 {
-	std::ifstream in(file);
-	if (!in) throw InputError(file + ": cannot open ground-truth landmarks");
+	TextLineReader in(file, "ground-truth landmarks");
 	std::map<LandmarkId, Eigen::Vector2d> out;
-	std::map<LandmarkId, int> line_of;
-	std::string line;
-	for (int lineno = 1; std::getline(in, line); ++lineno)
+	std::map<LandmarkId, std::size_t> line_of;
+	for (std::string line; in.next(line);)
 	{
 		if (isBlankOrComment(line)) continue;
-		const std::string where = file + ":" + std::to_string(lineno);
+		const std::size_t lineno = in.lineNumber();
+		const std::string where = in.where();
 		const Row row(line, kLandmarkColumns, where);
 		const LandmarkId id = row.landmarkId(6);
 		const Eigen::Vector2d p(row.coordinate(0), row.coordinate(1));
@@ -121,15 +118,13 @@ std::map<LandmarkId, Eigen::Vector2d> readLandmarks(const std::string& file)
 
 std::vector<Pose2> readPath(const std::string& file)
 {
-	std::ifstream in(file);
-	if (!in) throw InputError(file + ": cannot open ground-truth robot path");
+	TextLineReader in(file, "ground-truth robot path");
 	std::vector<Pose2> out;
-	std::string line;
-	for (int lineno = 1; std::getline(in, line); ++lineno)
+	for (std::string line; in.next(line);)
 	{
 		if (isBlankOrComment(line)) continue;
-		const Row row(line, kPathColumns, file + ":" + std::to_string(lineno));
-		out.emplace_back(row.coordinate(0), row.coordinate(1), row.number(3));
+		const Row row(line, kPathColumns, in.where());
+		out.emplace_back(row.coordinate(0), row.coordinate(1), row.heading(3));
 	}
 	return out;
 }
@@ -168,12 +163,17 @@ std::string groundTruthPrefixFor(const std::string& rawlog_path)
 	return p;
 }
 
+std::vector<std::string> groundTruthFilesOf(const std::string& prefix)
+{
+	return {landmarkFileOf(prefix), pathFileOf(prefix)};
+}
+
 std::optional<GroundTruth> loadGroundTruth(const std::string& prefix)
 {
-	if (!std::filesystem::exists(landmarkFileOf(prefix))) return std::nullopt;
+	if (!pathPresent(landmarkFileOf(prefix))) return std::nullopt;
 	GroundTruth gt;
 	gt.landmarks = readLandmarks(landmarkFileOf(prefix));
-	if (std::filesystem::exists(pathFileOf(prefix))) gt.path = readPath(pathFileOf(prefix));
+	if (pathPresent(pathFileOf(prefix))) gt.path = readPath(pathFileOf(prefix));
 	return gt;
 }
 

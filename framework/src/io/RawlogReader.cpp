@@ -1,5 +1,6 @@
 #include <esif/core/Errors.h>
 #include <esif/io/RawlogReader.h>
+#include <esif/io/TextInput.h>
 #include <esif/models/Se2.h>
 
 #include "GzipInflate.h"
@@ -19,9 +20,11 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
+#include <type_traits>
 
 namespace esif
 {
@@ -211,9 +214,37 @@ double toSeconds(mrpt::Clock::time_point t)
 	return t == INVALID_TIMESTAMP ? std::nan("") : mrpt::Clock::toDouble(t);
 }
 
+/// The raw value of an enum field MRPT deserialised from a (signed) integer
+/// without checking it: read as bytes, since an enum holding a value outside
+/// its enumerators must not be used as one.
+template <class Enum>
+std::int64_t rawEnumValue(const Enum& field)
+{
+	std::make_signed_t<std::underlying_type_t<Enum>> raw{};
+	static_assert(sizeof(raw) == sizeof(field));
+	std::memcpy(&raw, &field, sizeof(raw));
+	return static_cast<std::int64_t>(raw);
+}
+
+/// Throws InputError naming `what` unless the enum fields of the odometry
+/// action hold one of their defined values (a corrupt entry otherwise).
+void checkMovementEnums(const mrpt::obs::CActionRobotMovement2D& act, const std::string& what)
+{
+	using Action = mrpt::obs::CActionRobotMovement2D;
+	const auto method = rawEnumValue(act.estimationMethod);
+	if (method != Action::emOdometry && method != Action::emScan2DMatching)
+		throw InputError(what + ": odometry estimationMethod = " + std::to_string(method) +
+						 " is none of MRPT's (0 odometry, 1 scan matching): a corrupt entry");
+	const auto model = rawEnumValue(act.motionModelConfiguration.modelSelection);
+	if (model != Action::mmGaussian && model != Action::mmThrun)
+		throw InputError(what + ": odometry motion model = " + std::to_string(model) +
+						 " is none of MRPT's (0 Gaussian, 1 Thrun): a corrupt entry");
+}
+
 OdometryIncrement incrementOf(const mrpt::obs::CActionRobotMovement2D& act, const std::string& where)
 {
 	if (!act.poseChange) throw InputError(where + ": odometry action without pose change");
+	checkMovementEnums(act, where);
 	const auto [cov, mean] = act.poseChange->getCovarianceAndMean();
 	OdometryIncrement inc;
 	inc.delta = mean.asTPose();
@@ -416,8 +447,7 @@ Rawlog readRawlogFromMemory(const std::string& name, std::string bytes, const Ra
 
 Rawlog readRawlog(const std::string& path, const RawlogReadOptions& options)
 {
-	if (!std::filesystem::exists(path)) throw InputError(path + ": rawlog file not found");
-	if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": not a regular file");
+	requireRegularFile(path, "rawlog file");
 	const InflatedFile file = inflateFile(path);
 	checkInSandbox(path, file, options);
 	return parseRawlog(path, file, options, nullptr);

@@ -5,6 +5,11 @@
 #include <esif/io/CheckedWrite.h>
 #include <esif/io/RunFolder.h>
 #include <esif/io/TerminationCleanup.h>
+#include <esif/io/TextInput.h>
+
+#include <algorithm>
+#include <cctype>
+#include <set>
 
 #include <cerrno>
 #include <cstdio>
@@ -19,9 +24,8 @@ namespace esif
 {
 namespace
 {
-/// Files by which folders written before the marker existed are known as
-/// esif output: a run's, a comparison's, a local-map folder's.
-const char* const kLegacyOutputFiles[] = {"stats.json", "comparison.csv", "localmap_1.txt"};
+/// First line of the marker; the lines after it list what esif wrote.
+const char* const kMarkerHeader = "esif output folder";
 
 /// The folder holding `path` ("." for a bare name).
 fs::path parentOf(const fs::path& path) { return path.parent_path().empty() ? fs::path(".") : path.parent_path(); }
@@ -48,45 +52,72 @@ fs::path preparedTarget(const std::string& dir)
 
 std::string partialPrefix(const fs::path& target) { return "." + target.filename().string() + ".partial-"; }
 
-bool isOutputFolder(const fs::path& dir)
+/// Every entry under `dir` (links not followed), as paths relative to it in
+/// generic form, folders with a trailing '/', the marker itself left out.
+std::vector<std::string> entriesUnder(const fs::path& dir, const fs::path& shown_as)
 {
+	std::vector<std::string> out;
 	std::error_code ec;
-	if (fs::exists(dir / kOutputMarkerFile, ec)) return true;
-	for (const char* name : kLegacyOutputFiles)
-		if (fs::exists(dir / name, ec)) return true;
-	return false;
+	for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+	{
+		std::string rel = fs::relative(it->path(), dir).generic_string();
+		if (rel == kOutputMarkerFile) continue;
+		std::error_code type_ec;
+		if (it->is_directory(type_ec) && !it->is_symlink(type_ec)) rel += '/';
+		out.push_back(rel);
+	}
+	if (ec) throw InputError(shown_as.string() + ": cannot list the folder: " + ec.message());
+	std::sort(out.begin(), out.end());
+	return out;
 }
 
-/// A folder esif may replace: none yet, an empty one, or esif output. Any
-/// other is the user's: refused, never deleted.
+/// The entries the marker of `dir` lists (empty for the markers of esif
+/// versions that did not list them).
+std::set<std::string> listedEntries(const fs::path& dir)
+{
+	TextLineReader in((dir / kOutputMarkerFile).string(), "esif output marker");
+	std::set<std::string> listed;
+	std::string line;
+	if (!in.next(line) || line != kMarkerHeader)
+		in.fail("not an esif output marker (its first line is not '" + std::string(kMarkerHeader) + "')");
+	while (in.next(line))
+		if (!line.empty() && line[0] != '#') listed.insert(line);
+	return listed;
+}
+
+/// A folder esif may replace: none yet, an empty one, or one holding only
+/// what the marker says esif wrote there. Any other is the user's: refused
+/// naming the first file esif did not write, never deleted.
 void checkReplaceable(const fs::path& target)
 {
 	std::error_code ec;
 	if (!fs::exists(fs::symlink_status(target, ec))) return;
 	if (!fs::is_directory(target, ec))
 		throw InputError(target.string() + ": exists and is not a folder (not replaced)");
-	if (fs::is_empty(target, ec) || isOutputFolder(target)) return;
-	throw InputError(target.string() + ": not empty and not an esif output folder (no " + kOutputMarkerFile +
-					 " or stats.json); not replaced: remove it or choose another --out");
+	if (fs::is_empty(target, ec)) return;
+	if (!pathPresent((target / kOutputMarkerFile).string()))
+		throw InputError(target.string() + ": not empty and not an esif output folder (no " + kOutputMarkerFile +
+						 "); not replaced: remove it or choose another --out");
+	const std::set<std::string> listed = listedEntries(target);
+	for (const auto& entry : entriesUnder(target, target))
+		if (!listed.count(entry))
+			throw InputError(
+				(target / entry).string() + ": not written by esif (not listed in its " + kOutputMarkerFile + ")" +
+				(listed.empty() ? " and the folder's marker lists nothing (an earlier esif)" : "") + "; " +
+				target.string() + " is not replaced: move the file away, or remove the folder, or choose another --out");
 }
 
-/// Partial folders of writers that were killed (SIGKILL, power loss): under
-/// the lock no live process owns one. Never throws.
-void removeStalePartials(const fs::path& target)
+/// Whether `name` is exactly partialPrefix + a process ID.
+bool isPartialName(const std::string& name, const std::string& prefix)
 {
-	const std::string prefix = partialPrefix(target);
-	std::error_code ec;
-	for (fs::directory_iterator it(parentOf(target), ec), end; !ec && it != end; it.increment(ec))
-		if (it->path().filename().string().rfind(prefix, 0) == 0)
-		{
-			std::error_code ignored;
-			fs::remove_all(it->path(), ignored);
-		}
+	return name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0 &&
+		   std::all_of(name.begin() + static_cast<std::ptrdiff_t>(prefix.size()), name.end(),
+					   [](unsigned char c) { return std::isdigit(c); });
 }
 
 fs::path createStaging(const fs::path& target)
 {
-	const fs::path staging = target.parent_path() / (partialPrefix(target) + std::to_string(::getpid()));
+	const fs::path staging = partialFolderOf(target);
 	std::error_code ec;
 	fs::create_directory(staging, ec);
 	if (ec) throw InputError(target.string() + ": cannot create the folder " + staging.string() + ": " + ec.message());
@@ -150,6 +181,23 @@ std::string replaceAll(std::string text, const std::string& from, const std::str
 }
 }  // namespace
 
+fs::path partialFolderOf(const fs::path& target)
+{
+	return target.parent_path() / (partialPrefix(target) + std::to_string(::getpid()));
+}
+
+void removeStalePartials(const fs::path& target)
+{
+	const std::string prefix = partialPrefix(target);
+	std::error_code ec;
+	for (fs::directory_iterator it(parentOf(target), ec), end; !ec && it != end; it.increment(ec))
+		if (isPartialName(it->path().filename().string(), prefix))
+		{
+			std::error_code ignored;
+			fs::remove_all(it->path(), ignored);
+		}
+}
+
 RunFolder::RunFolder(const std::string& target)
 	: target_(preparedTarget(target)), lock_(target_)
 {
@@ -170,8 +218,10 @@ RunFolder::~RunFolder()
 void RunFolder::commit(const std::vector<std::string>& required)
 {
 	verify(staging_, target_, required);
-	writeBytesChecked((staging_ / kOutputMarkerFile).string(), "esif output folder\n",
-					  (target_ / kOutputMarkerFile).string());
+	std::string marker = std::string(kMarkerHeader) +
+						 "\n# what esif wrote here: a later run replaces this folder only while it holds nothing else\n";
+	for (const auto& entry : entriesUnder(staging_, target_)) marker += entry + "\n";
+	writeBytesChecked((staging_ / kOutputMarkerFile).string(), marker, (target_ / kOutputMarkerFile).string());
 	syncFolder(staging_.string());
 	{
 		// The watcher must not remove the partial folder between the swap and

@@ -5,6 +5,7 @@
 
 #include <esif/core/Errors.h>
 #include <esif/io/RunOutputReader.h>
+#include <esif/io/TextInput.h>
 #include <esif/models/Se2.h>
 
 #include <Eigen/Geometry>
@@ -12,7 +13,6 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -21,16 +21,6 @@ namespace esif
 {
 namespace
 {
-/// Opens `path` for reading; InputError naming it (and `what` it should be) otherwise.
-std::ifstream openRunFile(const std::string& path, const std::string& what)
-{
-	if (!std::filesystem::exists(path)) throw InputError(path + ": " + what + " not found");
-	if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": not a regular file");
-	std::ifstream in(path);
-	if (!in) throw InputError(path + ": cannot open " + what);
-	return in;
-}
-
 /// Whitespace-separated tokens of a line; empty for blank and '#' comment lines.
 std::vector<std::string> tokens(const std::string& line)
 {
@@ -62,7 +52,7 @@ std::string numberText(double v)
 }
 
 /// "file:line: problem", the one-line error of a bad row.
-[[noreturn]] void failAt(const std::string& path, int lineno, const std::string& problem)
+[[noreturn]] void failAt(const std::string& path, std::size_t lineno, const std::string& problem)
 {
 	throw InputError(path + ":" + std::to_string(lineno) + ": " + problem);
 }
@@ -70,7 +60,7 @@ std::string numberText(double v)
 /// Parses `toks` as exactly `count` numbers, naming `columns` in errors.
 std::vector<double> numbersOf(
 	const std::vector<std::string>& toks, std::size_t first, std::size_t count, const std::string& path,
-	int lineno, const std::string& columns)
+	std::size_t lineno, const std::string& columns)
 {
 	if (toks.size() != first + count)
 		failAt(path, lineno, "expected " + columns + ", found " + std::to_string(toks.size()) + " values");
@@ -86,7 +76,7 @@ std::vector<double> numbersOf(
 
 /// Yaw [rad] of the rotation (qx, qy, qz, qw) about the vertical axis; NaN
 /// when a component is not finite.
-double yawOf(double qx, double qy, double qz, double qw, const std::string& path, int lineno)
+double yawOf(double qx, double qy, double qz, double qw, const std::string& path, std::size_t lineno)
 {
 	const Eigen::Quaterniond q(qw, qx, qy, qz);
 	if (!q.coeffs().allFinite()) return std::nan("");
@@ -99,11 +89,11 @@ double yawOf(double qx, double qy, double qz, double qw, const std::string& path
 std::vector<TimedPose2D> readTrajectoryTum(const std::string& path)
 {
 	static const std::string kColumns = "8 numbers 'timestamp x y z qx qy qz qw'";
-	std::ifstream in = openRunFile(path, "trajectory");
+	TextLineReader in(path, "trajectory");
 	std::vector<TimedPose2D> out;
-	std::string line;
-	for (int lineno = 1; std::getline(in, line); ++lineno)
+	for (std::string line; in.next(line);)
 	{
+		const std::size_t lineno = in.lineNumber();
 		const auto toks = tokens(line);
 		if (toks.empty()) continue;
 		const auto v = numbersOf(toks, 0, 8, path, lineno, kColumns);
@@ -118,19 +108,18 @@ std::vector<TimedPose2D> readTrajectoryTum(const std::string& path)
 		p.pose = mrpt::math::TPose2D(v[1], v[2], yawOf(v[4], v[5], v[6], v[7], path, lineno));
 		out.push_back(p);
 	}
-	if (in.bad()) throw InputError(path + ": read error");
 	return out;
 }
 
 std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path)
 {
 	static const std::string kColumns = "'id x y cxx cxy cyy' (an integer ID and 5 numbers)";
-	std::ifstream in = openRunFile(path, "landmark map");
+	TextLineReader in(path, "landmark map");
 	std::vector<LandmarkEstimate> out;
-	std::map<LandmarkId, int> line_of_id;
-	std::string line;
-	for (int lineno = 1; std::getline(in, line); ++lineno)
+	std::map<LandmarkId, std::size_t> line_of_id;
+	for (std::string line; in.next(line);)
 	{
+		const std::size_t lineno = in.lineNumber();
 		const auto toks = tokens(line);
 		if (toks.empty()) continue;
 		const auto v = numbersOf(toks, 1, 5, path, lineno, kColumns);
@@ -148,7 +137,6 @@ std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path)
 		lm.cov << v[2], v[3], v[3], v[4];
 		out.push_back(lm);
 	}
-	if (in.bad()) throw InputError(path + ": read error");
 	return out;
 }
 

@@ -4,7 +4,9 @@
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
 #include <esif/io/GzArchive.h>
+#include <esif/io/OutputApart.h>
 #include <esif/io/RawlogWriter.h>
+#include <esif/io/TextInput.h>
 #include <esif/io/VictoriaParkImporter.h>
 #include <esif/models/Se2.h>
 
@@ -12,7 +14,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <unordered_map>
 #include <vector>
@@ -125,14 +126,13 @@ VictoriaParkImportSummary importVictoriaPark(
 	const std::string& in_path, const std::string& out_rawlog, const VictoriaParkImportOptions& options)
 {
 	validateOptions(options);
-	std::ifstream in(in_path);
-	if (!in) throw InputError(in_path + ": cannot open Victoria Park file");
+	requireOutputApart(out_rawlog, {{"the dataset", in_path}});
+	TextLineReader in(in_path, "Victoria Park file");
 
 	StepTable table(options);
-	std::string line;
-	for (std::size_t lineno = 1; std::getline(in, line); ++lineno)
+	for (std::string line; in.next(line);)
 	{
-		const std::string where = in_path + ":" + std::to_string(lineno);
+		const std::string where = in.where();
 		const auto record = victoria_park::parseRecord(line, where);
 		if (!record) continue;	// blank line
 		if (const auto* odometry = std::get_if<victoria_park::OdometryRecord>(&*record))

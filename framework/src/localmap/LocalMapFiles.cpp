@@ -7,6 +7,8 @@
 #include <esif/config/ConfigSection.h>
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
+#include <esif/io/InputBounds.h>
+#include <esif/io/TextInput.h>
 #include <esif/localmap/LocalMapFiles.h>
 
 #include <cmath>
@@ -17,7 +19,6 @@
 #include <set>
 #include <sstream>
 #include <system_error>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -42,20 +43,27 @@ const char* const kTruthPosesFile = "ground_truth_end_poses.txt";
 
 std::string mapFileName(std::size_t k) { return "localmap_" + std::to_string(k) + ".txt"; }
 
+std::string formatted(const char* format, double v)
+{
+	char buf[40];
+	std::snprintf(buf, sizeof(buf), format, v);
+	return buf;
+}
+/// Every digit of `v`: %.17g reads back to the same double.
+std::string number17(double v) { return formatted("%.17g", v); }
+/// `v` for a message, where three digits say enough.
+std::string short3(double v) { return formatted("%.3g", v); }
+
 /// A text file as lines, for "file:line" errors. Trailing blank lines (a
 /// final newline too many) are dropped; any other blank line is data and is
 /// reported where a value is expected.
 class LineFile
 {
    public:
-	explicit LineFile(std::string path) : path_(std::move(path))
+	LineFile(std::string path, const std::string& what) : path_(std::move(path))
 	{
-		std::error_code ec;
-		if (!fs::is_regular_file(path_, ec)) throw InputError(path_ + ": no such file");
-		std::ifstream in(path_, std::ios::binary);
-		if (!in) throw InputError(path_ + ": cannot open");
-		for (std::string line; std::getline(in, line);) lines_.push_back(line);
-		if (in.bad()) throw InputError(path_ + ": read error");
+		TextLineReader in(path_, what);
+		for (std::string line; in.next(line);) lines_.push_back(line);
 		while (!lines_.empty() && lines_.back().find_first_not_of(" \t\r") == std::string::npos) lines_.pop_back();
 	}
 
@@ -94,6 +102,18 @@ class LineFile
 		return *v;
 	}
 
+	/// A coordinate [m] within +-kMaxCoordinate_m.
+	double coordinate(std::size_t lineno, const std::string& tok, const std::string& what) const
+	{
+		return bounded(lineno, tok, what, kMaxCoordinate_m, "m");
+	}
+
+	/// A heading [rad] within +-kMaxHeading_rad (files may hold unwrapped headings).
+	double heading(std::size_t lineno, const std::string& tok, const std::string& what) const
+	{
+		return bounded(lineno, tok, what, kMaxHeading_rad, "rad");
+	}
+
 	long integer(std::size_t lineno, const std::string& tok, const std::string& what) const
 	{
 		const auto v = parseInt(tok);
@@ -102,20 +122,18 @@ class LineFile
 	}
 
    private:
+	double bounded(std::size_t lineno, const std::string& tok, const std::string& what, double bound,
+				   const char* unit) const
+	{
+		const double v = number(lineno, tok, what);
+		if (std::abs(v) > bound)
+			fail(lineno, what + " " + tok + " is beyond +-" + short3(bound) + " " + unit + " (a corrupt file or the wrong units)");
+		return v;
+	}
+
 	std::string path_;
 	std::vector<std::string> lines_;
 };
-
-std::string formatted(const char* format, double v)
-{
-	char buf[40];
-	std::snprintf(buf, sizeof(buf), format, v);
-	return buf;
-}
-/// Every digit of `v`: %.17g reads back to the same double.
-std::string number17(double v) { return formatted("%.17g", v); }
-/// `v` for a message, where three digits say enough.
-std::string short3(double v) { return formatted("%.3g", v); }
 
 // ---------------------------------------------------------------- matrices
 
@@ -277,14 +295,14 @@ long freshPositive(
 }
 
 /// `id x y` rows (ground truth landmarks, the reference's feature.txt).
-std::map<LandmarkId, Eigen::Vector2d> readPointRows(const std::string& path)
+std::map<LandmarkId, Eigen::Vector2d> readPointRows(const std::string& path, const std::string& what)
 {
-	const LineFile f(path);
+	const LineFile f(path, what);
 	std::map<LandmarkId, Eigen::Vector2d> out;
 	std::map<long, std::size_t> seen;
 	forEachRow(f, 3, "'id x y'", [&](const auto& t, std::size_t line) {
 		const long id = freshPositive(f, line, t[0], "id", seen);
-		out[id] = {f.number(line, t[1], "x"), f.number(line, t[2], "y")};
+		out[id] = {f.coordinate(line, t[1], "x"), f.coordinate(line, t[2], "y")};
 	});
 	return out;
 }
@@ -292,16 +310,17 @@ std::map<LandmarkId, Eigen::Vector2d> readPointRows(const std::string& path)
 /// `k x y phi` rows (ground truth end poses, the reference's pose.txt); phi
 /// is kept as written (the authors' pose.txt holds unwrapped headings).
 /// `last_map`: largest k accepted (0: any).
-std::map<std::size_t, Pose2> readPoseRows(const std::string& path, std::size_t last_map)
+std::map<std::size_t, Pose2> readPoseRows(const std::string& path, const std::string& what, std::size_t last_map)
 {
-	const LineFile f(path);
+	const LineFile f(path, what);
 	std::map<std::size_t, Pose2> out;
 	std::map<long, std::size_t> seen;
 	forEachRow(f, 4, "'k x y phi'", [&](const auto& t, std::size_t line) {
 		const long k = freshPositive(f, line, t[0], "map index", seen);
 		if (last_map && static_cast<std::size_t>(k) > last_map)
 			f.fail(line, "map index " + t[0] + " but the folder has maps 1.." + std::to_string(last_map));
-		out[static_cast<std::size_t>(k)] = {f.number(line, t[1], "x"), f.number(line, t[2], "y"), f.number(line, t[3], "phi")};
+		out[static_cast<std::size_t>(k)] = {
+			f.coordinate(line, t[1], "x"), f.coordinate(line, t[2], "y"), f.heading(line, t[3], "phi")};
 	});
 	return out;
 }
@@ -309,7 +328,7 @@ std::map<std::size_t, Pose2> readPoseRows(const std::string& path, std::size_t l
 /// links.txt: `k dx dy dphi c11 c12 c13 c22 c23 c33` into maps[k-1].link.
 void readLinks(const std::string& path, std::vector<LocalMap>& maps)
 {
-	const LineFile f(path);
+	const LineFile f(path, "local-map links");
 	std::map<long, std::size_t> seen;
 	forEachRow(f, 10, "'k dx dy dphi c11 c12 c13 c22 c23 c33'", [&](const auto& t, std::size_t line) {
 		const long k = freshPositive(f, line, t[0], "map index", seen);
@@ -317,7 +336,10 @@ void readLinks(const std::string& path, std::vector<LocalMap>& maps)
 			f.fail(line, "map index " + t[0] + " but the folder has maps 1.." + std::to_string(maps.size()));
 		double v[9];
 		static const char* const names[9] = {"dx", "dy", "dphi", "c11", "c12", "c13", "c22", "c23", "c33"};
-		for (int i = 0; i < 9; ++i) v[i] = f.number(line, t[1 + i], names[i]);
+		for (int i = 0; i < 9; ++i)
+			v[i] = i < 2 ? f.coordinate(line, t[1 + i], names[i])
+				 : i == 2 ? f.heading(line, t[1 + i], names[i])
+						  : f.number(line, t[1 + i], names[i]);
 		OdometryIncrement link;
 		link.delta = mrpt::math::TPose2D(v[0], v[1], v[2]);
 		link.cov << v[3], v[4], v[5], v[4], v[6], v[7], v[5], v[7], v[8];
@@ -415,81 +437,43 @@ std::string truthPosesText(const std::map<std::size_t, Pose2>& truth)
 	return out;
 }
 
-/// `dir` without a trailing separator, and a sibling of it tagged with this process.
-fs::path folderPath(const std::string& dir)
+/// Runs `write(dir/name)`; a failure names the file.
+void writeInto(const fs::path& dir, const std::string& name, const std::function<void(const std::string&)>& write)
 {
-	fs::path p = fs::path(dir).lexically_normal();
-	return p.has_filename() ? p : p.parent_path();
-}
-fs::path siblingOf(const fs::path& dir, const std::string& tag)
-{
-	return dir.parent_path() / (dir.filename().string() + tag + std::to_string(::getpid()));
-}
-
-/// Runs `write(staging/name)`; a failure is reported under the final name.
-void writeInto(
-	const fs::path& staging, const fs::path& target, const std::string& name,
-	const std::function<void(const std::string&)>& write)
-{
-	const std::string tmp = (staging / name).string(), final_name = (target / name).string();
+	const std::string path = (dir / name).string();
 	try
 	{
-		write(tmp);
+		write(path);
 	}
 	catch (const std::exception& e)
 	{
-		std::string what = e.what();
-		if (what.rfind(tmp + ": ", 0) == 0) what.erase(0, tmp.size() + 2);
-		throw InputError(final_name + ": " + what);
+		const std::string what = e.what();
+		if (what.rfind(path + ": ", 0) == 0) throw;
+		throw InputError(path + ": " + what);
 	}
 }
 
-void writeContents(const LocalMapFolder& folder, const fs::path& staging, const fs::path& target)
+void writeContents(const LocalMapFolder& folder, const fs::path& dir)
 {
 	for (std::size_t i = 0; i < folder.maps.size(); ++i)
 	{
 		const std::string name = mapFileName(i + 1);
 		if (folder.maps[i].index != i + 1)
 			throw InputError(
-				(target / name).string() + ": map at position " + std::to_string(i + 1) + " has index " +
+				(dir / name).string() + ": map at position " + std::to_string(i + 1) + " has index " +
 				std::to_string(folder.maps[i].index) + " (maps must be numbered 1..K in order; not written)");
-		writeInto(staging, target, name, [&](const std::string& p) { writeLocalMapFile(folder.maps[i], p); });
+		writeInto(dir, name, [&](const std::string& p) { writeLocalMapFile(folder.maps[i], p); });
 	}
 	const std::string links = linksText(folder.maps);
-	if (!links.empty())
-		writeInto(staging, target, kLinksFile, [&](const std::string& p) { writeTextAtomically(p, links); });
+	if (!links.empty()) writeInto(dir, kLinksFile, [&](const std::string& p) { writeTextAtomically(p, links); });
 	if (folder.truth_landmarks)
-		writeInto(staging, target, kTruthLandmarksFile, [&](const std::string& p) {
+		writeInto(dir, kTruthLandmarksFile, [&](const std::string& p) {
 			writeTextAtomically(p, truthLandmarksText(*folder.truth_landmarks));
 		});
 	if (folder.truth_end_poses)
-		writeInto(staging, target, kTruthPosesFile, [&](const std::string& p) {
+		writeInto(dir, kTruthPosesFile, [&](const std::string& p) {
 			writeTextAtomically(p, truthPosesText(*folder.truth_end_poses));
 		});
-}
-
-/// Moves the complete `staging` folder to `target`. A previous `target` is
-/// first moved aside (so it can be restored if the second rename fails) and
-/// removed only once the new folder is in place.
-void replaceFolder(const fs::path& staging, const fs::path& target)
-{
-	std::error_code ec;
-	const bool had_old = fs::exists(target, ec);
-	const fs::path old = siblingOf(target, ".old-");
-	if (had_old)
-	{
-		fs::remove_all(old, ec);
-		fs::rename(target, old, ec);
-		if (ec) throw InputError(target.string() + ": cannot replace the previous folder: " + ec.message());
-	}
-	fs::rename(staging, target, ec);
-	if (ec)
-	{
-		std::error_code ignored;
-		if (had_old) fs::rename(old, target, ignored);
-		throw InputError(target.string() + ": cannot move the new folder into place: " + ec.message());
-	}
-	if (had_old) fs::remove_all(old, ec);  // a failure only leaves a stale sibling
 }
 
 }  // namespace
@@ -497,7 +481,7 @@ void replaceFolder(const fs::path& staging, const fs::path& target)
 LocalMap readLocalMapFile(const std::string& path, std::size_t k)
 {
 	if (k == 0) throw InputError(path + ": local map index 0 (maps are numbered from 1)");
-	const LineFile f(path);
+	const LineFile f(path, "local map");
 	LocalMap map;
 	map.index = k;
 	const std::size_t n = readHeader(f, k);
@@ -520,14 +504,14 @@ LocalMapFolder readLocalMapFolder(const std::string& dir)
 	std::error_code ec;
 	if (!fs::is_directory(dir, ec)) throw InputError(dir + ": no such folder");
 	const std::size_t last = lastMapIndex(dir);
-	if (last == 0 || !fs::exists(fs::path(dir) / mapFileName(1)))
+	if (last == 0 || !pathPresent((fs::path(dir) / mapFileName(1)).string()))
 		throw InputError(dir + ": no " + mapFileName(1) + " (not a local-map folder)");
 	LocalMapFolder folder;
 	std::set<LandmarkId> earlier;
 	for (std::size_t k = 1; k <= last; ++k)
 	{
 		const std::string path = (fs::path(dir) / mapFileName(k)).string();
-		if (!fs::exists(path))
+		if (!pathPresent(path))
 			throw InputError(
 				path + ": missing (the folder holds maps up to " + mapFileName(last) + "; the sequence must have no gap)");
 		LocalMap map = readLocalMapFile(path, k);
@@ -535,10 +519,11 @@ LocalMapFolder readLocalMapFolder(const std::string& dir)
 		for (const auto& f : map.features) earlier.insert(f.id);
 		folder.maps.push_back(std::move(map));
 	}
-	if (const auto p = fs::path(dir) / kLinksFile; fs::exists(p)) readLinks(p.string(), folder.maps);
-	if (const auto p = fs::path(dir) / kTruthLandmarksFile; fs::exists(p)) folder.truth_landmarks = readPointRows(p.string());
-	if (const auto p = fs::path(dir) / kTruthPosesFile; fs::exists(p))
-		folder.truth_end_poses = readPoseRows(p.string(), folder.maps.size());
+	if (const auto p = (fs::path(dir) / kLinksFile).string(); pathPresent(p)) readLinks(p, folder.maps);
+	if (const auto p = (fs::path(dir) / kTruthLandmarksFile).string(); pathPresent(p))
+		folder.truth_landmarks = readPointRows(p, "ground-truth landmarks");
+	if (const auto p = (fs::path(dir) / kTruthPosesFile).string(); pathPresent(p))
+		folder.truth_end_poses = readPoseRows(p, "ground-truth end poses", folder.maps.size());
 	return folder;
 }
 
@@ -548,28 +533,10 @@ void writeLocalMapFile(const LocalMap& map, const std::string& path)
 	writeTextAtomically(path, mapText(map));
 }
 
-void writeLocalMapFolder(const LocalMapFolder& folder, const std::string& dir)
+void writeLocalMapFiles(const LocalMapFolder& folder, const std::string& dir)
 {
-	const fs::path target = folderPath(dir);
-	if (folder.maps.empty()) throw InputError(target.string() + ": no local maps to write");
-	std::error_code ec;
-	if (fs::exists(target, ec) && !fs::is_directory(target, ec))
-		throw InputError(target.string() + ": exists and is not a folder (not replaced)");
-	const fs::path staging = siblingOf(target, ".partial-");
-	fs::remove_all(staging, ec);  // a stale one of an earlier crash of this pid
-	try
-	{
-		fs::create_directories(staging, ec);
-		if (ec || !fs::is_directory(staging))
-			throw InputError(target.string() + ": cannot create folder" + (ec ? ": " + ec.message() : ""));
-		writeContents(folder, staging, target);
-		replaceFolder(staging, target);
-	}
-	catch (...)
-	{
-		fs::remove_all(staging, ec);
-		throw;
-	}
+	if (folder.maps.empty()) throw InputError(dir + ": no local maps to write");
+	writeContents(folder, dir);
 }
 
 ReferenceResult readReferenceResult(const std::string& dir)
@@ -577,8 +544,9 @@ ReferenceResult readReferenceResult(const std::string& dir)
 	std::error_code ec;
 	if (!fs::is_directory(dir, ec)) throw InputError(dir + ": no such folder");
 	ReferenceResult out;
-	out.features = readPointRows((fs::path(dir) / "feature.txt").string());
-	if (const auto p = fs::path(dir) / "pose.txt"; fs::exists(p)) out.end_poses = readPoseRows(p.string(), 0);
+	out.features = readPointRows((fs::path(dir) / "feature.txt").string(), "reference features");
+	if (const auto p = (fs::path(dir) / "pose.txt").string(); pathPresent(p))
+		out.end_poses = readPoseRows(p, "reference end poses", 0);
 	return out;
 }
 

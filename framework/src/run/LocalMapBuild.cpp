@@ -94,20 +94,31 @@ LocalMapBuildResult buildInto(const LocalMapBuildRequest& request, const std::st
 
 	Rawlog log = readRawlog(request.rawlog_path, readOptionsOf(host));
 	if (log.truncation_warning) std::cerr << "esif: warning: " << *log.truncation_warning << "\n";
-	if (associations) applyAssociations(log, readAssociationFile(*associations), *associations);
+	if (associations) applyAssociations(log, readAssociationFile(*associations, log.steps.size()), *associations);
 	const auto truth = findGroundTruth(request.ground_truth_prefix, request.rawlog_path);
 
 	LocalMapBuildResult out;
 	out.folder.maps = buildLocalMaps(log, joiner->localMapBuilderParams(), request.progress_bar);
 	out.id_offset = makeFeatureIdsPositive(out.folder.maps);
 	if (truth) attachLocalMapGroundTruth(out.folder, log, truth->inInitialPoseFrame());
-	writeLocalMapFolder(out.folder, out_dir);
+	writeLocalMapFiles(out.folder, out_dir);
 	return out;
 }
 }  // namespace
 
+void writeLocalMapFolder(const LocalMapFolder& folder, const std::string& dir)
+{
+	writeRunFolder(dir, {"localmap_1.txt"}, [&](const std::string& staging) {
+		writeLocalMapFiles(folder, staging);
+		return 0;
+	});
+}
+
 LocalMapBuildResult runLocalMapBuild(const LocalMapBuildRequest& request, PluginLoader& loader)
 {
+	requireOutputApart(
+		request.out_dir,
+		rawlogRunInputs(request.config_path, request.rawlog_path, request.ground_truth_prefix, std::nullopt));
 	// Locked, written aside and swapped into place like a run's folder.
 	return writeRunFolder(request.out_dir, {"localmap_1.txt"}, [&](const std::string& staging) {
 		return buildInto(request, staging, loader);

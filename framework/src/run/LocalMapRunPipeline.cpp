@@ -140,6 +140,10 @@ Stats runInto(const LocalMapRunRequest& request, PluginLoader& loader)
 
 Stats runLocalMapPipeline(const LocalMapRunRequest& request, PluginLoader& loader)
 {
+	requireOutputApart(
+		request.out_dir, {{"the config", request.config_path},
+						  {"the local-map folder", request.local_maps_dir},
+						  {"the reference result", request.reference_result_dir.value_or("")}});
 	return writeRunFolder(request.out_dir, kLocalMapRunOutputFiles, [&](const std::string& staging) {
 		LocalMapRunRequest staged = request;
 		staged.out_dir = staging;

@@ -9,6 +9,8 @@
 #include <esif/run/MonteCarloCampaign.h>
 
 #include <algorithm>
+#include <cctype>
+#include <climits>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -39,15 +41,27 @@ std::string joinList(const std::vector<std::string>& items)
 
 std::string absolute(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
 
-/// A folder name for `config` not among `used`: its file name, then _2, _3...
+bool isNameCharacter(unsigned char c) { return std::isalnum(c) || c == '_' || c == '-' || c == '+' || c == '.'; }
+
+/// A folder name for `config` not among `used`: its file name with every
+/// character isCampaignName refuses replaced by '_', then _2, _3...
 std::string uniqueName(const std::string& config, const std::set<std::string>& used)
 {
-	const std::string stem = fs::path(config).stem().string();
+	std::string stem = fs::path(config).stem().string().substr(0, 90);
+	for (char& c : stem)
+		if (!isNameCharacter(static_cast<unsigned char>(c))) c = '_';
+	if (stem.empty() || stem[0] == '.') stem = "_" + stem;
 	std::string name = stem;
 	for (int k = 2; used.count(name); ++k) name = stem + "_" + std::to_string(k);
 	return name;
 }
 }  // namespace
+
+bool isCampaignName(const std::string& name)
+{
+	return !name.empty() && name.size() <= 100 && name[0] != '.' &&
+		   std::all_of(name.begin(), name.end(), [](char c) { return isNameCharacter(static_cast<unsigned char>(c)); });
+}
 
 CampaignPlan CampaignPlan::create(
 	const std::string& scenario, const std::vector<std::string>& configs, int seed0, int runs)
@@ -74,15 +88,29 @@ CampaignPlan CampaignPlan::load(const std::string& dir)
 	const ConfigSection s = file.section("montecarlo");
 	CampaignPlan plan;
 	plan.scenario = s.getString("scenario");
-	plan.seed0 = static_cast<int>(s.getInt("seed0", -1));
-	plan.runs = static_cast<int>(s.getInt("runs", -1));
+	// Checked as long integers before they become ints: 4294967297 must not wrap to 1.
+	const long seed0 = s.getInt("seed0", -1), runs = s.getInt("runs", -1);
 	plan.configs = splitList(s.getString("configs"));
 	plan.names = splitList(s.getString("names"));
 	s.rejectUnknownKeys();
-	if (plan.seed0 < 0) throw InputError(path + ": [montecarlo] seed0: missing or negative");
-	if (plan.runs < 1) throw InputError(path + ": [montecarlo] runs: missing or below 1");
+	if (runs < 1 || runs > kMaxCampaignRuns)
+		throw InputError(path + ": [montecarlo] runs: missing or outside [1, " + std::to_string(kMaxCampaignRuns) + "]");
+	if (seed0 < 0 || seed0 > INT_MAX - runs)
+		throw InputError(path + ": [montecarlo] seed0: missing, negative or leaving no room for the runs' seeds");
+	plan.seed0 = static_cast<int>(seed0);
+	plan.runs = static_cast<int>(runs);
 	if (plan.configs.empty() || plan.configs.size() != plan.names.size())
 		throw InputError(path + ": [montecarlo] configs and names: one name per config expected");
+	std::set<std::string> seen;
+	for (const auto& name : plan.names)
+	{
+		if (!isCampaignName(name))
+			throw InputError(
+				path + ": [montecarlo] names: '" + printableToken(name) +
+				"' is not a folder name (letters, digits, _ - + . only, not starting with '.')");
+		if (!seen.insert(name).second)
+			throw InputError(path + ": [montecarlo] names: '" + name + "' is given twice");
+	}
 	return plan;
 }
 

@@ -34,12 +34,9 @@ const std::vector<std::string> kRunOutputFiles = {
 /// scored against those, not against the rawlog's own (partly wrong) IDs.
 void scoreAgainstMeasurementTruth(Rawlog& log, const std::string& prefix)
 {
-	auto truth = loadMeasurementTruth(prefix);
+	auto truth = loadMeasurementTruth(prefix, log.true_ids.size());
 	if (!truth) return;
 	const std::string file = measurementTruthFileOf(prefix);
-	if (truth->size() > log.true_ids.size())
-		throw InputError(file + ": lists step " + std::to_string(truth->size() - 1) + " but the rawlog has " +
-						 std::to_string(log.true_ids.size()) + " steps");
 	truth->resize(log.true_ids.size());
 	for (std::size_t k = 0; k < truth->size(); ++k)
 		if ((*truth)[k].size() != log.true_ids[k].size())
@@ -88,7 +85,7 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 
 	Rawlog log = readRawlog(request.rawlog_path, readOptionsOf(host));
 	if (log.truncation_warning) std::cerr << "esif: warning: " << *log.truncation_warning << "\n";
-	if (associations) applyAssociations(log, readAssociationFile(*associations), *associations);
+	if (associations) applyAssociations(log, readAssociationFile(*associations, log.steps.size()), *associations);
 	scoreAgainstMeasurementTruth(
 		log, request.ground_truth_prefix.value_or(groundTruthPrefixFor(request.rawlog_path)));
 	requireLandmarkIds(*plugin, log, {cfg.origin(), host.hide_landmark_ids, associations.value_or("")});
@@ -134,6 +131,10 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 
 Stats runPipeline(const RunRequest& request, PluginLoader& loader)
 {
+	requireOutputApart(
+		request.out_dir, rawlogRunInputs(
+							 request.config_path, request.rawlog_path, request.ground_truth_prefix,
+							 request.associations_from));
 	return writeRunFolder(request.out_dir, kRunOutputFiles, [&](const std::string& staging) {
 		RunRequest staged = request;
 		staged.out_dir = staging;

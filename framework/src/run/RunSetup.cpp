@@ -1,5 +1,6 @@
 #include <esif/core/Errors.h>
 #include <esif/run/RunSetup.h>
+#include <esif/sim/MeasurementTruth.h>
 
 #include <algorithm>
 #include <cmath>
@@ -70,6 +71,22 @@ std::optional<GroundTruth> findGroundTruth(const std::optional<std::string>& pre
 		return gt;
 	}
 	return loadGroundTruth(groundTruthPrefixFor(rawlog_path));
+}
+
+std::vector<NamedInput> rawlogRunInputs(
+	const std::string& config, const std::string& rawlog, const std::optional<std::string>& prefix,
+	const std::optional<std::string>& associations_from)
+{
+	const std::string truth = prefix.value_or(groundTruthPrefixFor(rawlog));
+	std::vector<NamedInput> inputs{{"the config", config}, {"the rawlog", rawlog}};
+	for (const auto& file : groundTruthFilesOf(truth)) inputs.push_back({"the ground truth", file});
+	inputs.push_back({"the ground truth", measurementTruthFileOf(truth)});
+	// The folder named by --associations-from, else by the config (read
+	// again here: it is checked before anything is written).
+	const std::string associations =
+		associations_from ? *associations_from : loadHostParams(ConfigFile::load(config)).associations_from;
+	inputs.push_back({"the associations folder", associations});
+	return inputs;
 }
 
 std::string effectiveParamsIni(const HostParams& host, const FilterPlugin& plugin)

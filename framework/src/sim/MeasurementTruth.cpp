@@ -1,9 +1,9 @@
 #include <esif/core/Errors.h>
 #include <esif/io/AtomicFile.h>
+#include <esif/io/InputBounds.h>
+#include <esif/io/TextInput.h>
 #include <esif/sim/MeasurementTruth.h>
 
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
 namespace esif
@@ -28,32 +28,33 @@ void saveMeasurementTruth(const MeasurementTruth& truth, const std::string& pref
 	writeTextAtomically(measurementTruthFileOf(prefix), out.str());
 }
 
-std::optional<std::vector<std::vector<std::optional<LandmarkId>>>> loadMeasurementTruth(const std::string& prefix)
+std::optional<std::vector<std::vector<std::optional<LandmarkId>>>> loadMeasurementTruth(
+	const std::string& prefix, std::size_t steps)
 {
 	const std::string path = measurementTruthFileOf(prefix);
-	if (!std::filesystem::exists(path)) return std::nullopt;
-	std::ifstream in(path);
-	if (!in) throw InputError(path + ": cannot open");
+	if (!pathPresent(path)) return std::nullopt;
+	TextLineReader in(path, "ground-truth measurement IDs");
 	std::vector<std::vector<std::optional<LandmarkId>>> ids;
-	std::string line;
-	for (std::size_t line_no = 1; std::getline(in, line); ++line_no)
+	for (std::string line; in.next(line);)
 	{
-		if (line.find_first_not_of(" \t\r") == std::string::npos || line[line.find_first_not_of(" \t")] == '%')
-			continue;
+		const auto first = line.find_first_not_of(" \t\r");
+		if (first == std::string::npos || line[first] == '%') continue;
 		std::istringstream row(line);
 		long long step = -1, index = -1, rawlog_id = 0, true_id = 0;
 		std::string rest;
 		if (!(row >> step >> index >> rawlog_id >> true_id) || (row >> rest) || step < 0 || index < 0 ||
-			true_id < kNoLandmark)
-			throw InputError(
-				path + ": line " + std::to_string(line_no) +
-				": expected 'step measurement rawlog_id true_id' (integers, true_id >= -1)");
+			true_id < kNoLandmark || true_id > kMaxLandmarkId)
+			in.fail(
+				"expected 'step measurement rawlog_id true_id' (integers, true_id -1 or a landmark ID in [0, " +
+				std::to_string(kMaxLandmarkId) + "])");
+		if (static_cast<unsigned long long>(step) >= steps)
+			in.fail("step " + std::to_string(step) + " but the rawlog has " + std::to_string(steps) + " steps");
 		const auto k = static_cast<std::size_t>(step);
 		if (k + 1 < ids.size() || (k < ids.size() && static_cast<std::size_t>(index) != ids[k].size()) ||
 			(k >= ids.size() && index != 0))
-			throw InputError(
-				path + ": line " + std::to_string(line_no) + ": step " + std::to_string(step) + " measurement " +
-				std::to_string(index) + " out of order (rows go by step, then measurement, from 0)");
+			in.fail(
+				"step " + std::to_string(step) + " measurement " + std::to_string(index) +
+				" out of order (rows go by step, then measurement, from 0)");
 		if (k >= ids.size()) ids.resize(k + 1);
 		ids[k].push_back(true_id == kNoLandmark ? std::nullopt : std::optional<LandmarkId>(true_id));
 	}

@@ -88,8 +88,20 @@ void Scenario::declare(ParamBinder& b)
 		Bounds::nonNegative());
 }
 
+void Scenario::checkSections(const ConfigFile& config)
+{
+	for (const auto& name : config.sectionNames())
+		if (name != "simulation")
+			throw ConfigError(
+				config.origin() + ": " + (name.empty() ? "keys before any section" : "[" + name + "]: unknown section") +
+				" (a scenario has only [simulation])");
+	if (!config.hasSection("simulation"))
+		throw ConfigError(config.origin() + ": no [simulation] section (not a scenario file)");
+}
+
 Scenario Scenario::fromConfig(const ConfigFile& config)
 {
+	checkSections(config);
 	const ConfigSection section = config.section("simulation");
 	Scenario scenario;
 	loadParams(scenario, section);

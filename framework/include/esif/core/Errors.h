@@ -35,4 +35,14 @@ class NumericalError : public std::runtime_error
 /// stack trace, which would break esif's one-line error promise.
 std::string oneLineReason(const std::string& exception_text);
 
+/// An untrusted token (a command-line word) as a message may show it:
+/// printable ASCII kept, any other byte as \xNN, cut after `max_chars`
+/// characters with "...".
+std::string printableToken(const std::string& token, std::size_t max_chars = 80);
+
+/// `text` with its control characters (bytes below 0x20, and 0x7f) as \xNN,
+/// so an error stays one line on a terminal whatever a path holds; other
+/// bytes (UTF-8 names) are kept.
+std::string withoutControlCharacters(const std::string& text);
+
 }  // namespace esif

@@ -39,11 +39,13 @@ void writeAssociationFile(
 	const std::string& path, const std::vector<StepReport>& reports, const std::string& plugin,
 	const std::string& rawlog);
 
-/// Reads associations.txt. Throws InputError naming the file (missing,
-/// unreadable, no `# steps N` line) or "file:line" (a malformed row, a row out
-/// of order, a step beyond N, an unknown kind, a rejected row whose
-/// landmark_id is not -1).
-RecordedAssociations readAssociationFile(const std::string& path);
+/// Reads associations.txt recorded on a rawlog of `rawlog_steps` steps.
+/// Throws InputError naming the file (missing, unreadable, no `# steps N`
+/// line) or "file:line" (N other than `rawlog_steps`, checked before
+/// anything is allocated; a malformed row, a row out of order, a step
+/// beyond N, an unknown kind, a landmark_id outside MRPT's [0, 2^31 - 1], a
+/// rejected row whose landmark_id is not -1).
+RecordedAssociations readAssociationFile(const std::string& path, std::size_t rawlog_steps);
 
 /// Makes `log`'s measurement IDs those of the recorded run: the landmark ID
 /// of a new or matched measurement, none for a rejected one. `log.true_ids`

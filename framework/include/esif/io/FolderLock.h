@@ -11,13 +11,21 @@
 
 namespace esif
 {
+/// Whether to wait for a lock another process holds.
+enum class LockWait
+{
+	No,	 ///< fail at once (a second run into the same --out)
+	Yes	 ///< wait (jobs of a campaign that need the same simulation)
+};
+
 class FolderLock
 {
    public:
-	/// Takes the lock of `folder` without waiting. Throws InputError naming
-	/// `folder` when another process holds it, or naming the lock file and
-	/// the system's reason when it cannot be created (e.g. a read-only parent).
-	explicit FolderLock(const std::filesystem::path& folder);
+	/// Takes the lock of `folder`. Throws InputError naming `folder` when
+	/// another process holds it and `wait` is No, or naming the lock file
+	/// and the system's reason when it cannot be created (e.g. a read-only
+	/// parent).
+	explicit FolderLock(const std::filesystem::path& folder, LockWait wait = LockWait::No);
 	/// Removes the lock file and releases the lock; never throws.
 	~FolderLock();
 

@@ -39,6 +39,9 @@ std::optional<std::string> groundTruthProblem(const GroundTruth& truth, std::siz
 /// "DIR/NAME.rawlog" -> "DIR/NAME" (also strips ".rawlog.gz").
 std::string groundTruthPrefixFor(const std::string& rawlog_path);
 
+/// PREFIX_ground_truth.txt and PREFIX_ground_truth_robot_path.txt.
+std::vector<std::string> groundTruthFilesOf(const std::string& prefix);
+
 /// Loads PREFIX_ground_truth.txt and PREFIX_ground_truth_robot_path.txt.
 /// Returns nullopt when the landmark file does not exist; a file that exists
 /// but is malformed throws InputError with its name and line.

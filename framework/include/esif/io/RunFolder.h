@@ -8,6 +8,12 @@
 /// never a mixture or a part. The folder is locked (FolderLock.h) while
 /// written, partial folders of killed writers are swept, and a signal
 /// removes the partial folder (TerminationCleanup.h).
+///
+/// esif replaces only what it provably wrote: the folder's marker
+/// `.esif-output` lists every file and folder the run put there, and a
+/// later run replaces --out only while it holds nothing else. A folder
+/// without the marker, or with one file the marker does not list, is the
+/// user's: refused naming that file, nothing touched.
 
 #include <esif/io/FolderLock.h>
 
@@ -17,15 +23,17 @@
 
 namespace esif
 {
-/// The file that marks a folder as esif output, so a later run may replace it.
+/// The file that marks a folder as esif output and lists what esif wrote
+/// there, so a later run may replace it.
 inline constexpr const char* kOutputMarkerFile = ".esif-output";
 
 class RunFolder
 {
    public:
 	/// Locks `target`, removes stale partial folders beside it, checks that
-	/// it may be replaced (absent, empty, or esif output; a user's folder is
-	/// refused with an InputError) and creates the partial folder.
+	/// it may be replaced (absent, empty, or esif output holding only what
+	/// its marker lists; anything else is refused with an InputError naming
+	/// the first file esif did not write) and creates the partial folder.
 	explicit RunFolder(const std::string& target);
 	/// Removes the partial folder (or, after commit, the previous folder if
 	/// commit could not); never throws.
@@ -40,8 +48,9 @@ class RunFolder
 	std::string target() const { return target_.string(); }
 
 	/// Checks that every file in `required` is present and not empty and no
-	/// temporary file is left, marks and syncs the folder, and swaps it
-	/// into place; the previous folder is then removed.
+	/// temporary file is left, writes the marker listing every entry,
+	/// syncs the folder and swaps it into place; the previous folder is then
+	/// removed.
 	void commit(const std::vector<std::string>& required);
 
 	/// Rethrows the exception being handled, of the same esif type, with the
@@ -54,6 +63,15 @@ class RunFolder
 	FolderLock lock_;
 	std::filesystem::path staging_;
 };
+
+/// `.<name>.partial-<pid>` beside `target`: where this process stages a
+/// new `target` before renaming it into place.
+std::filesystem::path partialFolderOf(const std::filesystem::path& target);
+
+/// Removes the partial folders of writers of `target` that were killed
+/// (SIGKILL, power loss); call only while holding target's FolderLock,
+/// under which no live writer owns one. Never throws.
+void removeStalePartials(const std::filesystem::path& target);
 
 /// Writes an output folder: `write(staging)` fills it, then it is committed
 /// with `required`; returns what `write` returns. Errors name `target`.

@@ -67,13 +67,11 @@ LocalMapFolder readLocalMapFolder(const std::string& dir);
 void writeLocalMapFile(const LocalMap& map, const std::string& path);
 
 /// Writes every map (and links.txt when a map has a link, the ground truth
-/// when present) into `dir`, replacing a previous folder of that name only
-/// once the new one is complete: the files go to DIR.partial-<pid>, an old
-/// DIR is moved aside to DIR.old-<pid> and removed once the new one is
-/// renamed into place. maps[i] must have index i+1; a DIR that is a file is
-/// refused. Throws InputError naming the file that could not be written;
-/// nothing is left half-written.
-void writeLocalMapFolder(const LocalMapFolder& folder, const std::string& dir);
+/// when present) into the existing folder `dir` (an output folder's
+/// partial folder: writeLocalMapFolder in LocalMapBuild.h writes a whole
+/// folder). maps[i] must have index i+1. Throws InputError naming the file
+/// that could not be written.
+void writeLocalMapFiles(const LocalMapFolder& folder, const std::string& dir);
 
 /// A joined result in the layout of the authors' Linear SLAM output:
 /// DIR/feature.txt (`id x y`) and DIR/pose.txt (`k x y phi`, phi possibly

@@ -28,6 +28,11 @@ struct LocalMapBuildRequest
 	bool progress_bar = true;
 };
 
+/// writeLocalMapFiles into `dir` as one all-or-nothing output folder
+/// (RunFolder.h: locked, written aside, swapped into place; a folder esif
+/// did not write, or one holding files it did not write, is refused).
+void writeLocalMapFolder(const LocalMapFolder& folder, const std::string& dir);
+
 /// Every step of `log` through a LocalMapBuilder with `params`; the maps in
 /// order, the last (partial) one included. NumericalError names the rawlog.
 std::vector<LocalMap> buildLocalMaps(const Rawlog& log, const LocalMapBuilderParams& params, bool progress_bar);

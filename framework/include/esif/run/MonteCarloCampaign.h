@@ -19,11 +19,20 @@
 
 namespace esif
 {
+/// Largest number of noise draws of one campaign (--runs, campaign.ini
+/// `runs`): 100,000 runs of one config take days on a cluster; beyond is a typo.
+inline constexpr int kMaxCampaignRuns = 100000;
+
+/// Whether `name` may name a config's folders under runs/ and failures/:
+/// letters, digits, '_', '-', '+' and '.', not starting with '.', at most
+/// 100 characters, so no name reaches outside the campaign folder.
+bool isCampaignName(const std::string& name);
+
 struct CampaignPlan
 {
 	std::string scenario;  ///< absolute path of the scenario INI
 	std::vector<std::string> configs;  ///< absolute paths of the filter configs
-	std::vector<std::string> names;	 ///< each config's folder name under runs/ (its file name, made unique)
+	std::vector<std::string> names;	 ///< each config's folder name under runs/ (its file name, made safe and unique)
 	int seed0 = 1;	///< noise seed of the first run
 	int runs = 0;  ///< noise seeds seed0 .. seed0 + runs - 1
 
@@ -33,7 +42,8 @@ struct CampaignPlan
 		const std::string& scenario, const std::vector<std::string>& configs, int seed0, int runs);
 
 	/// The plan in DIR/campaign.ini; InputError naming the file when it is
-	/// missing or malformed.
+	/// missing or malformed: runs outside [1, kMaxCampaignRuns], seeds beyond
+	/// INT_MAX, a name that fails isCampaignName or is given twice.
 	static CampaignPlan load(const std::string& dir);
 
 	/// `requested` merged into this existing plan: the same scenario and

@@ -10,6 +10,7 @@
 #include <esif/eval/AssociationAudit.h>
 #include <esif/eval/Evaluator.h>
 #include <esif/io/GroundTruth.h>
+#include <esif/io/OutputApart.h>
 #include <esif/io/RawlogReader.h>
 #include <esif/io/StatsJson.h>
 #include <esif/plugin/LocalMapJoiner.h>
@@ -52,6 +53,13 @@ std::optional<std::string> locateAssociations(const ConfigFile& cfg, const HostP
 /// `prefix` when given (InputError when absent), else beside the rawlog
 /// (nullopt when absent).
 std::optional<GroundTruth> findGroundTruth(const std::optional<std::string>& prefix, const std::string& rawlog_path);
+
+/// What a run on `rawlog` reads besides `config`, for requireOutputApart:
+/// the rawlog, its ground-truth files (of `prefix`, else beside the
+/// rawlog) and the associations folder the config or command line names.
+std::vector<NamedInput> rawlogRunInputs(
+	const std::string& config, const std::string& rawlog, const std::optional<std::string>& prefix,
+	const std::optional<std::string>& associations_from);
 
 /// The text of params.ini: `[esif]` and the plugin's section with every
 /// effective value (defaults filled in).

@@ -34,10 +34,13 @@ std::string measurementTruthFileOf(const std::string& prefix);
 /// Writes the file atomically.
 void saveMeasurementTruth(const MeasurementTruth& truth, const std::string& prefix);
 
-/// The file's true IDs in the shape of Rawlog::true_ids (steps without a row
-/// up to the last listed step are empty); nullopt when the file does not
-/// exist (the rawlog's IDs are then the truth). Throws InputError naming the
-/// file and line for a malformed row or rows out of order.
-std::optional<std::vector<std::vector<std::optional<LandmarkId>>>> loadMeasurementTruth(const std::string& prefix);
+/// The file's true IDs in the shape of Rawlog::true_ids for a rawlog of
+/// `steps` steps (steps without a row up to the last listed step are
+/// empty); nullopt when the file does not exist (the rawlog's IDs are then
+/// the truth). Throws InputError naming the file and line for a malformed
+/// row, rows out of order or a step beyond `steps` (checked before
+/// anything is allocated for it).
+std::optional<std::vector<std::vector<std::optional<LandmarkId>>>> loadMeasurementTruth(
+	const std::string& prefix, std::size_t steps);
 
 }  // namespace esif

@@ -103,9 +103,14 @@ struct Scenario
 	void declare(ParamBinder& b);
 
 	/// The [simulation] section of `config`; throws ConfigError naming the
-	/// file and key for a bad value or an unknown key. Cross-field rules are
-	/// left to validate().
+	/// file and key for a bad value or an unknown key, and naming the file
+	/// when checkSections() fails. Cross-field rules are left to validate().
 	static Scenario fromConfig(const ConfigFile& config);
+
+	/// Throws ConfigError naming the file unless `config` has a [simulation]
+	/// section and no other: a misspelt section, an empty file or a filter
+	/// config would otherwise simulate the default world.
+	static void checkSections(const ConfigFile& config);
 
 	/// Checks the rules that involve several fields (the start inside the
 	/// square, a non-empty waypoint area, an ordered featureless band), the
