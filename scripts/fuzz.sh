@@ -1,20 +1,25 @@
 #!/usr/bin/env bash
-# Fuzzes the two readers of untrusted input with libFuzzer (clang):
+# Fuzzes the readers of untrusted input with libFuzzer (clang): the rawlog,
+# INI, local-map, g2o and ground-truth (side-file) readers:
 #   bash scripts/fuzz.sh [seconds per target, default 60]
 #   bash scripts/fuzz.sh --smoke    (CI: a fixed seed and a fixed number of
 #                                    inputs, so a run is repeatable)
-# Builds build-fuzz/ (only the two targets), runs every kept regression input
+# Builds build-fuzz/ (only the fuzz targets), runs every kept regression input
 # once, then fuzzes each target from its seed corpus with a 1 GiB memory
 # limit. Exit non-zero on any finding; findings are written to
 # build-fuzz/findings/ (add each to tests/fuzz/regressions/ once fixed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+targets=(rawlog ini localmap g2o ground_truth)
+declare -A budget
 if [ "${1:-}" = "--smoke" ]; then
-  # About a minute each: the rawlog target forks a sandboxed reader per input.
-  declare -A budget=([rawlog]="-seed=1 -runs=2000" [ini]="-seed=1 -runs=100000")
+  # About a minute for the rawlog target (it forks a sandboxed reader per
+  # input), seconds to tens of seconds for the in-process text readers.
+  budget=([rawlog]="-seed=1 -runs=2000" [ini]="-seed=1 -runs=100000" [localmap]="-seed=1 -runs=50000"
+          [g2o]="-seed=1 -runs=50000" [ground_truth]="-seed=1 -runs=50000")
 else
   seconds="${1:-60}"
-  declare -A budget=([rawlog]="-max_total_time=$seconds" [ini]="-max_total_time=$seconds")
+  for t in "${targets[@]}"; do budget[$t]="-max_total_time=$seconds"; done
 fi
 
 if ! command -v clang++ >/dev/null; then
@@ -23,13 +28,17 @@ if ! command -v clang++ >/dev/null; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends clang libclang-rt-14-dev >/dev/null
 fi
 CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DESIF_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null
-cmake --build build-fuzz --target fuzz_rawlog_reader fuzz_ini_reader
+fuzzers=("${targets[@]/#/fuzz_}")
+cmake --build build-fuzz --target "${fuzzers[@]/%/_reader}"
 
-mkdir -p build-fuzz/findings build-fuzz/corpus/rawlog build-fuzz/corpus/ini
-cp tests/fuzz/seeds/rawlog/* build-fuzz/corpus/rawlog/
+mkdir -p build-fuzz/findings
+for target in "${targets[@]}"; do
+  mkdir -p build-fuzz/corpus/"$target"
+  if [ -d tests/fuzz/seeds/"$target" ]; then cp tests/fuzz/seeds/"$target"/* build-fuzz/corpus/"$target"/; fi
+done
 for f in configs/*.ini configs/*/*.ini; do cp "$f" build-fuzz/corpus/ini/"${f//\//_}"; done
 
-for target in rawlog ini; do
+for target in "${targets[@]}"; do
   bin="build-fuzz/bin/fuzz_${target}_reader"
   regressions=(tests/fuzz/regressions/"$target"/*)
   if [ -e "${regressions[0]}" ]; then

@@ -3,6 +3,9 @@
 // and must now be read or refused in one line, in the ordinary build too.
 
 #include <EsifTestSupport.h>
+#include <G2oInput.h>
+#include <GroundTruthInput.h>
+#include <LocalMapInput.h>
 
 #include <esif/config/ConfigFile.h>
 #include <esif/config/ParamBinder.h>
@@ -18,15 +21,51 @@ namespace
 {
 using namespace esif;
 
-std::vector<std::string> keptInputs(const std::string& reader)
+std::vector<std::string> keptInputs(const std::string& reader, const std::string& kind = "regressions")
 {
 	std::vector<std::string> out;
-	const auto dir = std::filesystem::path(test::sourcePath("tests/fuzz/regressions")) / reader;
+	const auto dir = std::filesystem::path(test::sourcePath("tests/fuzz/" + kind)) / reader;
 	if (!std::filesystem::is_directory(dir)) return out;  // nothing found for this reader yet
 	for (const auto& entry : std::filesystem::directory_iterator(dir)) out.push_back(entry.path().string());
 	return out;
 }
+using Judge = fuzz::Verdict (*)(const std::string&);
+
+/// The text readers' fuzz inputs (tests/fuzz/*Input.h): every seed reads
+/// (so fuzzing starts from valid files), and every kept input, each once
+/// accepted wrongly or allocating gigabytes, is refused in one line.
+void checkTextReader(const std::string& reader, Judge judge)
+{
+	const auto seeds = keptInputs(reader, "seeds");
+	ASSERT_FALSE(seeds.empty()) << reader;
+	for (const auto& path : seeds)
+	{
+		const auto verdict = judge(test::readText(path));
+		EXPECT_FALSE(verdict.refused) << path << " is a valid file";
+		EXPECT_FALSE(verdict.finding) << path << ": " << verdict.finding.value_or("");
+	}
+	const auto kept = keptInputs(reader);
+	ASSERT_FALSE(kept.empty()) << reader;
+	for (const auto& path : kept)
+	{
+		const auto verdict = judge(test::readText(path));
+		EXPECT_TRUE(verdict.refused) << path << " must be refused";
+		EXPECT_FALSE(verdict.finding) << path << ": " << verdict.finding.value_or("");
+	}
+}
 }  // namespace
+
+TEST(FuzzRegressions, LocalMapSeedsReadAndKeptInputsAreRefusedInOneLine)
+{
+	checkTextReader("localmap", fuzz::localMapVerdict);
+}
+
+TEST(FuzzRegressions, G2oSeedsReadAndKeptInputsAreRefusedInOneLine) { checkTextReader("g2o", fuzz::g2oVerdict); }
+
+TEST(FuzzRegressions, GroundTruthSeedsReadAndKeptInputsAreRefusedInOneLine)
+{
+	checkTextReader("ground_truth", fuzz::groundTruthVerdict);
+}
 
 TEST(FuzzRegressions, RawlogInputsAreReadOrRefusedInOneLine)
 {
