@@ -15,23 +15,13 @@
 
 namespace
 {
+using esif::test::expectOneErrorLine;
 using esif::test::runEsif;
 using esif::test::sourcePath;
 using esif::test::TempDir;
 
 const std::string kRawlog = sourcePath("rawlogs/grid196.rawlog");
 const std::string kConfig = sourcePath("configs/ekf.ini");
-
-/// Output lines that are not progress or warnings.
-std::size_t lineCount(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
-
-void expectOneErrorLine(const esif::test::CommandResult& r, const std::string& must_contain)
-{
-	EXPECT_NE(r.exit_code, 0) << r.out;
-	EXPECT_EQ(lineCount(r.out), 1u) << r.out;
-	EXPECT_NE(r.out.find("esif: error: "), std::string::npos) << r.out;
-	EXPECT_NE(r.out.find(must_contain), std::string::npos) << "expected '" << must_contain << "' in: " << r.out;
-}
 
 std::string writeConfig(const TempDir& dir, const std::string& text)
 {

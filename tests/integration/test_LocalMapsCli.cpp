@@ -27,6 +27,8 @@ namespace fs = std::filesystem;
 namespace
 {
 using esif::test::readStatsJson;
+using esif::test::expectOneErrorLine;
+using esif::test::quoted;
 using esif::test::runEsif;
 using esif::test::sourcePath;
 using esif::test::TempDir;
@@ -34,18 +36,6 @@ using esif::test::TempDir;
 const std::string kGrid196 = sourcePath("rawlogs/grid196.rawlog");
 const std::string kSim5 = sourcePath("../shared/data/localmaps/sim5_with_truth");
 const std::string kVicpark200 = sourcePath("../shared/data/localmaps/vicpark_200");
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
-std::size_t lineCount(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
-
-void expectOneErrorLine(const esif::test::CommandResult& r, const std::string& must_contain)
-{
-	EXPECT_EQ(r.exit_code, 1) << r.out;
-	EXPECT_EQ(lineCount(r.out), 1u) << r.out;
-	EXPECT_NE(r.out.find("esif: error: "), std::string::npos) << r.out;
-	EXPECT_NE(r.out.find(must_contain), std::string::npos) << "expected '" << must_contain << "' in: " << r.out;
-}
 
 /// Configs shared by the tests, written once.
 class LocalMapsCli : public ::testing::Test

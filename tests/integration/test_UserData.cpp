@@ -15,27 +15,18 @@ namespace fs = std::filesystem;
 
 namespace
 {
+using esif::test::expectOneErrorLine;
+using esif::test::quoted;
 using esif::test::readText;
 using esif::test::runEsif;
 using esif::test::simulateSmall;
 using esif::test::sourcePath;
 using esif::test::TempDir;
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
 std::string runArgs(const std::string& rawlog, const std::string& out)
 {
 	return "run -q --config " + quoted(sourcePath("configs/ekf.ini")) + " --rawlog " + quoted(rawlog) + " --out " +
 		   quoted(out);
-}
-
-/// One error line naming `phrase`, exit 1.
-void expectRefused(const esif::test::CommandResult& r, const std::string& phrase)
-{
-	EXPECT_EQ(r.exit_code, 1) << r.out;
-	EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
-	EXPECT_NE(r.out.find("esif: error: "), std::string::npos) << r.out;
-	EXPECT_NE(r.out.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << r.out;
 }
 
 /// A small simulated rawlog (200 steps) in `dir`, shared by the tests of a suite.
@@ -70,7 +61,7 @@ TEST_F(UserData, AFolderWithoutTheMarkerIsNeverReplacedWhateverItsFilesAreNamed)
 		fs::create_directory(out);
 		std::ofstream(out + "/important.txt") << "x\n";
 		std::ofstream(out + "/" + look_alike) << "{}\n";
-		expectRefused(runEsif(runArgs(rawlog(), out)), out + ": not empty and not an esif output folder");
+		expectOneErrorLine(runEsif(runArgs(rawlog(), out)), out + ": not empty and not an esif output folder");
 		EXPECT_EQ(readText(out + "/important.txt"), "x\n") << look_alike;
 		EXPECT_EQ(readText(out + "/" + look_alike), "{}\n") << look_alike;
 	}
@@ -90,12 +81,12 @@ TEST_F(UserData, AnEsifFolderHoldingAForeignFileIsRefusedNamingIt)
 
 	fs::create_directory(out + "/notes");
 	std::ofstream(out + "/notes/mine.txt") << "keep me\n";
-	expectRefused(runEsif(runArgs(rawlog(), out)), out + "/notes/: not written by esif");
+	expectOneErrorLine(runEsif(runArgs(rawlog(), out)), out + "/notes/: not written by esif");
 	fs::remove(out + "/notes/mine.txt");
-	expectRefused(runEsif(runArgs(rawlog(), out)), out + "/notes/: not written by esif");
+	expectOneErrorLine(runEsif(runArgs(rawlog(), out)), out + "/notes/: not written by esif");
 	fs::remove(out + "/notes");
 	std::ofstream(out + "/stats.json.orig") << "mine\n";
-	expectRefused(runEsif(runArgs(rawlog(), out)), out + "/stats.json.orig: not written by esif");
+	expectOneErrorLine(runEsif(runArgs(rawlog(), out)), out + "/stats.json.orig: not written by esif");
 	EXPECT_EQ(readText(out + "/stats.json.orig"), "mine\n");
 	fs::remove(out + "/stats.json.orig");
 	const auto r = runEsif(runArgs(rawlog(), out));
@@ -110,7 +101,7 @@ TEST_F(UserData, AMarkerWithoutAListOfFilesReplacesNothing)
 	fs::create_directory(out);
 	std::ofstream(out + "/.esif-output") << "esif output folder\n";
 	std::ofstream(out + "/stats.json") << "{}\n";
-	expectRefused(runEsif(runArgs(rawlog(), out)), "the folder's marker lists nothing (an earlier esif)");
+	expectOneErrorLine(runEsif(runArgs(rawlog(), out)), "the folder's marker lists nothing (an earlier esif)");
 	EXPECT_EQ(readText(out + "/stats.json"), "{}\n");
 }
 
@@ -125,7 +116,7 @@ TEST_F(UserData, ACompareFolderIsReplacedAndAForeignFileInARunRefusesIt)
 	EXPECT_NE(readText(out + "/.esif-output").find("\nekf/stats.json\n"), std::string::npos);
 	ASSERT_EQ(runEsif(args).exit_code, 0) << "re-run into its own folder";
 	std::ofstream(out + "/ekf/extra.csv") << "1\n";
-	expectRefused(runEsif(args), out + "/ekf/extra.csv: not written by esif");
+	expectOneErrorLine(runEsif(args), out + "/ekf/extra.csv: not written by esif");
 	EXPECT_EQ(readText(out + "/ekf/extra.csv"), "1\n");
 }
 
@@ -136,13 +127,13 @@ TEST_F(UserData, AnOutputFolderIsNeverAnInputFolderOrAroundAnInput)
 	const std::string data = dir.file("data");
 	fs::create_directory(data);
 	fs::copy_file(rawlog(), data + "/small.rawlog");
-	expectRefused(runEsif(runArgs(data + "/small.rawlog", data)), data + ": --out holds the rawlog");
-	expectRefused(runEsif(runArgs(data + "/small.rawlog", data + "/./")), "--out holds the rawlog");
+	expectOneErrorLine(runEsif(runArgs(data + "/small.rawlog", data)), data + ": --out holds the rawlog");
+	expectOneErrorLine(runEsif(runArgs(data + "/small.rawlog", data + "/./")), "--out holds the rawlog");
 	EXPECT_TRUE(fs::exists(data + "/small.rawlog"));
 	// --out inside the config's folder is fine; --out being the config is not.
 	const std::string config = dir.file("ekf.ini");
 	fs::copy_file(sourcePath("configs/ekf.ini"), config);
-	expectRefused(
+	expectOneErrorLine(
 		runEsif("run -q --config " + quoted(config) + " --rawlog " + quoted(rawlog()) + " --out " + quoted(config)),
 		config + ": --out is the config");
 	EXPECT_EQ(readText(config), readText(sourcePath("configs/ekf.ini")));
@@ -160,7 +151,7 @@ TEST_F(UserData, LocalMapFoldersAreNeverReplacedByARunOrABuild)
 				  .exit_code,
 			  0);
 	const std::string first_map = readText(maps + "/localmap_1.txt");
-	expectRefused(
+	expectOneErrorLine(
 		runEsif("run -q --config " + quoted(sourcePath("configs/localmaps/slsjf.ini")) + " --local-maps " +
 				quoted(maps) + " --out " + quoted(maps)),
 		maps + ": --out is the local-map folder");
@@ -170,7 +161,7 @@ TEST_F(UserData, LocalMapFoldersAreNeverReplacedByARunOrABuild)
 	fs::create_directories(authors + "/linear_slam_result");
 	fs::copy_file(maps + "/localmap_1.txt", authors + "/localmap_1.txt");
 	std::ofstream(authors + "/linear_slam_result/feature.txt") << "1 0 0\n";
-	expectRefused(
+	expectOneErrorLine(
 		runEsif("localmaps build --config " + quoted(sourcePath("configs/slsjf.ini")) + " --rawlog " +
 				quoted(rawlog()) + " --out " + quoted(authors)),
 		authors + ": not empty and not an esif output folder");
@@ -184,23 +175,23 @@ TEST_F(UserData, AFileOutputIsNeverItsInput)
 	TempDir dir;
 	const std::string vp = dir.file("vp.txt");
 	std::ofstream(vp) << "ODOMETRY 0 1 0.1 0 0 1 0 0 1 0 1\n";
-	expectRefused(runEsif("import victoria-park --in " + quoted(vp) + " --out " + quoted(vp)), vp + ": --out is the dataset");
+	expectOneErrorLine(runEsif("import victoria-park --in " + quoted(vp) + " --out " + quoted(vp)), vp + ": --out is the dataset");
 	EXPECT_EQ(readText(vp), "ODOMETRY 0 1 0.1 0 0 1 0 0 1 0 1\n");
 
 	const std::string log = dir.file("log.rawlog");
 	fs::copy_file(rawlog(), log);
 	const std::string before = readText(log);
-	expectRefused(runEsif("export g2o --rawlog " + quoted(log) + " --out " + quoted(log)), log + ": --out is the rawlog");
+	expectOneErrorLine(runEsif("export g2o --rawlog " + quoted(log) + " --out " + quoted(log)), log + ": --out is the rawlog");
 	EXPECT_EQ(readText(log), before);
 
 	const std::string scenario = dir.file("s.ini");
 	fs::copy_file(sourcePath("configs/sim/small.ini"), scenario);
-	expectRefused(runEsif("simulate --config " + quoted(scenario) + " --out " + quoted(scenario)),
+	expectOneErrorLine(runEsif("simulate --config " + quoted(scenario) + " --out " + quoted(scenario)),
 				  scenario + ": --out is the scenario");
 	// The ground truth written beside the rawlog may not be the scenario either.
 	const std::string truth_named = dir.file("t_ground_truth.txt");
 	fs::copy_file(scenario, truth_named);
-	expectRefused(runEsif("simulate --config " + quoted(truth_named) + " --out " + quoted(dir.file("t.rawlog"))),
+	expectOneErrorLine(runEsif("simulate --config " + quoted(truth_named) + " --out " + quoted(dir.file("t.rawlog"))),
 				  "is the scenario");
 	EXPECT_EQ(readText(scenario), readText(sourcePath("configs/sim/small.ini")));
 
@@ -208,7 +199,7 @@ TEST_F(UserData, AFileOutputIsNeverItsInput)
 	const std::string solved = dir.file("solved");
 	fs::create_directory(solved);
 	ASSERT_EQ(runEsif("export g2o --rawlog " + quoted(log) + " --out " + quoted(solved + "/p.g2o")).exit_code, 0);
-	expectRefused(
+	expectOneErrorLine(
 		runEsif("import g2o --g2o " + quoted(solved + "/p.g2o") + " --rawlog " + quoted(log) + " --out " + quoted(solved)),
 		solved + ": --out holds the g2o file");
 	EXPECT_TRUE(fs::exists(solved + "/p.g2o"));
@@ -228,8 +219,8 @@ TEST_F(UserData, ACampaignNameNeverReachesOutsideItsFolder)
 												  << "configs = " << config << "\nnames = " << name << "\n";
 		const auto r = runEsif("montecarlo --scenario " + quoted(scenario) + " --configs " + quoted(config) +
 							   " --runs 1 --out " + quoted(campaign));
-		expectRefused(r, campaign + "/campaign.ini: [montecarlo] names");
-		expectRefused(runEsif("montecarlo --collect " + quoted(campaign)), "[montecarlo] names");
+		expectOneErrorLine(r, campaign + "/campaign.ini: [montecarlo] names");
+		expectOneErrorLine(runEsif("montecarlo --collect " + quoted(campaign)), "[montecarlo] names");
 	}
 	EXPECT_FALSE(fs::exists(dir.file("x"))) << "nothing written outside --out";
 	EXPECT_FALSE(fs::exists(campaign + "/runs"));
@@ -238,7 +229,7 @@ TEST_F(UserData, ACampaignNameNeverReachesOutsideItsFolder)
 	const std::string holder = dir.file("holder");
 	fs::create_directory(holder);
 	fs::copy_file(scenario, holder + "/s.ini");
-	expectRefused(runEsif("montecarlo --scenario " + quoted(holder + "/s.ini") + " --configs " + quoted(config) +
+	expectOneErrorLine(runEsif("montecarlo --scenario " + quoted(holder + "/s.ini") + " --configs " + quoted(config) +
 						  " --runs 1 --out " + quoted(holder)),
 				  holder + ": --out holds the scenario");
 }

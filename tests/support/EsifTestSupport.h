@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -84,6 +85,19 @@ inline CommandResult runEsif(const std::string& args)
 	const int status = ::pclose(pipe);
 	r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 	return r;
+}
+
+/// `word` single-quoted for runEsif's shell (paths of temporary folders hold no quote).
+inline std::string quoted(const std::string& word) { return "'" + word + "'"; }
+
+/// The command failed with `exit_code` (1: bad input, config or command
+/// line) and printed exactly one line, an "esif: error: " naming `phrase`.
+inline void expectOneErrorLine(const CommandResult& r, const std::string& phrase, int exit_code = 1)
+{
+	EXPECT_EQ(r.exit_code, exit_code) << r.out;
+	EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+	EXPECT_NE(r.out.find("esif: error: "), std::string::npos) << r.out;
+	EXPECT_NE(r.out.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << r.out;
 }
 
 /// The whole content of a text file ("" when it cannot be read).
