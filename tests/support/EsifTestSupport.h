@@ -179,4 +179,23 @@ inline std::optional<std::string> importVictoriaPark(const TempDir& dir)
 	return rawlog;
 }
 
+/// Dataset 6 of UTIAS MRCLAM (third-party data, read from the shared data
+/// folder beside the checkout, never committed).
+inline std::string mrclamDataset() { return sourcePath("../shared/data/mrclam/MRCLAM_Dataset6"); }
+
+/// Makes `dir`/rN.rawlog (and its ground truth) from robot `robot` of
+/// mrclamDataset() with `esif import mrclam` and its defaults; nullopt when
+/// the dataset is absent, for the caller to
+/// `GTEST_SKIP() << test::mrclamDataset() << " not present"`.
+inline std::optional<std::string> importMrclam(const TempDir& dir, int robot, const std::string& extra = "")
+{
+	const std::string dataset = mrclamDataset();
+	if (!std::filesystem::exists(dataset)) return std::nullopt;
+	const std::string rawlog = dir.file("r" + std::to_string(robot) + ".rawlog");
+	const auto r = runEsif("import mrclam --dataset '" + dataset + "' --robot " + std::to_string(robot) + " " + extra +
+						   " --out '" + rawlog + "'");
+	EXPECT_EQ(r.exit_code, 0) << r.out;
+	return rawlog;
+}
+
 }  // namespace esif::test

@@ -3,6 +3,7 @@
 #include <esif/io/AtomicFile.h>
 #include <esif/io/GroundTruth.h>
 #include <esif/io/InputBounds.h>
+#include <esif/io/NumberRow.h>
 #include <esif/io/TextInput.h>
 
 #include <cmath>
@@ -22,73 +23,6 @@ bool isBlankOrComment(const std::string& line)
 	return first == std::string::npos || line[first] == '%' || line[first] == '#';
 }
 
-/// The columns of one data line, each a finite number, known by name for
-/// the errors ("FILE:LINE: column K (NAME) = VALUE: rule").
-class Row
-{
-   public:
-	Row(const std::string& line, const std::vector<const char*>& names, const std::string& where)
-		: names_(names), where_(where)
-	{
-		std::istringstream ss(line);
-		std::vector<std::string> tokens;
-		for (std::string t; ss >> t;) tokens.push_back(t);
-		if (tokens.size() != names.size())
-		{
-			std::string list;
-			for (const char* n : names) list += (list.empty() ? "" : " ") + std::string(n);
-			throw InputError(
-				where + ": expected " + std::to_string(names.size()) + " columns '" + list + "', found " +
-				std::to_string(tokens.size()));
-		}
-		for (std::size_t i = 0; i < tokens.size(); ++i)
-		{
-			char* end = nullptr;
-			const double v = std::strtod(tokens[i].c_str(), &end);
-			if (end == tokens[i].c_str() || *end != '\0') fail(i, "'" + tokens[i] + "'", "not a number");
-			if (!std::isfinite(v)) fail(i, "'" + tokens[i] + "'", "not a finite number");
-			values_.push_back(v);
-		}
-	}
-
-	/// Column `i` as a coordinate [m], within +-kMaxCoordinate_m.
-	double coordinate(std::size_t i) const
-	{
-		if (std::abs(values_[i]) > kMaxCoordinate_m)
-			fail(i, formatNumber(values_[i]), "must be within +-" + formatNumber(kMaxCoordinate_m) + " m");
-		return values_[i];
-	}
-
-	/// Column `i` as a heading [rad], within +-kMaxHeading_rad.
-	double heading(std::size_t i) const
-	{
-		if (std::abs(values_[i]) > kMaxHeading_rad)
-			fail(i, formatNumber(values_[i]), "must be within +-" + formatNumber(kMaxHeading_rad) + " rad");
-		return values_[i];
-	}
-
-	/// Column `i` as a landmark ID: an integer in [0, kMaxLandmarkId].
-	LandmarkId landmarkId(std::size_t i) const
-	{
-		const double v = values_[i];
-		if (v != std::floor(v)) fail(i, formatNumber(v), "a landmark ID must be an integer, not fractional");
-		if (v < 0 || v > static_cast<double>(kMaxLandmarkId))
-			fail(i, formatNumber(v), "a landmark ID must be in [0, " + std::to_string(kMaxLandmarkId) + "]");
-		return static_cast<LandmarkId>(v);
-	}
-
-   private:
-	[[noreturn]] void fail(std::size_t i, const std::string& value, const std::string& rule) const
-	{
-		throw InputError(
-			where_ + ": column " + std::to_string(i + 1) + " (" + names_[i] + ") = " + value + ": " + rule);
-	}
-
-	const std::vector<const char*>& names_;
-	const std::string where_;
-	std::vector<double> values_;
-};
-
 // CLandmarksMap::saveToTextFile's columns, and simul-landmarks' robot path.
 const std::vector<const char*> kLandmarkColumns{"x", "y", "z", "type", "seenCount", "tLastSeen", "ID"};
 const std::vector<const char*> kPathColumns{"x", "y", "z", "yaw", "pitch", "roll"};
@@ -103,7 +37,7 @@ std::map<LandmarkId, Eigen::Vector2d> readLandmarks(const std::string& file)
 		if (isBlankOrComment(line)) continue;
 		const std::size_t lineno = in.lineNumber();
 		const std::string where = in.where();
-		const Row row(line, kLandmarkColumns, where);
+		const NumberRow row(line, kLandmarkColumns, where);
 		const LandmarkId id = row.landmarkId(6);
 		const Eigen::Vector2d p(row.coordinate(0), row.coordinate(1));
 		if (const auto first = line_of.find(id); first != line_of.end())
@@ -123,7 +57,7 @@ std::vector<Pose2> readPath(const std::string& file)
 	for (std::string line; in.next(line);)
 	{
 		if (isBlankOrComment(line)) continue;
-		const Row row(line, kPathColumns, in.where());
+		const NumberRow row(line, kPathColumns, in.where());
 		out.emplace_back(row.coordinate(0), row.coordinate(1), row.heading(3));
 	}
 	return out;
