@@ -58,6 +58,18 @@ void declareModelAndOutputs(CeresFullParams& p, ParamBinder& b)
 		"loss on the range-bearing terms: none (the MAP estimate of eq. 1.21), huber or cauchy");
 	b.real("robust_loss_scale", p.robust_loss_scale,
 		   "whitened residual norm [sigma] beyond which the robust loss down-weights a measurement", Bounds::positive());
+	b.enumeration<OutlierPolicy>(
+		"outliers", p.outliers, {{"keep", OutlierPolicy::Keep}, {"drop", OutlierPolicy::Drop}},
+		"keep: every measurement is a term of eq. 1.21; drop: converge with a Huber loss, drop the measurements "
+		"failing the outlier gate, and solve eq. 1.21 on the rest");
+	b.real("outlier_false_drop_rate", p.outlier_false_drop_rate,
+		   "chance that the outlier gate drops any inlier over the whole run (gate: the chi-square(2) quantile 1 - "
+		   "rate / measurements)",
+		   Bounds::openUnit());
+	b.real("max_outlier_share", p.max_outlier_share,
+		   "largest share of measurements the outlier gate may drop; beyond it the solution, not the measurements, "
+		   "is taken to be wrong: nothing is dropped and the optimum is reported implausible",
+		   Bounds::openUnit());
 	b.enumeration<CovarianceScope>(
 		"covariance", p.covariance,
 		{{"none", CovarianceScope::None},

@@ -43,6 +43,9 @@ class CeresFullSlam : public FilterPlugin
 	Formulation formulation() const override { return Formulation::FullSlamOptimum; }
 	bool needsLandmarkIds() const override { return true; }
 	std::optional<std::vector<PoseEstimate>> smoothedTrajectory() const override;
+	/// The step reports with every measurement the outlier gate dropped
+	/// marked rejected; nullopt when none was.
+	std::optional<std::vector<StepReport>> finalReports() const override;
 	std::optional<InformationPattern> informationPattern() const override;
 
 	/// Statistics of the solves so far.
@@ -59,16 +62,29 @@ class CeresFullSlam : public FilterPlugin
 		bool converged = false;	 ///< the last solve met a tolerance (not the iteration limit)
 		double covariance_s = 0;
 		bool covariances_available = false;
+		std::size_t outliers_dropped = 0;  ///< measurements the outlier gate removed
+		int outlier_rounds = 0;	 ///< plain solves after a drop
+		double outlier_gate_sigma = 0;	///< the gate, as a whitened residual norm (last round)
+		std::size_t excess_outliers = 0;  ///< beyond the gate but too many to drop
+		std::string final_failure;	///< Ceres' message when the final solve failed
+		double largest_dropped_sigma = 0;  ///< whitened residual norm of the worst one dropped
 		std::optional<ceres_full::SolutionCheck> check;	 ///< of the final solve
 	};
 	const SolveTally& tally() const { return tally_; }
 	const ceres_full::FullSlamGraph& graph() const { return *graph_; }
 
    private:
-	void solve(ceres_full::SolveKind kind);
+	/// Runs Ceres; false when it failed (the last accepted estimate stays).
+	bool solve(ceres_full::SolveKind kind);
+	/// The final solve of the answer, its failure told on stderr.
+	void finalSolve();
+	void solveDroppingOutliers();
+	double outlierGate() const;
 	void checkFinalSolution();
 	void computeCovariances();
 	std::unique_ptr<ceres::LossFunction> makeLoss() const;
+	/// The loss of the run's solves when outliers are dropped (Huber).
+	std::unique_ptr<ceres::LossFunction> outlierLoss() const;
 	Pose2 warmStart(const OdometryIncrement& odometry, const std::optional<Scan>& scan) const;
 	Association observe(const RangeBearing& m, const Pose2& sensor, const std::string& where);
 	int threads() const;
@@ -80,6 +96,9 @@ class CeresFullSlam : public FilterPlugin
 	std::optional<ceres_full::SolveSchedule> schedule_;
 	std::size_t current_pose_ = 0;
 	std::vector<std::size_t> step_pose_;  ///< pose index after each step
+	std::vector<StepReport> reports_;  ///< what processStep returned, per step
+	/// (step, measurement index) of every observation, in the graph's order.
+	std::vector<std::pair<std::size_t, std::size_t>> observation_origin_;
 	std::unordered_map<const double*, Eigen::MatrixXd> marginals_;
 	SolveTally tally_;
 	bool finished_ = false;

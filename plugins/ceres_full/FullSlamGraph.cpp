@@ -5,6 +5,7 @@
 
 #include <esif/core/Errors.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace esif::ceres_full
@@ -15,14 +16,15 @@ ceres::Problem::Options problemOptions()
 {
 	ceres::Problem::Options o;
 	o.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // the graph owns its one loss
-	// Residual blocks are only ever added: removal bookkeeping is not needed.
+	// Only outliers are removed, few and once: no per-block removal index.
 	o.enable_fast_removal = false;
 	return o;
 }
 }  // namespace
 
 FullSlamGraph::FullSlamGraph(std::unique_ptr<ceres::LossFunction> loss)
-	: loss_(std::move(loss)), problem_(std::make_unique<ceres::Problem>(problemOptions()))
+	: loss_(std::make_unique<ceres::LossFunctionWrapper>(loss.release(), ceres::TAKE_OWNERSHIP)),
+	  problem_(std::make_unique<ceres::Problem>(problemOptions()))
 {
 	poses_.push_back({0, 0, 0});
 	problem_->AddParameterBlock(poses_.back().data(), 3);
@@ -59,12 +61,61 @@ void FullSlamGraph::addObservation(
 	if (!sqrtInformation<2>(m.cov, w))
 		throw NumericalError(where + ": covariance is not symmetric positive definite");
 	double* lm = landmarkBlock(id);
-	problem_->AddResidualBlock(
+	const ceres::ResidualBlockId block = problem_->AddResidualBlock(
 		RangeBearingResidual::create(Eigen::Vector2d(m.range_m, m.bearing_rad), w, sensor_on_robot), loss_.get(),
 		poses_[pose].data(), lm);
 	residual_dim_ += 2;
-	observations_.push_back({pose, id, m.range_m, std::sqrt(m.cov(0, 0)), sensor_on_robot});
+	++live_observations_;
+	observations_.push_back({pose, id, m.range_m, std::sqrt(m.cov(0, 0)), sensor_on_robot, block});
 	linkBlocks(poses_[pose].data(), isGauge(pose) ? 0 : 3, lm, 2);
+}
+
+void FullSlamGraph::setObservationLoss(std::unique_ptr<ceres::LossFunction> loss)
+{
+	loss_->Reset(loss.release(), ceres::TAKE_OWNERSHIP);
+}
+
+double FullSlamGraph::observationChi2(std::size_t i) const
+{
+	double cost = 0;
+	const QuietCeresLogging quiet;
+	if (!observations_[i].block ||
+		!problem_->EvaluateResidualBlock(observations_[i].block, false, &cost, nullptr, nullptr))
+		return std::nan("");
+	return 2 * cost;
+}
+
+std::vector<DroppedObservation> FullSlamGraph::observationsAbove(double bound) const
+{
+	std::vector<DroppedObservation> out;
+	for (std::size_t i = 0; i < observations_.size(); ++i)
+		if (observations_[i].block)
+			if (const double chi2 = observationChi2(i); chi2 > bound) out.push_back({i, chi2});
+	return out;
+}
+
+void FullSlamGraph::dropObservations(const std::vector<DroppedObservation>& dropped)
+{
+	for (const auto& d : dropped)
+	{
+		problem_->RemoveResidualBlock(observations_[d.index].block);
+		observations_[d.index].block = nullptr;
+		residual_dim_ -= 2;
+		--live_observations_;
+	}
+	// A landmark whose every term was dropped is no longer estimated.
+	std::unordered_map<LandmarkId, std::size_t> terms;
+	for (const auto& o : observations_)
+		if (o.block) ++terms[o.landmark];
+	const std::vector<LandmarkId> ids = landmark_ids_;
+	for (const LandmarkId id : ids)
+		if (!terms.count(id)) removeLandmark(id);
+}
+
+void FullSlamGraph::removeLandmark(LandmarkId id)
+{
+	problem_->RemoveParameterBlock(landmarkBlock(id));
+	landmark_ids_.erase(std::find(landmark_ids_.begin(), landmark_ids_.end(), id));
 }
 
 Eigen::Vector2d FullSlamGraph::landmark(LandmarkId id) const
@@ -95,7 +146,7 @@ double FullSlamGraph::plainChi2(int threads)
 
 std::size_t FullSlamGraph::informationNonZeros() const
 {
-	const std::size_t diagonal = 9 * (poses_.size() - 1) + 4 * landmarks_.size();
+	const std::size_t diagonal = 9 * (poses_.size() - 1) + 4 * landmark_ids_.size();
 	return diagonal + 2 * off_diagonal_nnz_;
 }
 

@@ -33,6 +33,15 @@ struct ObservationRecord
 	double range_m = 0;
 	double range_std_m = 0;	 ///< standard deviation of the range [m]
 	Pose2 sensor_on_robot = Pose2::Zero();
+	ceres::ResidualBlockId block = nullptr;	 ///< null once dropped
+};
+
+/// An observation removed as an outlier: its index into observations() and
+/// its squared whitened residual when it was removed (NaN: not evaluable).
+struct DroppedObservation
+{
+	std::size_t index = 0;
+	double chi2 = 0;
 };
 
 class FullSlamGraph
@@ -41,6 +50,24 @@ class FullSlamGraph
 	/// `loss` (may be null) is applied to every range-bearing term; the graph
 	/// keeps ownership of it.
 	explicit FullSlamGraph(std::unique_ptr<ceres::LossFunction> loss = nullptr);
+
+	/// Replaces the loss of every range-bearing term (null: plain least squares).
+	void setObservationLoss(std::unique_ptr<ceres::LossFunction> loss);
+
+	/// Squared whitened residual of observation `i` at the current values,
+	/// without the loss; NaN when it cannot be evaluated.
+	double observationChi2(std::size_t i) const;
+
+	/// The remaining range-bearing terms whose observationChi2 is above
+	/// `bound` (a term that cannot be evaluated is not among them: that is a
+	/// collapsed solution, not an outlier).
+	std::vector<DroppedObservation> observationsAbove(double bound) const;
+
+	/// Removes the terms `dropped`, and a landmark left without any term.
+	void dropObservations(const std::vector<DroppedObservation>& dropped);
+
+	/// Range-bearing terms in the problem (not dropped).
+	std::size_t liveObservations() const { return live_observations_; }
 
 	/// Adds pose `from` (+) odometry as a new pose, initialised at `initial`,
 	/// and its process-model term. Returns the new pose's index. Throws
@@ -58,10 +85,10 @@ class FullSlamGraph
 						const std::string& where);
 
 	std::size_t poseCount() const { return poses_.size(); }
-	/// Every range-bearing term in the order added.
+	/// Every range-bearing term in the order added (dropped ones with a null block).
 	const std::vector<ObservationRecord>& observations() const { return observations_; }
-	std::size_t landmarkCount() const { return landmarks_.size(); }
-	/// Landmark IDs in the order they were first seen.
+	std::size_t landmarkCount() const { return landmark_ids_.size(); }
+	/// IDs of the landmarks in the problem, in the order they were first seen.
 	const std::vector<LandmarkId>& landmarkIds() const { return landmark_ids_; }
 
 	Pose2 pose(std::size_t i) const { return Eigen::Map<const Eigen::Vector3d>(poses_[i].data()); }
@@ -76,13 +103,13 @@ class FullSlamGraph
 	static bool isGauge(std::size_t pose) { return pose == 0; }
 
 	ceres::Problem& problem() { return *problem_; }
-	/// The loss on range-bearing terms (null: plain least squares).
+	/// The loss on range-bearing terms (a wrapper: plain least squares when it holds none).
 	const ceres::LossFunction* loss() const { return loss_.get(); }
 
 	/// Residual count m and estimated-parameter count n: at the optimum of
 	/// the plain least-squares problem, 2 x cost ~ chi-square(m - n).
 	std::size_t residualDim() const { return residual_dim_; }
-	std::size_t parameterDim() const { return 3 * (poses_.size() - 1) + 2 * landmarks_.size(); }
+	std::size_t parameterDim() const { return 3 * (poses_.size() - 1) + 2 * landmark_ids_.size(); }
 
 	/// Sum of squared whitened residuals at the current values, without the
 	/// robust loss: chi-square(m - n) at the optimum when the noise model is
@@ -92,7 +119,8 @@ class FullSlamGraph
 	/// Non-zeros of J^T J over the estimated blocks (both triangles): each
 	/// block's square plus twice every distinct pair of blocks that share a
 	/// residual (pose-pose links from odometry, pose-feature links from
-	/// observations).
+	/// observations; a link is kept when its last term was dropped, an
+	/// overcount of at most one 3x2 block per dropped measurement).
 	std::size_t informationNonZeros() const;
 
 	/// J^T J at the current values, over the estimated blocks: poses 1..N,
@@ -103,7 +131,9 @@ class FullSlamGraph
    private:
 	void linkBlocks(const double* a, int dim_a, const double* b, int dim_b);
 
-	std::unique_ptr<ceres::LossFunction> loss_;
+	void removeLandmark(LandmarkId id);
+
+	std::unique_ptr<ceres::LossFunctionWrapper> loss_;
 	std::unique_ptr<ceres::Problem> problem_;
 	// deques: parameter blocks must never move once Ceres holds their address.
 	std::deque<std::array<double, 3>> poses_;
@@ -111,6 +141,7 @@ class FullSlamGraph
 	std::unordered_map<LandmarkId, std::size_t> landmark_index_;
 	std::vector<LandmarkId> landmark_ids_;
 	std::vector<ObservationRecord> observations_;
+	std::size_t live_observations_ = 0;
 	std::size_t residual_dim_ = 0;
 
 	struct PairHash

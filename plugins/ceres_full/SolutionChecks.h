@@ -29,6 +29,8 @@ struct SolutionCheck
 	double chi2 = 0;  ///< plain sum of squared whitened residuals
 	double dof = 0;	 ///< residuals - estimated parameters
 	std::size_t degenerate_poses = 0;
+	/// Measurements beyond the outlier gate when they were too many to drop (0: none or dropped).
+	std::size_t excess_outliers = 0;
 	bool plausible = true;
 
 	/// chi2 / dof; NaN when the problem has no redundancy (dof <= 0).
@@ -37,9 +39,10 @@ struct SolutionCheck
 	std::string warning(double max_chi2_per_dof) const;
 };
 
-/// Judges a solution: implausible when a pose is degenerate or chi2 / dof
-/// exceeds `max_chi2_per_dof`.
+/// Judges a solution: implausible when a pose is degenerate, chi2 / dof
+/// exceeds `max_chi2_per_dof` or too many measurements lie beyond the
+/// outlier gate to be outliers.
 SolutionCheck checkSolution(
-	double chi2, double dof, std::size_t degenerate_poses, double max_chi2_per_dof);
+	double chi2, double dof, std::size_t degenerate_poses, double max_chi2_per_dof, std::size_t excess_outliers = 0);
 
 }  // namespace esif::ceres_full
