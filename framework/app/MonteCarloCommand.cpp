@@ -72,8 +72,9 @@ void collectAndReport(const std::string& dir, const CampaignPlan& plan)
 			dir + ": no finished run to aggregate (" + std::to_string(c.gaps.failed.size()) + " failed, " +
 			std::to_string(c.gaps.pending.size()) + " not finished)");
 	std::cout << writeCampaignOutputs(dir, plan, c);
-	std::cout << "\nesif montecarlo: " << c.finished << " of " << c.total << " runs finished, "
-			  << c.gaps.failed.size() << " failed, " << c.gaps.pending.size() << " not finished; outputs in " << dir
+	std::cout << "\nesif montecarlo: " << c.finished << " of " << c.total << " runs finished ("
+			  << c.gaps.suspect.size() << " suspect), " << c.gaps.failed.size() << " failed, "
+			  << c.gaps.pending.size() << " not finished; outputs in " << dir
 			  << " (summary.md, summary.csv, per_step.csv, landmarks.csv, anees_pose.png, rmse.png, "
 				 "landmark_anees.png)\n";
 }

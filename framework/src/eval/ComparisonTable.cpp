@@ -1,5 +1,6 @@
 #include <esif/eval/BaselineComparison.h>
 #include <esif/eval/ComparisonTable.h>
+#include <esif/eval/SuspectResult.h>
 #include <esif/eval/ReferenceResultDifference.h>
 #include <esif/eval/RunDifference.h>
 
@@ -53,6 +54,7 @@ const std::vector<std::string>& failureKeys()
 
 constexpr const char* kFailed = "failed";
 constexpr const char* kNotRun = "not run";
+constexpr const char* kSuspect = "suspect";
 
 /// comparisonKeys(), then the map-joining figures, the ratios to the
 /// optimization baseline, the difference-from-reference keys and the
@@ -109,9 +111,10 @@ bool isFailedRun(const Stats& run)
 
 void markSucceededRuns(std::vector<Stats>& runs)
 {
-	if (std::none_of(runs.begin(), runs.end(), isFailedRun)) return;
+	const auto suspect = [](const Stats& run) { return !isFailedRun(run) && recordedSuspectReason(run).has_value(); };
+	if (std::none_of(runs.begin(), runs.end(), isFailedRun) && std::none_of(runs.begin(), runs.end(), suspect)) return;
 	for (auto& run : runs)
-		if (!isFailedRun(run)) run.set("status", StatValue(std::string("ok")));
+		if (!isFailedRun(run)) run.set("status", StatValue(std::string(suspect(run) ? kSuspect : "ok")));
 }
 
 std::string failureNote(const std::vector<Stats>& runs)
@@ -119,6 +122,8 @@ std::string failureNote(const std::vector<Stats>& runs)
 	std::string note;
 	for (const auto& run : runs)
 	{
+		if (const auto reason = recordedSuspectReason(run); reason && !isFailedRun(run))
+			note += "run '" + label(run) + "' is suspect: " + *reason + "\n";
 		if (!isFailedRun(run)) continue;
 		const std::string error = run.text("error").value_or("");
 		if (run.text("status") == std::string(kNotRun))

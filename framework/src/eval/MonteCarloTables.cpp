@@ -110,6 +110,11 @@ std::string monteCarloSummaryMarkdown(
 		for (const auto& line : gaps.failed) out += "- " + line + "\n";
 		for (const auto& line : gaps.pending) out += "- " + line + "\n";
 	}
+	if (!gaps.suspect.empty())
+	{
+		out += "\n## Suspect runs (aggregated)\n\n";
+		for (const auto& line : gaps.suspect) out += "- " + line + "\n";
+	}
 	return out;
 }
 

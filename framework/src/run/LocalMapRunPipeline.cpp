@@ -133,6 +133,7 @@ Stats runInto(const LocalMapRunRequest& request, PluginLoader& loader)
 	writeOutputs(host, request, *plugin, result);
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	Stats stats = collectStats(host, request, in, result, *plugin, accuracy, difference, total_wall_s);
+	flagSuspectResult(stats);
 	writeTextAtomically((std::filesystem::path(request.out_dir) / "stats.json").string(), stats.toJson());
 	return stats;
 }

@@ -4,6 +4,7 @@
 
 #include <esif/core/Errors.h>
 #include <esif/eval/MonteCarloFigures.h>
+#include <esif/eval/SuspectResult.h>
 #include <esif/io/AtomicFile.h>
 #include <esif/io/EstimationErrorFiles.h>
 #include <esif/io/StatsJson.h>
@@ -38,6 +39,7 @@ CampaignRunErrors readCampaignRun(const std::string& run_folder, std::size_t see
 	if (!wall) throw InputError(stats_path + ": no wall_s");
 	run.wall_s = *wall;
 	run.da_wrong = static_cast<long long>(stats.number("da_wrong").value_or(0));
+	run.suspect_reason = recordedSuspectReason(stats);
 	return run;
 }
 
@@ -57,6 +59,8 @@ CampaignCollection collectCampaign(const std::string& dir, const CampaignPlan& p
 				by_config[job.config].push_back(readCampaignRun(
 					campaign_layout::runFolder(dir, name, job.noise_seed),
 					static_cast<std::size_t>(job.noise_seed - plan.seed0)));
+				if (const auto& reason = by_config[job.config].back().suspect_reason)
+					out.gaps.suspect.push_back(id + ": suspect: " + *reason);
 				++out.finished;
 				break;
 			case JobState::Failed:

@@ -124,6 +124,7 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 		writeLocalMapTimesImage(result.fusion_costs, (dir / "localmap_times.png").string(), host.image_size_px);
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	Stats stats = collectStats(host, request, log, result, *plugin, accuracy, total_wall_s);
+	flagSuspectResult(stats);
 	writeTextAtomically((dir / "stats.json").string(), stats.toJson());
 	return stats;
 }

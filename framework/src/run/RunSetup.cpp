@@ -1,10 +1,12 @@
 #include <esif/core/Errors.h>
+#include <esif/eval/SuspectResult.h>
 #include <esif/run/RunSetup.h>
 #include <esif/sim/MeasurementTruth.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <numeric>
 #include <sstream>
 #include <sys/resource.h>
@@ -87,6 +89,13 @@ std::vector<NamedInput> rawlogRunInputs(
 		associations_from ? *associations_from : loadHostParams(ConfigFile::load(config)).associations_from;
 	inputs.push_back({"the associations folder", associations});
 	return inputs;
+}
+
+void flagSuspectResult(Stats& stats)
+{
+	if (const auto reason = markSuspect(stats))
+		std::cerr << "esif: warning: suspect result: " << *reason
+				  << " (stats.json suspect = 1; the outputs are written, look before using them)\n";
 }
 
 std::string effectiveParamsIni(const HostParams& host, const FilterPlugin& plugin)

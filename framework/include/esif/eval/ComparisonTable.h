@@ -30,12 +30,14 @@ Stats notRunStats(const std::string& label, const std::string& plugin, const std
 /// Whether the row is a failed or a not-run one.
 bool isFailedRun(const Stats& run);
 
-/// When any row failed, gives the others status "ok", so the status column
-/// is complete; otherwise leaves every row as it is (no status column).
+/// When any row failed or is suspect (SuspectResult.h), gives the others
+/// status "ok" or "suspect", so the status column is complete; otherwise
+/// leaves every row as it is (no status column).
 void markSucceededRuns(std::vector<Stats>& runs);
 
-/// One line per failed or not-run row: "run 'LABEL' failed (exit N): ERROR"
-/// or "run 'LABEL' not run: REASON"; empty when every run succeeded.
+/// One line per failed, not-run or suspect row: "run 'LABEL' failed (exit
+/// N): ERROR", "run 'LABEL' not run: REASON" or "run 'LABEL' is suspect:
+/// REASON"; empty when every run succeeded and none is suspect.
 std::string failureNote(const std::vector<Stats>& runs);
 
 /// `esif compare`'s exit code: 0 when no run failed, else the exit code of

@@ -52,6 +52,7 @@ struct CampaignRunErrors
 	std::vector<LandmarkError> landmarks;
 	double wall_s = 0;	///< the filter's replay time (stats.json wall_s)
 	long long da_wrong = 0;	 ///< wrong associations (stats.json da_wrong)
+	std::optional<std::string> suspect_reason;	///< stats.json suspect_reason of a suspect run
 };
 
 /// Mean and sample standard deviation (0 for one value).

@@ -18,6 +18,7 @@ struct CampaignGaps
 {
 	std::vector<std::string> failed;
 	std::vector<std::string> pending;
+	std::vector<std::string> suspect;  ///< finished and aggregated, but suspect (SuspectResult.h)
 	std::size_t planned = 0;  ///< runs per config in the plan
 };
 

@@ -61,6 +61,10 @@ std::vector<NamedInput> rawlogRunInputs(
 	const std::string& config, const std::string& rawlog, const std::optional<std::string>& prefix,
 	const std::optional<std::string>& associations_from);
 
+/// Marks `stats` suspect or not (SuspectResult.h) and says why on stderr
+/// in one warning line when it is.
+void flagSuspectResult(Stats& stats);
+
 /// The text of params.ini: `[esif]` and the plugin's section with every
 /// effective value (defaults filled in).
 std::string effectiveParamsIni(const HostParams& host, const FilterPlugin& plugin);
