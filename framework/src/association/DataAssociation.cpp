@@ -1,9 +1,10 @@
+#include "Jcbb.h"
+
 #include <esif/association/Chi2.h>
 #include <esif/association/DataAssociation.h>
 #include <esif/models/Se2.h>
 
 #include <mrpt/math/CMatrixDynamic.h>
-#include <mrpt/math/distributions.h>
 #include <mrpt/slam/data_association.h>
 
 #include <Eigen/Dense>
@@ -80,27 +81,6 @@ Eigen::MatrixXd pairDistances(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y
 	return d2;
 }
 
-/// Exact joint squared Mahalanobis distance of the pairs (i, candidate_of[i] >= 0).
-double jointDistance2(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
-					  const std::vector<int>& candidate_of)
-{
-	std::vector<Eigen::Index> obs, cand;
-	for (std::size_t i = 0; i < candidate_of.size(); ++i)
-		if (candidate_of[i] >= 0) obs.push_back(static_cast<Eigen::Index>(i)), cand.push_back(candidate_of[i]);
-	const auto k = static_cast<Eigen::Index>(obs.size());
-	if (k == 0) return 0;
-	Eigen::VectorXd nu(2 * k);
-	Eigen::MatrixXd Sk(2 * k, 2 * k);
-	for (Eigen::Index a = 0; a < k; ++a)
-	{
-		nu.segment<2>(2 * a) = (z.row(obs[a]) - y.row(cand[a])).transpose();
-		for (Eigen::Index b = 0; b < k; ++b) Sk.block<2, 2>(2 * a, 2 * b) = S.block<2, 2>(2 * cand[a], 2 * cand[b]);
-	}
-	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (Sk + Sk.transpose()));
-	if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
-	return nu.dot(llt.solve(nu));
-}
-
 /// The fallback's joint compatibility test (Neira & Tardos 2001): while the
 /// pairs fail it, the pair with the largest individual distance is dropped.
 /// At most one O(k^3) test per pair.
@@ -111,7 +91,8 @@ std::size_t enforceJointCompatibility(const Eigen::MatrixXd& z, const Eigen::Mat
 	for (;;)
 	{
 		const auto pairs = std::count_if(candidate_of.begin(), candidate_of.end(), [](int c) { return c >= 0; });
-		if (pairs == 0 || jointDistance2(z, y, S, candidate_of) <= chi2Quantile(quantile, 2 * static_cast<int>(pairs)))
+		if (pairs == 0 ||
+			jcbb::jointDistance2(z, y, S, candidate_of) <= chi2Quantile(quantile, 2 * static_cast<int>(pairs)))
 			return dropped;
 		std::size_t worst = 0;
 		double worst_d2 = -1;
@@ -122,11 +103,10 @@ std::size_t enforceJointCompatibility(const Eigen::MatrixXd& z, const Eigen::Mat
 	}
 }
 
-/// Individually compatible candidates of each observation at MRPT's own
-/// threshold (its chi2inv), which is what its search branches on.
+/// Individually compatible candidates of each observation (what the search branches on).
 std::vector<int> compatibleCounts(const Eigen::MatrixXd& d2, double gate_quantile)
 {
-	const double threshold = mrpt::math::chi2inv(gate_quantile, 2);
+	const double threshold = chi2Quantile(gate_quantile, 2);
 	std::vector<int> counts(d2.rows(), 0);
 	for (Eigen::Index i = 0; i < d2.rows(); ++i) counts[i] = static_cast<int>((d2.row(i).array() < threshold).count());
 	return counts;
@@ -158,14 +138,21 @@ AssociationResult associate(
 	out.fell_back = method == AssociationMethod::Jcbb && !out.effort.within(bounds);
 	const bool jcbb = method == AssociationMethod::Jcbb && !out.fell_back;
 
-	mrpt::slam::TDataAssociationResults results;
-	mrpt::slam::data_association_full_covariance(
-		toMrpt(z), toMrpt(y), toMrpt(input.covariance), results, jcbb ? mrpt::slam::assocJCBB : mrpt::slam::assocNN,
-		mrpt::slam::metricMaha, gate_quantile, /*use_kdtree=*/false);
-
-	for (const auto& [obs, pred] : results.associations)
-		if (obs < static_cast<std::size_t>(M)) out.candidate_of[obs] = static_cast<int>(pred);
-	out.jcbb_nodes = results.nNodesExploredInJCBB;
+	if (jcbb)
+	{
+		const jcbb::Hypothesis h = jcbb::search({z, y, input.covariance, d2, gate_quantile});
+		out.candidate_of = h.candidate_of;
+		out.jcbb_nodes = h.nodes;
+	}
+	else
+	{
+		mrpt::slam::TDataAssociationResults results;
+		mrpt::slam::data_association_full_covariance(
+			toMrpt(z), toMrpt(y), toMrpt(input.covariance), results, mrpt::slam::assocNN, mrpt::slam::metricMaha,
+			gate_quantile, /*use_kdtree=*/false);
+		for (const auto& [obs, pred] : results.associations)
+			if (obs < static_cast<std::size_t>(M)) out.candidate_of[obs] = static_cast<int>(pred);
+	}
 	if (out.fell_back)
 		out.pairs_dropped = enforceJointCompatibility(z, y, input.covariance, d2, gate_quantile, out.candidate_of);
 	return out;

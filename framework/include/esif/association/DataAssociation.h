@@ -1,12 +1,14 @@
 #pragma once
 /// \file DataAssociation.h
-/// Range-bearing data association through MRPT's mrpt::slam
-/// data_association_full_covariance (nearest neighbour or JCBB, Mahalanobis
-/// metric, chi-square gate), with the two things it leaves to the caller:
-/// bearing wrap-around (it subtracts angles plainly) and telling a new
-/// feature from an ambiguous measurement. JCBB runs only while the problem
-/// is within SearchBounds; beyond them, nearest neighbour with the joint
-/// compatibility test (SearchBounds.h explains why and how).
+/// Range-bearing data association, Mahalanobis metric and chi-square gate:
+/// nearest neighbour through MRPT's mrpt::slam::data_association_full_
+/// covariance, JCBB (Neira & Tardos 2001) by the framework's own search
+/// (src/association/Jcbb.h says why: MRPT 2.5's bound returns the first
+/// maximal hypothesis, not the closest), with what MRPT leaves to the
+/// caller: bearing wrap-around (it subtracts angles plainly) and telling a
+/// new feature from an ambiguous measurement. JCBB runs only while the
+/// problem is within SearchBounds; beyond them, nearest neighbour with the
+/// joint compatibility test (SearchBounds.h explains why and how).
 
 #include <esif/association/SearchBounds.h>
 
