@@ -11,7 +11,9 @@
 /// any other that can only tie is pruned, so the search returns the first
 /// maximal hypothesis in index order, not the closest. With one observation
 /// and two compatible landmarks it took the one at d^2 = 6.3 over the one at
-/// 0.9 (MRCLAM robot 4, step 10), which turned the robot by 0.7 rad.
+/// 0.9 (MRCLAM robot 4, step 10), which turned the robot by 0.7 rad. (The
+/// map-level association of point sets, PointSetAssociation.cpp, still calls
+/// MRPT's and repairs its pick by an exchange step.)
 
 #include <Eigen/Core>
 #include <cstddef>
