@@ -13,6 +13,35 @@ namespace esif::app
 {
 namespace
 {
+/// The range-bearing sensor options every dataset importer takes, with the
+/// defaults of its options struct (keep_ids, std_range_m, std_bearing_deg,
+/// max_range_m, fov_deg).
+struct SensorArgs
+{
+	template <class Options>
+	SensorArgs(TCLAP::CmdLine& cmd, const Options& d)
+		: no_ids("", "no-ids", "drop the landmark IDs (the filter must associate itself)", cmd),
+		  std_range("", "std-range-m", "range noise 1-sigma [m]", false, d.std_range_m, "M", cmd),
+		  std_bearing("", "std-bearing-deg", "bearing noise 1-sigma [deg]", false, d.std_bearing_deg, "DEG", cmd),
+		  max_range("", "max-range-m", "sensor range stored in the rawlog [m]", false, d.max_range_m, "M", cmd),
+		  fov("", "fov-deg", "sensor field of view stored in the rawlog [deg]", false, d.fov_deg, "DEG", cmd)
+	{
+	}
+
+	template <class Options>
+	void applyTo(Options& o)
+	{
+		o.keep_ids = !no_ids.getValue();
+		o.std_range_m = std_range.getValue();
+		o.std_bearing_deg = std_bearing.getValue();
+		o.max_range_m = max_range.getValue();
+		o.fov_deg = fov.getValue();
+	}
+
+	TCLAP::SwitchArg no_ids;
+	TCLAP::ValueArg<double> std_range, std_bearing, max_range, fov;
+};
+
 int importMrclamCommand(int argc, char** argv)
 {
 	TCLAP::CmdLine cmd(
@@ -26,15 +55,8 @@ int importMrclamCommand(int argc, char** argv)
 	TCLAP::ValueArg<std::string> dataset("d", "dataset", "recording folder (MRCLAM_DatasetN)", true, "", "DIR", cmd);
 	TCLAP::ValueArg<int> robot("r", "robot", "robot 1-5", true, 1, "N", cmd);
 	TCLAP::ValueArg<std::string> out("o", "out", "rawlog to write (gz)", true, "", "FILE", cmd);
-	TCLAP::SwitchArg no_ids("", "no-ids", "drop the landmark IDs (the filter must associate itself)", cmd);
 	const MrclamImportOptions d;
-	TCLAP::ValueArg<double> std_range("", "std-range-m", "range noise 1-sigma [m]", false, d.std_range_m, "M", cmd);
-	TCLAP::ValueArg<double> std_bearing("", "std-bearing-deg", "bearing noise 1-sigma [deg]", false, d.std_bearing_deg,
-										"DEG", cmd);
-	TCLAP::ValueArg<double> max_range("", "max-range-m", "sensor range stored in the rawlog [m]", false, d.max_range_m,
-									  "M", cmd);
-	TCLAP::ValueArg<double> fov("", "fov-deg", "sensor field of view stored in the rawlog [deg]", false, d.fov_deg,
-								"DEG", cmd);
+	SensorArgs sensor(cmd, d);
 	std::vector<std::unique_ptr<TCLAP::ValueArg<double>>> noise_args;
 	for (const auto& p : velocityNoiseParameters())
 		noise_args.push_back(std::make_unique<TCLAP::ValueArg<double>>(
@@ -43,11 +65,7 @@ int importMrclamCommand(int argc, char** argv)
 
 	MrclamImportOptions options;
 	options.robot = robot.getValue();
-	options.keep_ids = !no_ids.getValue();
-	options.std_range_m = std_range.getValue();
-	options.std_bearing_deg = std_bearing.getValue();
-	options.max_range_m = max_range.getValue();
-	options.fov_deg = fov.getValue();
+	sensor.applyTo(options);
 	for (std::size_t i = 0; i < noise_args.size(); ++i)
 		velocityNoiseParameters()[i].set(options.odometry_noise, noise_args[i]->getValue());
 	const auto s = importMrclam(dataset.getValue(), out.getValue(), options);
@@ -79,15 +97,8 @@ int importCommand(int argc, char** argv)
 	TCLAP::UnlabeledValueArg<std::string> dataset("dataset", "dataset format: victoria-park", true, "", "DATASET", cmd);
 	TCLAP::ValueArg<std::string> in("i", "in", "dataset file (e.g. victoria_park.txt)", true, "", "FILE", cmd);
 	TCLAP::ValueArg<std::string> out("o", "out", "rawlog to write (gz)", true, "", "FILE", cmd);
-	TCLAP::SwitchArg no_ids("", "no-ids", "drop the landmark IDs (the filter must associate itself)", cmd);
 	const VictoriaParkImportOptions d;
-	TCLAP::ValueArg<double> std_range("", "std-range-m", "range noise 1-sigma [m]", false, d.std_range_m, "M", cmd);
-	TCLAP::ValueArg<double> std_bearing("", "std-bearing-deg", "bearing noise 1-sigma [deg]", false, d.std_bearing_deg,
-										"DEG", cmd);
-	TCLAP::ValueArg<double> max_range("", "max-range-m", "sensor range stored in the rawlog [m]", false, d.max_range_m,
-									  "M", cmd);
-	TCLAP::ValueArg<double> fov("", "fov-deg", "sensor field of view stored in the rawlog [deg]", false, d.fov_deg,
-								"DEG", cmd);
+	SensorArgs sensor(cmd, d);
 	TCLAP::ValueArg<double> dt("", "dt-s", "nominal time between poses [s]", false, d.dt_s, "S", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 	if (dataset.getValue() != "victoria-park")
@@ -95,11 +106,7 @@ int importCommand(int argc, char** argv)
 						  "' (known: victoria-park, mrclam, g2o)");
 
 	VictoriaParkImportOptions options;
-	options.keep_ids = !no_ids.getValue();
-	options.std_range_m = std_range.getValue();
-	options.std_bearing_deg = std_bearing.getValue();
-	options.max_range_m = max_range.getValue();
-	options.fov_deg = fov.getValue();
+	sensor.applyTo(options);
 	options.dt_s = dt.getValue();
 	const auto s = importVictoriaPark(in.getValue(), out.getValue(), options);
 	std::cout << "esif import: " << out.getValue() << ": " << s.poses << " poses, " << s.measurements
