@@ -33,11 +33,12 @@ void printSummary(const Stats& stats, const std::string& input, const std::strin
 {
 	std::cout << "esif run: " << statText(*stats.get("label")) << " on " << input << " -> " << out_dir << "\n";
 	std::vector<std::string> keys = {"steps", "landmarks", "wall_s", "step_us_p50", "step_us_p99", "state_dim",
-									 "da_wrong", "landmark_rmse_m", "ate_rmse_m", "landmark_consistent_fraction"};
+									 "da_wrong", "landmark_rmse_m", "ate_rmse_m", "landmark_consistent_fraction",
+									 "state_nees", "state_nees_dof", "state_nees_consistent"};
 	if (local_maps)
 		keys = {"local_maps", "landmarks", "wall_s", "join_us_p50", "join_us_max", "state_dim", "da_wrong",
 				"landmark_rmse_m", "ate_rmse_m", "landmark_consistent_fraction", "refres_landmark_rms_m",
-				"refres_pose_rms_m"};
+				"refres_pose_rms_m", "state_nees", "state_nees_dof", "state_nees_consistent"};
 	for (const auto& key : keys)
 		if (!local_maps || stats.get(key)) std::cout << "  " << key << " = " << statText(stats.get(key).value_or(nullptr)) << "\n";
 }
@@ -76,9 +77,16 @@ int runCommand(int argc, char** argv)
 		"run folder whose associations.txt gives every measurement's landmark ID (overrides [esif] "
 		"associations_from; esif compare sets it for a config naming another's label)",
 		false, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> reference_run(
+		"", "reference-run",
+		"run folder of a smoother on the same rawlog (the full-SLAM optimum's) to compute the whole-state NEES "
+		"against instead of the ground truth: stats.json state_nees*, landmarks paired by the rawlog's IDs, poses "
+		"by step (a filter's trajectory.tum holds each pose as estimated at its time, not finally). The reference "
+		"shares the run's error, so only a NEES above the interval is a finding",
+		false, "", "DIR", cmd);
 	TCLAP::SwitchArg quiet("q", "quiet", "no progress bar and no summary", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
-	checkInputOptions(rawlog, local_maps, {&ground_truth, &associations_from}, reference_result);
+	checkInputOptions(rawlog, local_maps, {&ground_truth, &associations_from, &reference_run}, reference_result);
 
 	PluginLoader loader(plugin_dir.isSet() ? std::vector<std::string>{plugin_dir.getValue()} : std::vector<std::string>{});
 	if (local_maps.isSet())
@@ -100,6 +108,7 @@ int runCommand(int argc, char** argv)
 	request.out_dir = out.getValue();
 	request.progress_bar = !quiet.getValue();
 	if (associations_from.isSet()) request.associations_from = associations_from.getValue();
+	if (reference_run.isSet()) request.reference_run = reference_run.getValue();
 	const Stats stats = runPipeline(request, loader);
 	if (!quiet.getValue()) printSummary(stats, request.rawlog_path, request.out_dir, false);
 	return 0;

@@ -378,4 +378,36 @@ std::optional<InformationPattern> CeresFullSlam::informationPattern() const
 	return p;
 }
 
+std::optional<StateInformation> CeresFullSlam::stateInformation() const
+{
+	// The Laplace approximation at the optimum: mean = the solution,
+	// information = J^T J, over the blocks informationMatrix() orders.
+	if (!finished_ || graph_->residualDim() == 0) return std::nullopt;
+	StateInformation s;
+	try
+	{
+		s.information = graph_->informationMatrix(threads());
+	}
+	catch (const NumericalError&)
+	{
+		return std::nullopt;  // a collapsed solution, already reported by finish()
+	}
+	std::vector<std::optional<std::size_t>> step_of_pose(graph_->poseCount());
+	for (std::size_t k = 0; k < step_pose_.size(); ++k) step_of_pose[step_pose_[k]] = k;
+	s.mean.resize(static_cast<Eigen::Index>(graph_->parameterDim()));
+	Eigen::Index at = 0;
+	for (std::size_t i = 1; i < graph_->poseCount(); ++i, at += 3)
+	{
+		s.variables.push_back(StateVariable::poseOf(step_of_pose[i]));
+		s.mean.segment<3>(at) = graph_->pose(i);
+	}
+	for (const LandmarkId id : graph_->landmarkIds())
+	{
+		s.variables.push_back(StateVariable::landmarkOf(id));
+		s.mean.segment<2>(at) = graph_->landmark(id);
+		at += 2;
+	}
+	return s;
+}
+
 }  // namespace esif

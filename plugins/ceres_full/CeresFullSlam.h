@@ -47,6 +47,7 @@ class CeresFullSlam : public FilterPlugin
 	/// marked rejected; nullopt when none was.
 	std::optional<std::vector<StepReport>> finalReports() const override;
 	std::optional<InformationPattern> informationPattern() const override;
+	std::optional<StateInformation> stateInformation() const override;
 
 	/// Statistics of the solves so far.
 	struct SolveTally

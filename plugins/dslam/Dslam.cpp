@@ -530,4 +530,10 @@ std::optional<InformationPattern> Dslam::informationPattern() const
 	return map_->core().pattern();
 }
 
+std::optional<StateInformation> Dslam::stateInformation() const
+{
+	if (!map_ || map_->featureCount() == 0) return std::nullopt;
+	return map_->stateInformation();  // features only (eq. 3.10)
+}
+
 }  // namespace esif

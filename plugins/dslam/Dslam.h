@@ -55,6 +55,7 @@ class Dslam : public FilterPlugin
 	CostFigures costFigures() const override;
 	Formulation formulation() const override { return Formulation::Dslam; }
 	std::optional<InformationPattern> informationPattern() const override;
+	std::optional<StateInformation> stateInformation() const override;
 
    private:
 	/// A scan's associated measurements and what they say about admissibility.

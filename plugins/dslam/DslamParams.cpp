@@ -66,11 +66,7 @@ void DslamParams::declare(ParamBinder& b)
 	b.integer("relinearise_iterations", relinearise_iterations,
 			  "passes of the relinearisation after such a correction (each stops early when no update moved)",
 			  Bounds::atLeast(1));
-	b.enumeration<MapLinearisation>("map_linearisation", map_linearisation,
-									{{"shared", MapLinearisation::Shared}, {"current", MapLinearisation::Current}},
-									"map updates linearised at one point per feature, shared by all updates and moved "
-									"only by relinearisation (shared), or at the estimate of their time (current, the "
-									"book)");
+	relative::declareMapLinearisation(b, map_linearisation);
 	b.integer("kidnapped_iterations", kidnapped_iterations,
 			  "Gauss-Newton iterations of the kidnapped-robot solution, eq. (3.17)-(3.18); 1 = the book's single step",
 			  Bounds::atLeast(1));

@@ -3,6 +3,7 @@
 /// Parameters of the D-SLAM plugin, INI section [dslam].
 
 #include <esif/config/ParamBinder.h>
+#include <esif/relative/FeatureMap.h>
 #include <esif/relative/ReferencePair.h>
 #include <esif/relative/RelativeAssociationParams.h>
 #include <esif/sparse/SparseRecoveryParams.h>
@@ -15,15 +16,7 @@ enum class AdmissiblePolicy
 	Skip	  ///< inadmissible scans do not update the map (loses their information)
 };
 
-/// Where the map updates are linearised.
-enum class MapLinearisation
-{
-	/// One point per feature, shared by all updates and moved only by
-	/// relinearisation (FeatureMap::shareLinearisationPoints explains why).
-	Shared,
-	/// The estimate at each update's time, as the book's EIF.
-	Current
-};
+using relative::MapLinearisation;
 
 /// What covariance intersection fuses (Sec. 3.1.4.4).
 enum class FusionScope

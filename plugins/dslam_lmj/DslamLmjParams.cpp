@@ -19,6 +19,7 @@ void DslamLmjParams::declare(ParamBinder& b)
 		   "between fusions, the robot placed by a pair must agree with the open map's start composed with its pose "
 		   "in that map within this chi-square quantile (3 dof); 1 = off",
 		   Bounds{0, 1, true, false});
+	relative::declareMapLinearisation(b, map_linearisation);
 	b.integer("relinearise_iterations", relinearise_iterations,
 			  "Gauss-Newton passes over the global map after each fusion (every map update evaluated again at the "
 			  "current estimate); 0 = never (the book)",

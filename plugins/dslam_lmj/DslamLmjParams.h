@@ -5,6 +5,7 @@
 /// reference pair of each local map (Sec. 4.2.2), the local-map builder
 /// (with the two-common-features rule of Sec. 4.4.4) and the sparse recovery.
 
+#include <esif/relative/FeatureMap.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/localmap/LocalMapBuilderParams.h>
 #include <esif/localmap/MapLevelAssociationParams.h>
@@ -38,6 +39,11 @@ struct DslamLmjParams : MapLevelAssociationParams
 	/// (FeatureMap::relinearise), until none moved. 0 = never (the book's
 	/// EIF linearises each map once, at the estimate before its fusion).
 	int relinearise_iterations = 0;
+	/// Where each fusion (eq. 4.17) is linearised: at the estimate of its
+	/// time (the book) or at one point per feature shared by every fusion and
+	/// moved only by relinearisation (FeatureMap::shareLinearisationPoints:
+	/// the first-estimates Jacobians of a relative map).
+	relative::MapLinearisation map_linearisation = relative::MapLinearisation::Current;
 	/// Only updates whose features' relative geometry moved more than this
 	/// since their last linearisation are evaluated again [m].
 	double relinearise_threshold_m = 0.01;

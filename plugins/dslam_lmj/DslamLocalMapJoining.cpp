@@ -65,6 +65,7 @@ void DslamLocalMapJoining::configure(const ConfigSection& section)
 	loadParams(params_, section);
 	builder_ = std::make_unique<LocalMapBuilder>(params_.builder);
 	global_ = std::make_unique<relative::FeatureMap>(params_.recovery);
+	global_->shareLinearisationPoints(params_.map_linearisation == relative::MapLinearisation::Shared);
 	global_->keepRelativeTerms(params_.relinearise_iterations > 0);
 }
 
@@ -553,6 +554,13 @@ std::optional<InformationPattern> DslamLocalMapJoining::informationPattern() con
 {
 	requireConfigured();
 	return global_->core().pattern();
+}
+
+std::optional<StateInformation> DslamLocalMapJoining::stateInformation() const
+{
+	requireConfigured();
+	if (global_->featureCount() == 0) return std::nullopt;
+	return global_->stateInformation();	 // features only (eq. 4.1)
 }
 
 CostFigures DslamLocalMapJoining::costFigures() const

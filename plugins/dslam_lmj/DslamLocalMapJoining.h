@@ -51,6 +51,7 @@ class DslamLocalMapJoining : public FilterPlugin, public LocalMapJoiner
 	Formulation formulation() const override { return Formulation::DslamLocalMapJoining; }
 	std::optional<std::vector<StepReport>> finalReports() const override;
 	std::optional<InformationPattern> informationPattern() const override;
+	std::optional<StateInformation> stateInformation() const override;
 
 	LocalMapBuilderParams localMapBuilderParams() const override { return params_.builder; }
 	void joinLocalMap(const LocalMap& map) override;

@@ -8,9 +8,27 @@
 
 namespace esif::slsjf
 {
-GlobalMap::GlobalMap(const SparseRecoveryParams& params)
-	: params_(params), core_(std::make_unique<SparseInformationCore>(params))
+GlobalMap::GlobalMap(const SparseRecoveryParams& params, JacobianPoints jacobians)
+	: params_(params), jacobians_(jacobians), core_(std::make_unique<SparseInformationCore>(params))
 {
+}
+
+VarId GlobalMap::newPose(const Pose2& initial)
+{
+	first_estimates_.push_back(initial);
+	return core_->addPose(initial);
+}
+
+VarId GlobalMap::newPoint(const Eigen::Vector2d& initial)
+{
+	first_estimates_.push_back(initial);
+	return core_->addPoint(initial);
+}
+
+GlobalMap::LinearisationPoint GlobalMap::fusionPoint() const
+{
+	if (jacobians_ == JacobianPoints::FirstEstimates) return [this](VarId v) { return first_estimates_[v.value]; };
+	return [this](VarId v) { return core_->estimate(v); };
 }
 
 Pose2 GlobalMap::startEstimate(const std::optional<VarId>& start) const
@@ -31,10 +49,10 @@ std::optional<VarId> GlobalMap::startPose(const LocalMap& map)
 	if (!map.link) return previous_end;
 	// Eq. (5.4)-(5.6): X_(k+1)s = f(X_ke, u) + w, initialised at f(X_ke^, u).
 	const Pose2 u = toPose2(map.link->delta);
-	const VarId start = core_->addPose(compose(startEstimate(previous_end), u));
+	const VarId start = newPose(compose(startEstimate(previous_end), u));
 	++poses_;
 	links_.push_back({previous_end, start, u, map.link->cov});
-	addLinkTerm(*core_, links_.back());
+	addLinkTerm(*core_, links_.back(), fusionPoint());
 	return start;
 }
 
@@ -42,7 +60,7 @@ VarId GlobalMap::addFeature(LandmarkId proposed, const Eigen::Vector2d& initial,
 {
 	id = proposed >= 0 && !var_of_id_.count(proposed) ? proposed : next_free_id_;
 	while (var_of_id_.count(id)) ++id;
-	const VarId v = core_->addPoint(initial);
+	const VarId v = newPoint(initial);
 	var_of_id_[id] = v;
 	id_of_var_[v.value] = id;
 	feature_vars_.push_back(v);
@@ -55,11 +73,12 @@ void GlobalMap::fuse(const LocalMap& map, std::optional<VarId> start, StepReport
 	std::vector<bool> keep(map.features.size());
 	for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = decisions.associations[i].kind != Association::Kind::Rejected;
 
-	FusedMap fused{map.index, start, VarId{}, {}, keepFeatures(map, keep), extent};
+	FusedMap fused{map.index, std::nullopt, start, VarId{}, {}, keepFeatures(map, keep), extent};
+	if (map.steps > 0) fused.last_step = map.last_step;
 	const Pose2 s = startEstimate(start);
 	// Eq. (5.7): new features and the end pose from the start pose; these
 	// are only linearisation points, the map's information is fused below.
-	fused.end = core_->addPose(compose(s, map.end_pose));
+	fused.end = newPose(compose(s, map.end_pose));
 	++poses_;
 	for (const std::size_t i : fused.observation.kept)
 	{
@@ -72,20 +91,35 @@ void GlobalMap::fuse(const LocalMap& map, std::optional<VarId> start, StepReport
 			throw std::logic_error("SLSJF: local map " + std::to_string(map.index) + " matched unknown feature " +
 								   std::to_string(a.id));
 	}
-	addMapTerm(*core_, fused);
+	addMapTerm(*core_, fused, fusionPoint());
 	fused_.push_back(std::move(fused));
 	core_->setReferencePoint(pose(fused_.back().end).head<2>());
 	core_->recoverState();	// eq. (5.14)
 }
 
-void GlobalMap::addLinkTerm(SparseInformationCore& core, const LinkTerm& link)
+StateInformation GlobalMap::stateInformation() const
+{
+	std::map<int, const FusedMap*> map_of_end;
+	for (const FusedMap& f : fused_) map_of_end[f.end.value] = &f;
+	return core_->stateInformation(
+		[&](VarId v)
+		{
+			if (const auto id = id_of_var_.find(v.value); id != id_of_var_.end())
+				return StateVariable::landmarkOf(id->second);
+			if (const auto end = map_of_end.find(v.value); end != map_of_end.end())
+				return StateVariable::poseOf(end->second->last_step, end->second->index);
+			return StateVariable::poseOf(std::nullopt);
+		});
+}
+
+void GlobalMap::addLinkTerm(SparseInformationCore& core, const LinkTerm& link, const LinearisationPoint& at)
 {
 	// F = X_s - f(X_e, u) = 0 + w (eq. 5.5): innovation -F(x^), Jacobian
 	// [-df/dX_e, I]. The odometry's covariance Q is the increment's, in X_e's
 	// frame (as every StepInput's): eq. 5.4's additive w has df/du Q df/du^T.
 	const Pose2 e = link.from ? Pose2(core.estimate(*link.from)) : Pose2::Zero();
 	const Pose2 s = core.estimate(link.to);
-	const ComposeJacobians df = composeJacobians(e, link.u);
+	const ComposeJacobians df = composeJacobians(link.from ? Pose2(at(*link.from)) : Pose2::Zero(), link.u);
 	const Eigen::Matrix3d W = df.d_b * link.Q * df.d_b.transpose();
 	Eigen::Vector3d innovation = compose(e, link.u) - s;
 	innovation(2) = wrapAngle(innovation(2));
@@ -99,14 +133,20 @@ void GlobalMap::addLinkTerm(SparseInformationCore& core, const LinkTerm& link)
 	core.addMeasurement({*link.from, link.to}, J, 0.5 * (W + W.transpose()), innovation);
 }
 
-void GlobalMap::addMapTerm(SparseInformationCore& core, const FusedMap& map)
+void GlobalMap::addMapTerm(SparseInformationCore& core, const FusedMap& map, const LinearisationPoint& at)
 {
-	std::vector<Eigen::Vector2d> features;
-	for (const VarId v : map.features) features.push_back(core.estimate(v));
+	// The innovation at the current estimate, the Jacobian where `at` says.
+	std::vector<Eigen::Vector2d> features, features_at;
+	for (const VarId v : map.features)
+	{
+		features.push_back(core.estimate(v));
+		features_at.push_back(at(v));
+	}
 	const Pose2 s = map.start ? Pose2(core.estimate(*map.start)) : Pose2::Zero();
-	const LocalMapPrediction h = predictLocalMap(s, core.estimate(map.end), features);  // eq. (5.8)
-	Eigen::VectorXd innovation = map.observation.z - h.h;
+	const Pose2 s_at = map.start ? Pose2(at(*map.start)) : Pose2::Zero();
+	Eigen::VectorXd innovation = map.observation.z - predictLocalMap(s, core.estimate(map.end), features).h;  // eq. (5.8)
 	innovation(2) = wrapAngle(innovation(2));
+	const LocalMapPrediction h = predictLocalMap(s_at, at(map.end), features_at);
 
 	std::vector<VarId> vars;
 	if (map.start) vars.push_back(*map.start);
@@ -132,8 +172,10 @@ std::unique_ptr<SparseInformationCore> GlobalMap::rebuiltCore() const
 		else
 			fresh->addPoint(x);
 	}
-	for (const auto& link : links_) addLinkTerm(*fresh, link);
-	for (const auto& map : fused_) addMapTerm(*fresh, map);
+	// Gauss-Newton: every term relinearised at the current estimate.
+	const LinearisationPoint current = [&fresh](VarId v) { return fresh->estimate(v); };
+	for (const auto& link : links_) addLinkTerm(*fresh, link, current);
+	for (const auto& map : fused_) addMapTerm(*fresh, map, current);
 	if (!fused_.empty()) fresh->setReferencePoint(pose(fused_.back().end).head<2>());
 	return fresh;
 }
@@ -177,9 +219,16 @@ int GlobalMap::relinearise(int max_iterations, double tolerance)
 		const double change = largestChange(fresh->information(), before, fresh->state());
 		accumulate(retired_, core_->counters());
 		core_ = std::move(fresh);
-		if (change <= tolerance) return iteration;
+		if (change <= tolerance) return restartFirstEstimates(), iteration;
 	}
+	restartFirstEstimates();
 	return max_iterations;
+}
+
+void GlobalMap::restartFirstEstimates()
+{
+	for (std::size_t v = 0; v < first_estimates_.size(); ++v)
+		first_estimates_[v] = core_->estimate(VarId{static_cast<int>(v)});
 }
 
 SparseCounters GlobalMap::counters() const

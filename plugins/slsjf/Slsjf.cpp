@@ -33,7 +33,7 @@ void Slsjf::configure(const ConfigSection& section)
 {
 	loadParams(params_, section);
 	builder_ = std::make_unique<LocalMapBuilder>(params_.builder);
-	global_ = std::make_unique<GlobalMap>(params_.recovery);
+	global_ = std::make_unique<GlobalMap>(params_.recovery, params_.jacobians);
 }
 
 void Slsjf::requireConfigured() const
@@ -239,6 +239,13 @@ std::optional<InformationPattern> Slsjf::informationPattern() const
 {
 	requireConfigured();
 	return global_->core().pattern();
+}
+
+std::optional<StateInformation> Slsjf::stateInformation() const
+{
+	requireConfigured();
+	if (global_->fusedMaps().empty()) return std::nullopt;
+	return global_->stateInformation();
 }
 
 CostFigures Slsjf::costFigures() const

@@ -49,6 +49,7 @@ class Slsjf : public FilterPlugin, public LocalMapJoiner
 	/// in that map (first-order covariance). Plain SLSJF keeps its online poses.
 	std::optional<std::vector<PoseEstimate>> smoothedTrajectory() const override;
 	std::optional<InformationPattern> informationPattern() const override;
+	std::optional<StateInformation> stateInformation() const override;
 
 	LocalMapBuilderParams localMapBuilderParams() const override { return params_.builder; }
 	void joinLocalMap(const LocalMap& map) override;

@@ -10,6 +10,11 @@ void SlsjfParams::declare(ParamBinder& b)
 		   Bounds::nonNegative());
 	b.real("overlap_sigmas", overlap_sigmas, "sigmas added to map radii and start-pose uncertainty in the overlap test",
 		   Bounds::nonNegative());
+	b.enumeration<JacobianPoints>(
+		"jacobians", jacobians,
+		{{"current", JacobianPoints::Current}, {"first_estimates", JacobianPoints::FirstEstimates}},
+		"where each fusion (eq. 5.9) is linearised: current = at the current estimate (the book's SLSJF); "
+		"first_estimates = at each variable's first estimate, the innovation still at the current one (FEJ)");
 	b.enumeration<Smoothing>(
 		"smoothing", smoothing,
 		{{"none", Smoothing::None}, {"final", Smoothing::Final}, {"every_k_maps", Smoothing::EveryKMaps}},

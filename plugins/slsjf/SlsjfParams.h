@@ -5,6 +5,7 @@
 /// (iterated SLSJF), the local-map builder and the sparse recovery.
 
 #include <esif/config/ParamBinder.h>
+#include <esif/ekf/EkfSlamCore.h>
 #include <esif/localmap/LocalMapBuilderParams.h>
 #include <esif/localmap/MapLevelAssociationParams.h>
 #include <esif/sparse/SparseRecoveryParams.h>
@@ -34,6 +35,10 @@ struct SlsjfParams : MapLevelAssociationParams
 	/// Sigmas added to local-map radii and to the start-pose uncertainty in
 	/// the overlap test (the authors' SigmaMultiplier).
 	double overlap_sigmas = 3.0;
+
+	/// Where each fusion is linearised (GlobalMap.h): the book's current
+	/// estimate, or each variable's first estimate (FEJ).
+	JacobianPoints jacobians = JacobianPoints::Current;
 
 	Smoothing smoothing = Smoothing::None;	///< none | final | every_k_maps
 	int smoothing_every_maps = 50;	///< K of every_k_maps

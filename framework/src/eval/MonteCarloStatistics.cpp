@@ -199,6 +199,28 @@ MeanSpread meanSpreadOf(const std::vector<double>& values)
 	return {mean, std::sqrt(sq / static_cast<double>(values.size() - 1))};
 }
 
+namespace
+{
+void addStateStatistics(const std::vector<CampaignRunErrors>& runs, ConfigStatistics& out)
+{
+	double nees = 0;
+	std::size_t dof = 0, inside = 0;
+	for (const auto& run : runs)
+	{
+		if (!run.state_nees || run.state_nees_dof == 0) continue;
+		++out.state_runs;
+		nees += *run.state_nees;
+		dof += run.state_nees_dof;
+		const AneesBounds own = aneesBounds(static_cast<int>(run.state_nees_dof), 1);
+		if (own.contains(*run.state_nees)) ++inside;
+	}
+	if (out.state_runs == 0) return;
+	out.state_anees_per_dof = nees / static_cast<double>(dof);
+	out.state_bounds = aneesBounds(1, dof);	 // chi2(D) / D: D runs of one dof have the same bounds
+	out.state_runs_inside_fraction = static_cast<double>(inside) / static_cast<double>(out.state_runs);
+}
+}  // namespace
+
 ConfigStatistics aggregateRuns(const std::string& name, const std::vector<CampaignRunErrors>& runs)
 {
 	if (runs.empty()) throw std::invalid_argument("aggregateRuns: " + name + ": no finished run");
@@ -207,6 +229,7 @@ ConfigStatistics aggregateRuns(const std::string& name, const std::vector<Campai
 	out.runs = runs.size();
 	addPoseStatistics(runs, out);
 	addLandmarkStatistics(runs, out);
+	addStateStatistics(runs, out);
 	std::vector<double> trajectory, landmarks, wall;
 	for (const auto& run : runs)
 	{

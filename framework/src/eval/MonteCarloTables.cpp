@@ -43,7 +43,8 @@ const char* const kSummaryColumns =
 	"landmark_anees,landmark_bound_lo,landmark_bound_hi,landmarks_inside_fraction,landmarks_scored,"
 	"trajectory_rmse_mean_m,trajectory_rmse_std_m,landmark_rmse_mean_m,landmark_rmse_std_m,"
 	"final_position_rmse_m,wall_s_median,wall_s_p25,wall_s_p75,wall_s_min,wall_s_max,da_wrong_total,"
-	"runs_with_da_wrong,pose_position_anees_mean,pose_heading_anees_mean";
+	"runs_with_da_wrong,pose_position_anees_mean,pose_heading_anees_mean,state_runs,state_anees_per_dof,"
+	"state_bound_lo,state_bound_hi,state_runs_inside_fraction";
 
 /// The RMSE over runs of the position at the last step all runs have.
 double finalPositionRmse(const ConfigStatistics& c)
@@ -65,7 +66,8 @@ std::string monteCarloSummaryCsv(const std::vector<ConfigStatistics>& configs, s
 			full(c.landmark_rmse_m.mean), full(c.landmark_rmse_m.stddev), full(finalPositionRmse(c)),
 			full(c.wall_s.median), full(c.wall_s.p25), full(c.wall_s.p75), full(c.wall_s.min), full(c.wall_s.max),
 			std::to_string(c.da_wrong_total), std::to_string(c.runs_with_da_wrong), full(c.pose_position_anees_mean),
-			full(c.pose_heading_anees_mean)};
+			full(c.pose_heading_anees_mean), std::to_string(c.state_runs), full(c.state_anees_per_dof),
+			full(c.state_bounds.lo), full(c.state_bounds.hi), full(c.state_runs_inside_fraction)};
 		for (std::size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + cells[i];
 		out += "\n";
 	}
@@ -78,15 +80,18 @@ std::string monteCarloSummaryMarkdown(
 	std::string out = "# " + title + "\n\n";
 	out += "| config | N | pose ANEES (mean over steps) | 95% bounds (3N dof) | steps inside | "
 		   "position / heading ANEES | landmark ANEES | 95% bounds (2N dof) | landmarks inside | "
+		   "whole-state ANEES per dof | 95% bounds | runs inside | "
 		   "trajectory RMSE [m] | landmark RMSE [m] | time per run [s] | wrong associations |\n";
-	out += "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+	out += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 	for (const auto& c : configs)
 	{
 		out += "| " + c.name + " | " + std::to_string(c.runs) + " | " + rounded(c.pose_anees_mean) + " | " +
 			   band(c.pose_bounds) + " | " + percent(c.pose_steps_inside_fraction) + " | " +
 			   rounded(c.pose_position_anees_mean) + " / " + rounded(c.pose_heading_anees_mean) + " | " +
 			   rounded(c.landmark_anees) + " | " + band(c.landmark_bounds) + " | " +
-			   percent(c.landmarks_inside_fraction) + " | " + rounded(c.trajectory_rmse_m.mean) + " ± " +
+			   percent(c.landmarks_inside_fraction) + " | " + rounded(c.state_anees_per_dof) + " | " +
+			   (c.state_runs ? band(c.state_bounds) : std::string("-")) + " | " + percent(c.state_runs_inside_fraction) +
+			   " | " + rounded(c.trajectory_rmse_m.mean) + " ± " +
 			   rounded(c.trajectory_rmse_m.stddev, 2) + " | " + rounded(c.landmark_rmse_m.mean) + " ± " +
 			   rounded(c.landmark_rmse_m.stddev, 2) + " | " + rounded(c.wall_s.median) + " [" +
 			   rounded(c.wall_s.p25) + ", " + rounded(c.wall_s.p75) + "] | " + std::to_string(c.da_wrong_total) +
@@ -101,7 +106,11 @@ std::string monteCarloSummaryMarkdown(
 		   "landmarks over all runs and landmarks, held against the bounds of one landmark over N runs (the "
 		   "landmarks of a run share the robot's error, so they are not independent draws); \"landmarks "
 		   "inside\": the share of landmarks whose own ANEES over the runs that mapped them is inside its "
-		   "bounds. RMSE: per run, of the trajectory's positions over its steps and of its final landmarks; "
+		   "bounds. Whole-state ANEES (back-ends with an information matrix): the book's chi-square test of "
+		   "the whole final state (features and the poses it holds) with its full information matrix, "
+		   "sum of NEES over the runs divided by the sum of their degrees of freedom D, ideal 1, bounds "
+		   "[chi2inv(0.025, D), chi2inv(0.975, D)] / D; \"runs inside\": the share of runs whose own NEES is "
+		   "inside its 95% interval. RMSE: per run, of the trajectory's positions over its steps and of its final landmarks; "
 		   "mean ± standard deviation over runs. Time: the filter's wall time per run, median [quartiles]. "
 		   "Runs are independent noise draws of the same scenario (same world and path).\n";
 	if (!gaps.failed.empty() || !gaps.pending.empty())

@@ -201,7 +201,7 @@ LocalMap LocalMapBuilder::closeOpenMap()
 void LocalMapBuilder::startNextMap()
 {
 	++index_;
-	ekf_ = LandmarkEkf(params_.association, next_own_id_);
+	ekf_ = LandmarkEkf(params_.association, next_own_id_, params_.jacobians);
 	steps_ = measurements_ = 0;
 	travelled_m_ = 0;
 	own_ids_.clear();

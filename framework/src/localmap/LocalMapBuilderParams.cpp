@@ -20,6 +20,11 @@ void LocalMapBuilderParams::declare(ParamBinder& b)
 		"odometry (odometry, eq. 5.4)");
 	PrefixedBinder local(b, "local_");
 	association.declare(local);
+	local.enumeration<JacobianPoints>(
+		"jacobians", jacobians,
+		{{"current", JacobianPoints::Current}, {"first_estimates", JacobianPoints::FirstEstimates}},
+		"where the local map's EKF takes its Jacobians: current = at the latest estimate (textbook EKF); "
+		"first_estimates = at the robot's prior and each feature's first estimate (Huang et al.'s FEJ)");
 }
 
 }  // namespace esif

@@ -5,6 +5,15 @@
 
 namespace esif::relative
 {
+void declareMapLinearisation(ParamBinder& b, MapLinearisation& field)
+{
+	b.enumeration<MapLinearisation>("map_linearisation", field,
+									{{"shared", MapLinearisation::Shared}, {"current", MapLinearisation::Current}},
+									"map updates linearised at one point per feature, shared by all updates and moved "
+									"only by relinearisation (shared), or at the estimate of their time (current, the "
+									"book)");
+}
+
 FeatureMap::FeatureMap(const SparseRecoveryParams& params) : core_(params) {}
 
 Eigen::Vector2d FeatureMap::position(LandmarkId id) const { return core_.estimate(var_of_.at(id)); }
@@ -164,6 +173,11 @@ void FeatureMap::recover(const Eigen::Vector2d& robot_xy)
 {
 	core_.setReferencePoint(robot_xy);
 	core_.recoverState();
+}
+
+StateInformation FeatureMap::stateInformation() const
+{
+	return core_.stateInformation([&](VarId v) { return StateVariable::landmarkOf(ids_.at(static_cast<std::size_t>(v.value))); });
 }
 
 Eigen::MatrixXd FeatureMap::covariance(const std::vector<LandmarkId>& ids) { return core_.covariance(variables(ids)); }

@@ -97,6 +97,19 @@ void writeOutputs(
 	writeAssociationFile(
 		(dir / kAssociationFileName).string(), result.reports, host.plugin, request.local_maps_dir);
 }
+
+/// The whole-state NEES against the folder's ground truth: its landmarks,
+/// and the true end pose of map k for the state's pose of map k.
+std::optional<StateNees> truthStateNees(
+	const LocalMapFolder& folder, const FilterPlugin& plugin, const std::map<LandmarkId, LandmarkId>& filter_to_file,
+	const std::string& what)
+{
+	if (!folder.truth_landmarks && !folder.truth_end_poses) return std::nullopt;
+	StateReference reference;
+	if (folder.truth_landmarks) reference.landmarks = *folder.truth_landmarks;
+	if (folder.truth_end_poses) reference.poses_by_local_map = *folder.truth_end_poses;
+	return finalStateNees(plugin, reference, filter_to_file, what);
+}
 }  // namespace
 
 LocalMapJoiner& requireLocalMapJoiner(FilterPlugin& plugin, const std::string& config, const std::string& name)
@@ -133,6 +146,7 @@ Stats runInto(const LocalMapRunRequest& request, PluginLoader& loader)
 	writeOutputs(host, request, *plugin, result);
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	Stats stats = collectStats(host, request, in, result, *plugin, accuracy, difference, total_wall_s);
+	setStateNeesStats(stats, truthStateNees(in.folder, *plugin, filter_to_file, request.config_path), "truth");
 	flagSuspectResult(stats);
 	writeTextAtomically((std::filesystem::path(request.out_dir) / "stats.json").string(), stats.toJson());
 	return stats;

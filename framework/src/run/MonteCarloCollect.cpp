@@ -40,6 +40,8 @@ CampaignRunErrors readCampaignRun(const std::string& run_folder, std::size_t see
 	run.wall_s = *wall;
 	run.da_wrong = static_cast<long long>(stats.number("da_wrong").value_or(0));
 	run.suspect_reason = recordedSuspectReason(stats);
+	run.state_nees = stats.number("state_nees");
+	if (run.state_nees) run.state_nees_dof = static_cast<std::size_t>(stats.number("state_nees_dof").value_or(0));
 	return run;
 }
 

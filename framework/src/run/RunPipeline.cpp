@@ -96,13 +96,15 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 			std::cerr << "esif: warning: " << *problem << "; accuracy and consistency figures left null\n";
 			truth.reset();
 		}
+	const auto reference_run =
+		request.reference_run ? std::optional<RunOutputs>(readRunOutputs(*request.reference_run)) : std::nullopt;
 	ReplayResult result = replay(*plugin, log, {host.keyframe_min_distance_m, request.progress_bar});
+	const std::map<LandmarkId, LandmarkId> filter_to_true = result.audit.filterToTrue();
 
 	std::optional<Accuracy> accuracy;
 	if (truth)
 	{
 		result.record.truth = truth->inInitialPoseFrame();
-		std::map<LandmarkId, LandmarkId> filter_to_true = result.audit.filterToTrue();
 		const auto pose_errors = poseErrors(*result.record.truth, result.record.trajectory);
 		const auto landmark_errors =
 			landmarkErrors(*result.record.truth, result.record.final_estimate, filter_to_true);
@@ -124,6 +126,16 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 		writeLocalMapTimesImage(result.fusion_costs, (dir / "localmap_times.png").string(), host.image_size_px);
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	Stats stats = collectStats(host, request, log, result, *plugin, accuracy, total_wall_s);
+	if (reference_run)
+		setStateNeesStats(
+			stats, finalStateNees(*plugin, stateReferenceOf(*reference_run, log.steps.size()), filter_to_true, request.config_path),
+			*request.reference_run);
+	else if (result.record.truth)
+		setStateNeesStats(
+			stats, finalStateNees(*plugin, stateReferenceOf(*result.record.truth), filter_to_true, request.config_path),
+			"truth");
+	else
+		setStateNeesStats(stats, std::nullopt, "");
 	flagSuspectResult(stats);
 	writeTextAtomically((dir / "stats.json").string(), stats.toJson());
 	return stats;
@@ -132,10 +144,10 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 
 Stats runPipeline(const RunRequest& request, PluginLoader& loader)
 {
-	requireOutputApart(
-		request.out_dir, rawlogRunInputs(
-							 request.config_path, request.rawlog_path, request.ground_truth_prefix,
-							 request.associations_from));
+	auto inputs = rawlogRunInputs(
+		request.config_path, request.rawlog_path, request.ground_truth_prefix, request.associations_from);
+	inputs.push_back({"the reference run", request.reference_run.value_or("")});
+	requireOutputApart(request.out_dir, inputs);
 	return writeRunFolder(request.out_dir, kRunOutputFiles, [&](const std::string& staging) {
 		RunRequest staged = request;
 		staged.out_dir = staging;

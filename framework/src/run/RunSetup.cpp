@@ -164,6 +164,41 @@ void setAccuracyStats(Stats& s, const std::optional<Accuracy>& accuracy)
 	s.set("landmarks_evaluated", StatValue(static_cast<long long>(acc.landmarks_evaluated)));
 }
 
+std::optional<StateNees> finalStateNees(
+	const FilterPlugin& plugin, const StateReference& reference,
+	const std::optional<std::map<LandmarkId, LandmarkId>>& filter_to_reference, const std::string& what)
+{
+	const auto state = plugin.stateInformation();
+	if (!state) return std::nullopt;
+	try
+	{
+		return stateNees(*state, reference, filter_to_reference, what);
+	}
+	catch (const NumericalError& e)
+	{
+		std::cerr << "esif: warning: " << e.what() << "; state_nees left null\n";
+		return std::nullopt;
+	}
+}
+
+void setStateNeesStats(Stats& s, const std::optional<StateNees>& nees, const std::string& reference)
+{
+	if (!nees)
+	{
+		for (const char* key : {"state_nees", "state_nees_dof", "state_nees_lower95", "state_nees_upper95",
+								"state_nees_consistent", "state_nees_poses", "state_nees_reference"})
+			s.set(key, StatValue(nullptr));
+		return;
+	}
+	s.set("state_nees", StatValue(nees->nees));
+	s.set("state_nees_dof", StatValue(static_cast<long long>(nees->dof)));
+	s.set("state_nees_lower95", StatValue(nees->lower95));
+	s.set("state_nees_upper95", StatValue(nees->upper95));
+	s.set("state_nees_consistent", StatValue(nees->consistent() ? 1LL : 0LL));
+	s.set("state_nees_poses", StatValue(static_cast<long long>(nees->poses_compared)));
+	s.set("state_nees_reference", StatValue(reference));
+}
+
 void setPluginCounters(Stats& s, const CostFigures& cost)
 {
 	for (const auto& [name, value] : cost.counters) s.set("plugin_" + name, StatValue(value));

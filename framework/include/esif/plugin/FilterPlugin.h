@@ -18,6 +18,7 @@
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Estimate.h>
 #include <esif/core/InformationPattern.h>
+#include <esif/core/StateInformation.h>
 #include <esif/core/StepInput.h>
 
 #include <mrpt/rtti/CObject.h>
@@ -84,6 +85,14 @@ class FilterPlugin : public mrpt::rtti::CObject
 	/// back-ends; the host draws it as info_matrix.png. Called once, after
 	/// finish(). Covariance-form back-ends keep the default (none).
 	virtual std::optional<InformationPattern> informationPattern() const { return std::nullopt; }
+
+	/// For information-form back-ends: the whole state they hold (features
+	/// and, where the state has them, poses), its estimate and its full
+	/// information matrix, for the whole-state consistency test
+	/// (eval/StateNees.h, stats.json "state_nees"). Called after finish(),
+	/// and by `esif localmaps check` after each joinLocalMap(). The estimate
+	/// must be the recovered one. Covariance-form back-ends keep the default.
+	virtual std::optional<StateInformation> stateInformation() const { return std::nullopt; }
 };
 
 }  // namespace esif

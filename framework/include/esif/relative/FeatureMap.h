@@ -11,6 +11,7 @@
 ///   the initial pose (the map frame, known exactly) get a joint prior.
 /// The last update can be withdrawn (Sec. 3.4.1).
 
+#include <esif/config/ParamBinder.h>
 #include <esif/core/Estimate.h>
 #include <esif/relative/RelativeGeometry.h>
 #include <esif/sparse/SparseInformationCore.h>
@@ -28,6 +29,19 @@ struct MapUpdate
 	std::vector<LandmarkId> new_features;  ///< features this update created
 	long relative_index = -1;			   ///< its entry among the kept relative terms, if kept
 };
+
+/// Where a feature map's relative updates are linearised.
+enum class MapLinearisation
+{
+	/// One point per feature, shared by all updates and moved only by
+	/// relinearisation (FeatureMap::shareLinearisationPoints explains why).
+	Shared,
+	/// The estimate at each update's time, as the book's EIF.
+	Current
+};
+
+/// Declares key `map_linearisation` (shared | current) for `field`.
+void declareMapLinearisation(ParamBinder& b, MapLinearisation& field);
 
 class FeatureMap
 {
@@ -109,6 +123,10 @@ class FeatureMap
 
 	/// Every feature with its marginal covariance.
 	std::vector<LandmarkEstimate> landmarks();
+
+	/// The map's state (features only, eq. 3.10) with its information
+	/// matrix, at the last recovery.
+	StateInformation stateInformation() const;
 
 	SparseInformationCore& core() { return core_; }
 	const SparseInformationCore& core() const { return core_; }

@@ -21,6 +21,10 @@ struct RunRequest
 	/// Overrides `[esif] associations_from` (`esif run --associations-from`,
 	/// which `esif compare` sets to the run folder of the config it names).
 	std::optional<std::string> associations_from;
+	/// A smoother's run folder (the full-SLAM optimum's) the whole-state NEES
+	/// is computed against instead of the ground truth (`esif run
+	/// --reference-run`); its trajectory.tum must hold one final pose per step.
+	std::optional<std::string> reference_run;
 };
 
 /// Runs the whole pipeline and writes every output into request.out_dir:

@@ -9,6 +9,7 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/eval/AssociationAudit.h>
 #include <esif/eval/Evaluator.h>
+#include <esif/eval/StateNees.h>
 #include <esif/io/GroundTruth.h>
 #include <esif/io/OutputApart.h>
 #include <esif/io/RawlogReader.h>
@@ -88,6 +89,20 @@ void setAssociationStats(Stats& stats, const AssociationAudit& audit);
 /// Sets the accuracy keys (landmark_rmse_m, ate_rmse_m, NEES means,
 /// consistent fractions, landmarks_evaluated); null without ground truth.
 void setAccuracyStats(Stats& stats, const std::optional<Accuracy>& accuracy);
+
+/// The whole-state NEES of the plugin's final state against `reference`
+/// (eval/StateNees.h), its landmarks paired through `filter_to_reference`;
+/// nullopt when the plugin holds no information matrix or nothing can be
+/// compared. A numerical failure of the test is a warning on stderr naming
+/// the run, not a failed run: the test is a figure about the result.
+std::optional<StateNees> finalStateNees(
+	const FilterPlugin& plugin, const StateReference& reference,
+	const std::optional<std::map<LandmarkId, LandmarkId>>& filter_to_reference, const std::string& what);
+
+/// Sets state_nees, state_nees_dof, state_nees_lower95, state_nees_upper95,
+/// state_nees_consistent (1/0), state_nees_poses and state_nees_reference
+/// ("truth", a run folder, or null with every other key when not computed).
+void setStateNeesStats(Stats& stats, const std::optional<StateNees>& nees, const std::string& reference);
 
 /// Sets plugin_<name> for each of the plugin's own counters.
 void setPluginCounters(Stats& stats, const CostFigures& cost);

@@ -12,6 +12,7 @@
 /// then covariance({...}) for the variables near the robot.
 
 #include <esif/core/InformationPattern.h>
+#include <esif/core/StateInformation.h>
 #include <esif/sparse/Cholmod.h>
 #include <esif/sparse/InformationForm.h>
 #include <esif/sparse/RecoverySolver.h>
@@ -19,6 +20,7 @@
 #include <esif/sparse/SparseRecoveryParams.h>
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -80,6 +82,11 @@ class SparseInformationCore
 	/// Sparsity of I (natural order) and of the method's current factor (its
 	/// own order), brought up to date first; for pictures and pattern tests.
 	InformationPattern pattern();
+
+	/// The estimate (last recovery) and I as a StateInformation, each
+	/// variable (in order of creation) named by `describe`, which must give
+	/// it its own dimension (2 points, 3 poses).
+	StateInformation stateInformation(const std::function<StateVariable(VarId)>& describe) const;
 
 	/// Counters with the current non-zeros of I and of the factor.
 	SparseCounters counters() const;
