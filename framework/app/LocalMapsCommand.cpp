@@ -5,6 +5,9 @@
 #include <esif/eval/LocalMapFolderSummary.h>
 #include <esif/localmap/LocalMapFiles.h>
 #include <esif/run/LocalMapBuild.h>
+#include <esif/run/LocalMapCheck.h>
+
+#include <algorithm>
 
 #include <cstdio>
 #include <cstring>
@@ -18,7 +21,9 @@ const char* const kUsage =
 	"usage: esif localmaps <action> [options]   (esif localmaps <action> --help for details)\n\n"
 	"actions:\n"
 	"  build     build local maps from a rawlog with a joining plugin's builder settings\n"
-	"  info      summarise a folder of local maps (sizes, ground truth, maps sharing < 2 features)\n";
+	"  info      summarise a folder of local maps (sizes, ground truth, maps sharing < 2 features)\n"
+	"  check     consistency of each local map and of the joined state after each fusion, against the truth or "
+	"a reference run\n";
 
 /// One paragraph: what `build` wrote.
 void printBuildSummary(const LocalMapFolderSummary& s, const LocalMapBuildRequest& request, LandmarkId id_offset)
@@ -70,6 +75,74 @@ int buildAction(int argc, char** argv)
 	return 0;
 }
 
+/// The share of rows inside their 95% interval, and the median NEES per dof.
+template <class Rows, class Nees>
+std::string consistencyLine(const Rows& rows, Nees nees_of)
+{
+	if (rows.empty()) return "none";
+	std::vector<double> per_dof;
+	std::size_t inside = 0;
+	for (const auto& r : rows)
+	{
+		const StateNees& n = nees_of(r);
+		per_dof.push_back(n.nees / static_cast<double>(n.dof));
+		inside += n.consistent() ? 1 : 0;
+	}
+	std::nth_element(per_dof.begin(), per_dof.begin() + static_cast<long>(per_dof.size() / 2), per_dof.end());
+	char buf[160];
+	std::snprintf(buf, sizeof(buf), "%zu of %zu inside their 95%% interval, median NEES/dof %.2f", inside, rows.size(),
+				  per_dof[per_dof.size() / 2]);
+	return buf;
+}
+
+int checkAction(int argc, char** argv)
+{
+	TCLAP::CmdLine cmd(
+		"Builds the local maps the config's joining plugin would fuse from a rawlog, holds each against the "
+		"reference in its start frame (NEES of the whole map, of its end pose, features inside their 95% "
+		"ellipse), then fuses them one by one with the plugin and holds the whole state against the reference "
+		"after each fusion. Tells whether over-confidence enters in the local maps or in their fusion. Writes "
+		"local_maps_nees.csv, fusion_nees.csv and consistency.png.",
+		' ', ESIF_VERSION);
+	TCLAP::ValueArg<std::string> config("c", "config", "INI file whose [esif] plugin is a local-map joining plugin",
+										true, "", "FILE", cmd);
+	TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "MRPT rawlog (gz or plain)", true, "", "FILE", cmd);
+	TCLAP::ValueArg<std::string> ground_truth(
+		"g", "ground-truth", "ground-truth prefix P (P_ground_truth.txt, ...); default: beside the rawlog", false, "",
+		"PREFIX", cmd);
+	TCLAP::ValueArg<std::string> reference_run(
+		"", "reference-run",
+		"run folder on the same rawlog (e.g. the full-SLAM optimum) to use as the reference instead of the ground "
+		"truth: its landmarks by the rawlog's IDs, its trajectory row k as the pose after step k",
+		false, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> out("o", "out", "folder to write (replaced once complete)", true, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> plugin_dir("", "plugin-dir", "extra folder to search for plugins", false, "", "DIR",
+											cmd);
+	TCLAP::SwitchArg quiet("q", "quiet", "no progress bar and no summary", cmd);
+	if (!parseCommandLine(cmd, argc, argv)) return 0;
+
+	LocalMapCheckRequest request;
+	request.config_path = config.getValue();
+	request.rawlog_path = rawlog.getValue();
+	if (ground_truth.isSet()) request.ground_truth_prefix = ground_truth.getValue();
+	if (reference_run.isSet()) request.reference_run = reference_run.getValue();
+	request.out_dir = out.getValue();
+	request.progress_bar = !quiet.getValue();
+	PluginLoader loader(plugin_dir.isSet() ? std::vector<std::string>{plugin_dir.getValue()} : std::vector<std::string>{});
+	const LocalMapCheckResult r = runLocalMapCheck(request, loader);
+	if (quiet.getValue()) return 0;
+	std::cout << "esif localmaps check: " << request.rawlog_path << " against " << r.reference << " -> "
+			  << request.out_dir << "\n  local maps: "
+			  << consistencyLine(r.maps, [](const LocalMapConsistency& m) -> const StateNees& { return m.whole; })
+			  << "\n  state after each fusion: "
+			  << consistencyLine(r.fusions, [](const FusionConsistency& f) -> const StateNees& { return f.nees; });
+	if (!r.fusions.empty())
+		std::printf("\n  after the last fusion: NEES %.1f for %zu dof [%.1f, %.1f]", r.fusions.back().nees.nees,
+					r.fusions.back().nees.dof, r.fusions.back().nees.lower95, r.fusions.back().nees.upper95);
+	std::cout << std::endl;
+	return 0;
+}
+
 int infoAction(int argc, char** argv)
 {
 	TCLAP::CmdLine cmd(
@@ -86,7 +159,7 @@ int infoAction(int argc, char** argv)
 
 int localMapsCommand(int argc, char** argv)
 {
-	if (argc < 2) throw ConfigError("esif localmaps: name an action: build or info (see --help)");
+	if (argc < 2) throw ConfigError("esif localmaps: name an action: build, info or check (see --help)");
 	const std::string action = argv[1];
 	if (action == "--help" || action == "-h" || action == "help")
 	{
@@ -98,7 +171,8 @@ int localMapsCommand(int argc, char** argv)
 	argv[1] = prog.data();
 	if (action == "build") return buildAction(argc - 1, argv + 1);
 	if (action == "info") return infoAction(argc - 1, argv + 1);
-	throw ConfigError("esif localmaps: unknown action '" + action + "' (known: build, info)");
+	if (action == "check") return checkAction(argc - 1, argv + 1);
+	throw ConfigError("esif localmaps: unknown action '" + action + "' (known: build, info, check)");
 }
 
 }  // namespace esif::app

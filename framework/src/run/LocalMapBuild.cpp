@@ -80,10 +80,7 @@ void attachLocalMapGroundTruth(LocalMapFolder& folder, const Rawlog& log, const 
 	if (!end_poses.empty()) folder.truth_end_poses = std::move(end_poses);
 }
 
-namespace
-{
-/// The whole build, writing into `out_dir` (the partial folder).
-LocalMapBuildResult buildInto(const LocalMapBuildRequest& request, const std::string& out_dir, PluginLoader& loader)
+LocalMapsOfRawlog buildLocalMapsOfRawlog(const LocalMapBuildRequest& request, PluginLoader& loader)
 {
 	const ConfigFile cfg = ConfigFile::load(request.config_path);
 	const HostParams host = loadHostParams(cfg);
@@ -97,10 +94,24 @@ LocalMapBuildResult buildInto(const LocalMapBuildRequest& request, const std::st
 	if (associations) applyAssociations(log, readAssociationFile(*associations, log.steps.size()), *associations);
 	const auto truth = findGroundTruth(request.ground_truth_prefix, request.rawlog_path);
 
+	LocalMapsOfRawlog out;
+	out.maps = buildLocalMaps(log, joiner->localMapBuilderParams(), request.progress_bar);
+	out.id_offset = makeFeatureIdsPositive(out.maps);
+	if (truth) out.truth = truth->inInitialPoseFrame();
+	out.log = std::move(log);
+	return out;
+}
+
+namespace
+{
+/// The whole build, writing into `out_dir` (the partial folder).
+LocalMapBuildResult buildInto(const LocalMapBuildRequest& request, const std::string& out_dir, PluginLoader& loader)
+{
+	LocalMapsOfRawlog built = buildLocalMapsOfRawlog(request, loader);
 	LocalMapBuildResult out;
-	out.folder.maps = buildLocalMaps(log, joiner->localMapBuilderParams(), request.progress_bar);
-	out.id_offset = makeFeatureIdsPositive(out.folder.maps);
-	if (truth) attachLocalMapGroundTruth(out.folder, log, truth->inInitialPoseFrame());
+	out.folder.maps = std::move(built.maps);
+	out.id_offset = built.id_offset;
+	if (built.truth) attachLocalMapGroundTruth(out.folder, built.log, *built.truth);
 	writeLocalMapFiles(out.folder, out_dir);
 	return out;
 }

@@ -61,6 +61,19 @@ struct LocalMapBuildResult
 	LandmarkId id_offset = 0;  ///< added to the rawlog's IDs (makeFeatureIdsPositive)
 };
 
+/// The maps of a build, before anything is written.
+struct LocalMapsOfRawlog
+{
+	Rawlog log;	 ///< as read (with the config's read options and associations)
+	std::vector<LocalMap> maps;	 ///< IDs made positive
+	LandmarkId id_offset = 0;
+	std::optional<GroundTruth> truth;  ///< the rawlog's, in the frame of the initial pose
+};
+
+/// The reading and building half of runLocalMapBuild (same checks, same
+/// order), for commands that use the maps without writing them.
+LocalMapsOfRawlog buildLocalMapsOfRawlog(const LocalMapBuildRequest& request, PluginLoader& loader);
+
 /// The whole command: reads the config (its plugin must be a LocalMapJoiner,
 /// else ConfigError "`config`: plugin X is not a local-map joining plugin"),
 /// configures the plugin from its section as `esif run` does, reads the
