@@ -1,5 +1,7 @@
 #include "GlobalMap.h"
 
+#include "ObservabilityConstraint.h"
+
 #include <esif/core/Errors.h>
 #include <esif/models/LocalMapObservation.h>
 
@@ -8,7 +10,7 @@
 
 namespace esif::slsjf
 {
-GlobalMap::GlobalMap(const SparseRecoveryParams& params, JacobianPoints jacobians)
+GlobalMap::GlobalMap(const SparseRecoveryParams& params, FusionJacobians jacobians)
 	: params_(params), jacobians_(jacobians), core_(std::make_unique<SparseInformationCore>(params))
 {
 }
@@ -27,9 +29,27 @@ VarId GlobalMap::newPoint(const Eigen::Vector2d& initial)
 
 GlobalMap::LinearisationPoint GlobalMap::fusionPoint() const
 {
-	if (jacobians_ == JacobianPoints::FirstEstimates) return [this](VarId v) { return first_estimates_[v.value]; };
+	if (jacobians_ == FusionJacobians::FirstEstimates) return [this](VarId v) { return first_estimates_[v.value]; };
 	return [this](VarId v) { return core_->estimate(v); };
 }
+
+std::optional<GlobalMap::LinearisationPoint> GlobalMap::nullSpacePoint() const
+{
+	if (jacobians_ != FusionJacobians::ObservabilityConstrained) return std::nullopt;
+	return LinearisationPoint([this](VarId v) { return first_estimates_[v.value]; });
+}
+
+namespace
+{
+/// J projected onto the rigid-motion null space of `vars` at `at`.
+Eigen::MatrixXd constrained(
+	const Eigen::MatrixXd& J, const std::vector<VarId>& vars, const std::function<Eigen::VectorXd(VarId)>& at)
+{
+	std::vector<Eigen::VectorXd> points;
+	for (const VarId v : vars) points.push_back(at(v));
+	return constrainToNullSpace(J, rigidMotionDirections(points));
+}
+}  // namespace
 
 Pose2 GlobalMap::startEstimate(const std::optional<VarId>& start) const
 {
@@ -52,7 +72,7 @@ std::optional<VarId> GlobalMap::startPose(const LocalMap& map)
 	const VarId start = newPose(compose(startEstimate(previous_end), u));
 	++poses_;
 	links_.push_back({previous_end, start, u, map.link->cov});
-	addLinkTerm(*core_, links_.back(), fusionPoint());
+	addLinkTerm(*core_, links_.back(), fusionPoint(), nullSpacePoint());
 	return start;
 }
 
@@ -91,7 +111,7 @@ void GlobalMap::fuse(const LocalMap& map, std::optional<VarId> start, StepReport
 			throw std::logic_error("SLSJF: local map " + std::to_string(map.index) + " matched unknown feature " +
 								   std::to_string(a.id));
 	}
-	addMapTerm(*core_, fused, fusionPoint());
+	addMapTerm(*core_, fused, fusionPoint(), nullSpacePoint());
 	fused_.push_back(std::move(fused));
 	core_->setReferencePoint(pose(fused_.back().end).head<2>());
 	core_->recoverState();	// eq. (5.14)
@@ -112,7 +132,9 @@ StateInformation GlobalMap::stateInformation() const
 		});
 }
 
-void GlobalMap::addLinkTerm(SparseInformationCore& core, const LinkTerm& link, const LinearisationPoint& at)
+void GlobalMap::addLinkTerm(
+	SparseInformationCore& core, const LinkTerm& link, const LinearisationPoint& at,
+	const std::optional<LinearisationPoint>& null_space_at)
 {
 	// F = X_s - f(X_e, u) = 0 + w (eq. 5.5): innovation -F(x^), Jacobian
 	// [-df/dX_e, I]. The odometry's covariance Q is the increment's, in X_e's
@@ -130,10 +152,13 @@ void GlobalMap::addLinkTerm(SparseInformationCore& core, const LinkTerm& link, c
 	}
 	Eigen::MatrixXd J(3, 6);
 	J << -df.d_a, Eigen::Matrix3d::Identity();
+	if (null_space_at) J = constrained(J, {*link.from, link.to}, *null_space_at);
 	core.addMeasurement({*link.from, link.to}, J, 0.5 * (W + W.transpose()), innovation);
 }
 
-void GlobalMap::addMapTerm(SparseInformationCore& core, const FusedMap& map, const LinearisationPoint& at)
+void GlobalMap::addMapTerm(
+	SparseInformationCore& core, const FusedMap& map, const LinearisationPoint& at,
+	const std::optional<LinearisationPoint>& null_space_at)
 {
 	// The innovation at the current estimate, the Jacobian where `at` says.
 	std::vector<Eigen::Vector2d> features, features_at;
@@ -157,6 +182,9 @@ void GlobalMap::addMapTerm(SparseInformationCore& core, const FusedMap& map, con
 		J << h.d_start, h.d_state;
 	else
 		J = h.d_state;
+	// Only a map seen from a variable start is relative; map 1, from the
+	// constant origin, fixes the frame.
+	if (map.start && null_space_at) J = constrained(J, vars, *null_space_at);
 	core.addInformationMeasurement(vars, J, map.observation.information, innovation);  // eq. (5.9)
 }
 

@@ -16,14 +16,16 @@
 /// Roumeliotis 2010) every Jacobian is taken at each variable's first
 /// estimate instead, the innovation still at the current one. Maps fused at
 /// different estimates of the same variables then no longer inform
-/// directions no map observes (the chain's rotation about the origin): on
-/// Victoria Park the book's filter ends 27 m and 11.7 deg from the optimum
-/// with no landmark inside its own 95% ellipse, FEJ 1.6 m and 85%.
+/// directions no map observes (the chain's rotation about the origin), the
+/// over-confidence that turns the book's filter's map on real data (README,
+/// SLSJF section, has the figures). FEJ's points can be metres from the
+/// estimate after a long loop closes; the observability-constrained
+/// Jacobians (ObservabilityConstraint.h) keep the current point and only
+/// the shared null space.
 
 #include "VirtualObservation.h"
 
 #include <esif/core/Estimate.h>
-#include <esif/ekf/EkfSlamCore.h>
 #include <esif/localmap/LocalMap.h>
 #include <esif/sparse/SparseInformationCore.h>
 
@@ -40,6 +42,16 @@ struct MapExtent
 {
 	double radius_m = 0;  ///< farthest reach of the map's features from its origin, with sigmas [m]
 	double start_uncertainty_m = 0;	 ///< sigmas of the start position when the map was fused [m]
+};
+
+/// Where each fusion's Jacobians are taken (the file comment explains).
+enum class FusionJacobians
+{
+	Current,		 ///< the current estimate (the book)
+	FirstEstimates,	 ///< each variable's first estimate (FEJ)
+	/// the current estimate, projected so that every fusion shares the
+	/// rigid-motion null space of the first estimates (ObservabilityConstraint.h)
+	ObservabilityConstrained
 };
 
 /// One fused local map as the global map keeps it.
@@ -68,7 +80,7 @@ class GlobalMap
 {
    public:
 	/// `jacobians`: where each fusion is linearised (see above).
-	GlobalMap(const SparseRecoveryParams& params, JacobianPoints jacobians);
+	GlobalMap(const SparseRecoveryParams& params, FusionJacobians jacobians);
 
 	/// Step 1 of Algorithm 5.1: the start pose of `map`. Map 1 starts at the
 	/// origin (nullopt); a later map at the previous end pose; a map with a
@@ -122,16 +134,25 @@ class GlobalMap
 	VarId addFeature(LandmarkId proposed, const Eigen::Vector2d& initial, LandmarkId& id);
 	VarId newPose(const Pose2& initial);
 	VarId newPoint(const Eigen::Vector2d& initial);
-	/// The first estimate (FEJ) or the current one, as configured.
+	/// Where a fusion's Jacobian is taken: the first estimate (FEJ) or the
+	/// current one, as configured.
 	LinearisationPoint fusionPoint() const;
-	static void addLinkTerm(SparseInformationCore& core, const LinkTerm& link, const LinearisationPoint& at);
-	static void addMapTerm(SparseInformationCore& core, const FusedMap& map, const LinearisationPoint& at);
+	/// Where the shared null space is taken (observability-constrained
+	/// Jacobians: the first estimates), or none.
+	std::optional<LinearisationPoint> nullSpacePoint() const;
+	/// A link term (eq. 5.4-5.6) and a map term (eq. 5.8-5.9); with
+	/// `null_space_at`, a relative term's Jacobian is projected onto that
+	/// point's rigid-motion null space.
+	static void addLinkTerm(SparseInformationCore& core, const LinkTerm& link, const LinearisationPoint& at,
+							const std::optional<LinearisationPoint>& null_space_at = std::nullopt);
+	static void addMapTerm(SparseInformationCore& core, const FusedMap& map, const LinearisationPoint& at,
+						   const std::optional<LinearisationPoint>& null_space_at = std::nullopt);
 	std::unique_ptr<SparseInformationCore> rebuiltCore() const;
 	/// After a relinearisation the relinearised estimates are the first ones.
 	void restartFirstEstimates();
 
 	SparseRecoveryParams params_;
-	JacobianPoints jacobians_;
+	FusionJacobians jacobians_;
 	std::unique_ptr<SparseInformationCore> core_;
 	std::vector<Eigen::VectorXd> first_estimates_;	///< by VarId value
 	std::vector<FusedMap> fused_;

@@ -10,11 +10,15 @@ void SlsjfParams::declare(ParamBinder& b)
 		   Bounds::nonNegative());
 	b.real("overlap_sigmas", overlap_sigmas, "sigmas added to map radii and start-pose uncertainty in the overlap test",
 		   Bounds::nonNegative());
-	b.enumeration<JacobianPoints>(
+	b.enumeration<FusionJacobians>(
 		"jacobians", jacobians,
-		{{"current", JacobianPoints::Current}, {"first_estimates", JacobianPoints::FirstEstimates}},
+		{{"current", FusionJacobians::Current},
+		 {"first_estimates", FusionJacobians::FirstEstimates},
+		 {"observability_constrained", FusionJacobians::ObservabilityConstrained}},
 		"where each fusion (eq. 5.9) is linearised: current = at the current estimate (the book's SLSJF); "
-		"first_estimates = at each variable's first estimate, the innovation still at the current one (FEJ)");
+		"first_estimates = at each variable's first estimate, the innovation still at the current one (FEJ); "
+		"observability_constrained = at the current estimate, projected onto the rigid-motion null space of the "
+		"first estimates");
 	b.enumeration<Smoothing>(
 		"smoothing", smoothing,
 		{{"none", Smoothing::None}, {"final", Smoothing::Final}, {"every_k_maps", Smoothing::EveryKMaps}},

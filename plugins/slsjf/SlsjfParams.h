@@ -4,8 +4,9 @@
 /// association (Sec. 5.4.1), the optional relinearisation of all fused maps
 /// (iterated SLSJF), the local-map builder and the sparse recovery.
 
+#include "GlobalMap.h"
+
 #include <esif/config/ParamBinder.h>
-#include <esif/ekf/EkfSlamCore.h>
 #include <esif/localmap/LocalMapBuilderParams.h>
 #include <esif/localmap/MapLevelAssociationParams.h>
 #include <esif/sparse/SparseRecoveryParams.h>
@@ -37,8 +38,9 @@ struct SlsjfParams : MapLevelAssociationParams
 	double overlap_sigmas = 3.0;
 
 	/// Where each fusion is linearised (GlobalMap.h): the book's current
-	/// estimate, or each variable's first estimate (FEJ).
-	JacobianPoints jacobians = JacobianPoints::Current;
+	/// estimate, each variable's first estimate (FEJ), or the current one
+	/// constrained to the first estimates' null space.
+	FusionJacobians jacobians = FusionJacobians::Current;
 
 	Smoothing smoothing = Smoothing::None;	///< none | final | every_k_maps
 	int smoothing_every_maps = 50;	///< K of every_k_maps
