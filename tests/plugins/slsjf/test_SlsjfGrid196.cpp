@@ -16,6 +16,8 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -130,32 +132,44 @@ TEST(SlsjfGrid196, WithoutIdsMakesNoWrongAssociation)
 	EXPECT_GE(*r.accuracy.landmark_consistent_fraction, 0.95);
 }
 
-TEST(SlsjfGrid196, EndPosesAreMoreCertainThanTheEkfsRobot)
+TEST(SlsjfGrid196, EndHeadingsAreMoreCertainThanTheEkfsAndPositionsAsCertain)
 {
 	// Fig. 5.5: SLSJF keeps every local map's end pose, and each is smoothed
 	// by all later maps, so its 2-sigma bounds are smaller than the EKF's
 	// (which only the past informs) at the same steps; both consistent.
+	// Both filters with first-estimates Jacobians, as configs/slsjf.ini and
+	// configs/ekf.ini: with the textbook ones each gains spurious
+	// information, and the comparison would be between over-confidences.
 	const Rawlog log = readRawlog(kGrid196);
 	const Scored slsjf = run("Slsjf", sectionOf("configs/slsjf.ini"), log);
-	const Scored ekf = run("EkfSlam", "association = known_ids\n", log);
+	const Scored ekf = run("EkfSlam", "association = known_ids\njacobians = first_estimates\n", log);
 	const auto ends = dynamic_cast<const LocalMapJoiner&>(*slsjf.plugin).endPoses();
 	const auto truth = loadGroundTruth(groundTruthPrefixFor(kGrid196))->inInitialPoseFrame();
 	const std::size_t steps_per_map = 45;
 	std::size_t smaller = 0, compared = 0, slsjf_consistent = 0;
+	double worst_position_ratio = 0;
 	for (std::size_t k = 1; k < ends.size(); ++k)  // the last map is partial
 	{
 		const std::size_t step = k * steps_per_map - 1;
 		const Eigen::Matrix3d& P = ends[k - 1].cov;
 		const Eigen::Matrix3d& Q = ekf.result.record.trajectory[step].pose.cov;
-		smaller += P(0, 0) < Q(0, 0) && P(1, 1) < Q(1, 1) && P(2, 2) < Q(2, 2);
+		smaller += P(2, 2) < Q(2, 2);
+		worst_position_ratio = std::max({worst_position_ratio, P(0, 0) / Q(0, 0), P(1, 1) / Q(1, 1)});
 		Eigen::Vector3d e = toPose2(ends[k - 1].mean) - truth.path[step];
 		e(2) = wrapAngle(e(2));
 		slsjf_consistent += *nees(e, P) < chi2Quantile(0.95, 3);
 		++compared;
 	}
-	std::cout << "end poses with smaller x, y and heading variance than the EKF's: " << smaller << " of " << compared
+	std::cout << "end poses with smaller heading variance than the EKF's: " << smaller << " of " << compared
+			  << ", largest x or y variance ratio to the EKF's " << worst_position_ratio
 			  << "; within their 95% ellipsoid: " << slsjf_consistent << "\n";
 	EXPECT_EQ(smaller, compared);
+	// In x and y both are dominated by the drift both filters share; the
+	// first-estimates fusion gives up a little information for consistency
+	// (measured: at most 4.5% more variance than the EKF's; with the
+	// book's current-estimate fusion every variance was smaller, and the
+	// landmarks over-confident).
+	EXPECT_LT(worst_position_ratio, 1.10);
 	EXPECT_GE(slsjf_consistent, compared * 9 / 10);
 }
 
