@@ -45,6 +45,13 @@ const std::vector<std::string>& localMapJoinKeys()
 	return keys;
 }
 
+/// The whole-state test (stats.json state_nees*), for information-form runs.
+const std::vector<std::string>& stateNeesKeys()
+{
+	static const std::vector<std::string> keys = {"state_nees", "state_nees_dof", "state_nees_consistent"};
+	return keys;
+}
+
 /// What a failed row adds: shown after "plugin" when any row has it.
 const std::vector<std::string>& failureKeys()
 {
@@ -56,7 +63,8 @@ constexpr const char* kFailed = "failed";
 constexpr const char* kNotRun = "not run";
 constexpr const char* kSuspect = "suspect";
 
-/// comparisonKeys(), then the map-joining figures, the ratios to the
+/// comparisonKeys(), then the whole-state test when a run has it, the
+/// map-joining figures, the ratios to the
 /// optimization baseline, the difference-from-reference keys and the
 /// difference from a reference result (--reference-result) when a run has them.
 std::vector<std::string> tableKeys(const std::vector<Stats>& runs)
@@ -64,6 +72,10 @@ std::vector<std::string> tableKeys(const std::vector<Stats>& runs)
 	std::vector<std::string> keys = comparisonKeys();
 	if (std::any_of(runs.begin(), runs.end(), [](const Stats& s) { return s.get("status").has_value(); }))
 		keys.insert(keys.begin() + 1, failureKeys().begin(), failureKeys().end());
+	const auto anyHas = [&](const std::string& k) {
+		return std::any_of(runs.begin(), runs.end(), [&](const Stats& s) { return s.number(k).has_value(); });
+	};
+	if (anyHas("state_nees")) keys.insert(keys.end(), stateNeesKeys().begin(), stateNeesKeys().end());
 	for (const auto* optional_keys :
 		 {&localMapJoinKeys(), &baselineRatioKeys(), &runDifferenceKeys(), &referenceResultKeys()})
 		for (const auto& k : *optional_keys)
