@@ -216,15 +216,16 @@ TruthDeviation expectMapsEqualTruth(const std::vector<LocalMap>& maps, const tb:
 /// closes at the first step at which it has taken `steps_limit` steps and
 /// holds `min_common` features of map k-1 (map 1: the step limit alone);
 /// the last map is the one that never got there and finish() emitted.
-void expectExactClosePolicy(const tb::BuiltMaps& built, int steps_limit, int min_common)
+/// With `in_earlier_maps`, the common features are counted in maps 1..k-1.
+void expectExactClosePolicy(const tb::BuiltMaps& built, int steps_limit, int min_common, bool in_earlier_maps = false)
 {
 	const auto& maps = built.maps;
 	for (std::size_t k = 0; k < maps.size(); ++k)
 	{
 		SCOPED_TRACE(::testing::Message() << "map " << k + 1);
 		std::set<LandmarkId> previous;
-		if (k > 0)
-			for (const auto& f : maps[k - 1].features) previous.insert(f.id);
+		for (std::size_t j = in_earlier_maps ? 0 : k - std::min<std::size_t>(k, 1); j < k; ++j)
+			for (const auto& f : maps[j].features) previous.insert(f.id);
 		std::set<LandmarkId> held;
 		std::optional<std::size_t> close_after;	 // steps after which the rule fires
 		for (std::size_t s = 0; s < maps[k].steps && !close_after; ++s)
@@ -295,6 +296,34 @@ TEST(LocalMapBuilderNoiseFree, MapsEqualTheTruthInTheirStartFrames)
 	// The band forces extensions: the rule is exercised, not vacuous.
 	EXPECT_GT(extended, 0u);
 	EXPECT_TRUE(built.last_from_finish);
+}
+
+TEST(LocalMapBuilderNoiseFree, CommonFeaturesCountedInEveryEarlierMapCloseMapsSooner)
+{
+	// The featureless scenario again: where the robot comes back to features
+	// mapped long before, the previous map shares none with the new one but
+	// the earlier maps do, so fewer maps are extended and none for longer.
+	const auto run = tb::simulateInMemory(
+		tb::withoutNoise(tb::scenarioFromConfig("featureless")), kFilterStdRange, kFilterStdBearing);
+	LocalMapBuilderParams params;
+	params.local_map_steps = 30;
+	params.local_map_min_common_features = 2;
+	const auto previous = tb::buildLocalMaps(params, run.steps);
+	params.local_map_common_features_in = CommonFeaturesIn::EarlierMaps;
+	const auto earlier = tb::buildLocalMaps(params, run.steps);
+	expectTiling(earlier.maps, run.steps.size());
+	expectExactClosePolicy(earlier, 30, 2, true);
+	expectMapsEqualTruth(earlier.maps, run);
+	const auto extendedSteps = [](const tb::BuiltMaps& b) {
+		std::size_t n = 0;
+		for (std::size_t k = 0; k + 1 < b.maps.size(); ++k) n += b.maps[k].steps - std::min<std::size_t>(b.maps[k].steps, 30);
+		return n;
+	};
+	std::cout << "featureless, 30 steps + 2 common: " << previous.maps.size() << " maps (previous map), "
+			  << earlier.maps.size() << " (earlier maps); steps beyond the limit " << extendedSteps(previous) << " / "
+			  << extendedSteps(earlier) << "\n";
+	EXPECT_GE(earlier.maps.size(), previous.maps.size());
+	EXPECT_LE(extendedSteps(earlier), extendedSteps(previous));
 }
 
 TEST(LocalMapBuilderNoiseFree, StepLimitAloneGivesMapsOfExactlyNSteps)

@@ -94,8 +94,10 @@ std::size_t LocalMapBuilder::openMapCommonFeatures() const
 	if (!previous_) return 0;
 	std::set<LandmarkId> previous_ids;
 	for (const auto& f : previous_->features) previous_ids.insert(f.id);
+	const std::set<LandmarkId>& counted_in =
+		params_.local_map_common_features_in == CommonFeaturesIn::EarlierMaps ? ids_in_closed_maps_ : previous_ids;
 	std::size_t common = 0;
-	for (const LandmarkId id : ekf_.ids()) common += !own_ids_.count(id) && previous_ids.count(id);
+	for (const LandmarkId id : ekf_.ids()) common += !own_ids_.count(id) && counted_in.count(id);
 	if (!own_ids_.empty())
 		for (const auto& m : matchOwnFeaturesToPrevious()) common += m.has_value();
 	return common;

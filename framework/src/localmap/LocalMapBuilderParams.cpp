@@ -11,8 +11,14 @@ void LocalMapBuilderParams::declare(ParamBinder& b)
 	b.real("local_map_max_distance_m", local_map_max_distance_m,
 		   "close a local map once the robot travelled this far in it [m]; 0 = no limit", Bounds::nonNegative());
 	b.integer("local_map_min_common_features", local_map_min_common_features,
-			  "extend a local map until it holds this many features of the previous map (Ch. 4 needs 2)",
+			  "extend a local map until it holds this many features of the previous map, or of any earlier map "
+			  "(local_map_common_features_in; Ch. 4 needs 2)",
 			  Bounds::nonNegative());
+	b.enumeration<CommonFeaturesIn>(
+		"local_map_common_features_in", local_map_common_features_in,
+		{{"previous_map", CommonFeaturesIn::PreviousMap}, {"earlier_maps", CommonFeaturesIn::EarlierMaps}},
+		"where local_map_min_common_features are counted: in the previous map (the book's wording) or in any "
+		"earlier map (the global map; by ID, the builder's own IDs count against the previous map)");
 	b.enumeration<LocalMapLink>(
 		"local_map_link", local_map_link,
 		{{"shared_pose", LocalMapLink::SharedPose}, {"odometry", LocalMapLink::Odometry}},

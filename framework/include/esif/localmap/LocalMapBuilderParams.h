@@ -8,7 +8,8 @@
 ///
 /// A map is closed after the step at which any of the limits set (> 0) is
 /// reached, but only once it holds at least local_map_min_common_features
-/// features of the previous map (the Ch. 4 rule; 0 for SLSJF). With every
+/// features of the previous map, or of any earlier map (the Ch. 4 rule;
+/// 0 for SLSJF). With every
 /// limit 0 the whole log is one local map. The last, partial map is closed
 /// at the end of the log whatever the rules say.
 
@@ -18,6 +19,20 @@
 
 namespace esif
 {
+/// Which maps the common features of the Ch. 4 rule are counted in.
+enum class CommonFeaturesIn
+{
+	/// The previous map (the book's wording, Sec. 4.4.4).
+	PreviousMap,
+	/// Any earlier map: what the joining needs, two features the global map
+	/// holds (the authors' Victoria Park maps meet it this way). Where the
+	/// robot leaves the previous map's features behind quickly, the
+	/// previous-map rule stretches maps over hundreds of steps. Counted by
+	/// ID: maps whose features the builder numbered itself fall back to the
+	/// previous map.
+	EarlierMaps
+};
+
 /// How the next local map starts.
 enum class LocalMapLink
 {
@@ -33,6 +48,7 @@ struct LocalMapBuilderParams
 	/// Close only once the map holds this many features of the previous map
 	/// (0 for SLSJF; 2 for D-SLAM map joining, Sec. 4.4.4).
 	int local_map_min_common_features = 0;
+	CommonFeaturesIn local_map_common_features_in = CommonFeaturesIn::PreviousMap;	///< previous_map | earlier_maps
 	LocalMapLink local_map_link = LocalMapLink::SharedPose;	 ///< shared_pose | odometry
 	/// Association inside a local map (keys prefixed `local_`, e.g. local_association).
 	EkfAssociationParams association;
