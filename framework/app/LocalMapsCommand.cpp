@@ -25,6 +25,42 @@ const char* const kUsage =
 	"  check     consistency of each local map and of the joined state after each fusion, against the truth or "
 	"a reference run\n";
 
+/// The options `build` and `check` share: where the maps come from and
+/// where the result goes.
+struct RawlogMapArgs
+{
+	TCLAP::ValueArg<std::string> config, rawlog, ground_truth, out, plugin_dir;
+	TCLAP::SwitchArg quiet;
+
+	explicit RawlogMapArgs(TCLAP::CmdLine& cmd)
+		: config("c", "config", "INI file whose [esif] plugin is a local-map joining plugin", true, "", "FILE", cmd),
+		  rawlog("r", "rawlog", "MRPT rawlog (gz or plain)", true, "", "FILE", cmd),
+		  ground_truth("g", "ground-truth",
+					   "ground-truth prefix P (P_ground_truth.txt, ...); default: beside the rawlog", false, "",
+					   "PREFIX", cmd),
+		  out("o", "out", "folder to write (replaced once complete)", true, "", "DIR", cmd),
+		  plugin_dir("", "plugin-dir", "extra folder to search for plugins", false, "", "DIR", cmd),
+		  quiet("q", "quiet", "no progress bar and no summary", cmd)
+	{
+	}
+
+	template <class Request>
+	void fill(Request& request)
+	{
+		request.config_path = config.getValue();
+		request.rawlog_path = rawlog.getValue();
+		if (ground_truth.isSet()) request.ground_truth_prefix = ground_truth.getValue();
+		request.out_dir = out.getValue();
+		request.progress_bar = !quiet.getValue();
+	}
+
+	PluginLoader loader()
+	{
+		return PluginLoader(plugin_dir.isSet() ? std::vector<std::string>{plugin_dir.getValue()}
+											   : std::vector<std::string>{});
+	}
+};
+
 /// One paragraph: what `build` wrote.
 void printBuildSummary(const LocalMapFolderSummary& s, const LocalMapBuildRequest& request, LandmarkId id_offset)
 {
@@ -51,27 +87,14 @@ int buildAction(int argc, char** argv)
 		"local-map form (ground_truth_landmarks.txt, ground_truth_end_poses.txt, frame of pose 0) when the "
 		"rawlog has it.",
 		' ', ESIF_VERSION);
-	TCLAP::ValueArg<std::string> config("c", "config", "INI file whose [esif] plugin is a local-map joining plugin",
-										true, "", "FILE", cmd);
-	TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "MRPT rawlog (gz or plain)", true, "", "FILE", cmd);
-	TCLAP::ValueArg<std::string> ground_truth(
-		"g", "ground-truth", "ground-truth prefix P (P_ground_truth.txt, ...); default: beside the rawlog", false, "",
-		"PREFIX", cmd);
-	TCLAP::ValueArg<std::string> out("o", "out", "folder to write (replaced once complete)", true, "", "DIR", cmd);
-	TCLAP::ValueArg<std::string> plugin_dir("", "plugin-dir", "extra folder to search for plugins", false, "", "DIR",
-											cmd);
-	TCLAP::SwitchArg quiet("q", "quiet", "no progress bar and no summary", cmd);
+	RawlogMapArgs args(cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 
 	LocalMapBuildRequest request;
-	request.config_path = config.getValue();
-	request.rawlog_path = rawlog.getValue();
-	if (ground_truth.isSet()) request.ground_truth_prefix = ground_truth.getValue();
-	request.out_dir = out.getValue();
-	request.progress_bar = !quiet.getValue();
-	PluginLoader loader(plugin_dir.isSet() ? std::vector<std::string>{plugin_dir.getValue()} : std::vector<std::string>{});
+	args.fill(request);
+	PluginLoader loader = args.loader();
 	const LocalMapBuildResult built = runLocalMapBuild(request, loader);
-	if (!quiet.getValue()) printBuildSummary(summarizeLocalMapFolder(built.folder), request, built.id_offset);
+	if (!args.quiet.getValue()) printBuildSummary(summarizeLocalMapFolder(built.folder), request, built.id_offset);
 	return 0;
 }
 
@@ -104,33 +127,20 @@ int checkAction(int argc, char** argv)
 		"after each fusion. Tells whether over-confidence enters in the local maps or in their fusion. Writes "
 		"local_maps_nees.csv, fusion_nees.csv and consistency.png.",
 		' ', ESIF_VERSION);
-	TCLAP::ValueArg<std::string> config("c", "config", "INI file whose [esif] plugin is a local-map joining plugin",
-										true, "", "FILE", cmd);
-	TCLAP::ValueArg<std::string> rawlog("r", "rawlog", "MRPT rawlog (gz or plain)", true, "", "FILE", cmd);
-	TCLAP::ValueArg<std::string> ground_truth(
-		"g", "ground-truth", "ground-truth prefix P (P_ground_truth.txt, ...); default: beside the rawlog", false, "",
-		"PREFIX", cmd);
+	RawlogMapArgs args(cmd);
 	TCLAP::ValueArg<std::string> reference_run(
 		"", "reference-run",
-		"run folder on the same rawlog (e.g. the full-SLAM optimum) to use as the reference instead of the ground "
-		"truth: its landmarks by the rawlog's IDs, its trajectory row k as the pose after step k",
+		"run folder of a smoother on the same rawlog (the full-SLAM optimum) to use as the reference instead of the "
+		"ground truth: its landmarks by the rawlog's IDs, its trajectory row k as the pose after step k",
 		false, "", "DIR", cmd);
-	TCLAP::ValueArg<std::string> out("o", "out", "folder to write (replaced once complete)", true, "", "DIR", cmd);
-	TCLAP::ValueArg<std::string> plugin_dir("", "plugin-dir", "extra folder to search for plugins", false, "", "DIR",
-											cmd);
-	TCLAP::SwitchArg quiet("q", "quiet", "no progress bar and no summary", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 
 	LocalMapCheckRequest request;
-	request.config_path = config.getValue();
-	request.rawlog_path = rawlog.getValue();
-	if (ground_truth.isSet()) request.ground_truth_prefix = ground_truth.getValue();
+	args.fill(request);
 	if (reference_run.isSet()) request.reference_run = reference_run.getValue();
-	request.out_dir = out.getValue();
-	request.progress_bar = !quiet.getValue();
-	PluginLoader loader(plugin_dir.isSet() ? std::vector<std::string>{plugin_dir.getValue()} : std::vector<std::string>{});
+	PluginLoader loader = args.loader();
 	const LocalMapCheckResult r = runLocalMapCheck(request, loader);
-	if (quiet.getValue()) return 0;
+	if (args.quiet.getValue()) return 0;
 	std::cout << "esif localmaps check: " << request.rawlog_path << " against " << r.reference << " -> "
 			  << request.out_dir << "\n  local maps: "
 			  << consistencyLine(r.maps, [](const LocalMapConsistency& m) -> const StateNees& { return m.whole; })
