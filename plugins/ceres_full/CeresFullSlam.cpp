@@ -5,6 +5,7 @@
 #include "QuietCeresLogging.h"
 
 #include <esif/association/Chi2.h>
+#include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
 #include <esif/models/RangeBearingModel.h>
 
@@ -22,11 +23,6 @@ using namespace ceres_full;
 
 namespace
 {
-double secondsSince(std::chrono::steady_clock::time_point t0)
-{
-	return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 /// A zero increment with zero covariance says the robot did not move (e.g.
 /// the first step of an imported log): the step keeps the current pose
 /// rather than adding a pose tied by a constraint that cannot be whitened.

@@ -4,6 +4,7 @@
 #include "ReferenceChoice.h"
 
 #include <esif/association/Chi2.h>
+#include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
 #include <esif/localmap/LocalMapMerge.h>
 #include <esif/localmap/SettledReports.h>
@@ -20,9 +21,7 @@ using namespace lmj;
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using Clock = SteadyClock;
 
 /// Squared Mahalanobis distance between two estimates of the same robot
 /// pose, their errors taken as independent (heading wrapped).

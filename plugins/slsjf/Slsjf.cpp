@@ -2,6 +2,7 @@
 
 #include "VirtualObservation.h"
 
+#include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
 #include <esif/localmap/SettledReports.h>
 
@@ -16,9 +17,7 @@ using namespace slsjf;
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using Clock = SteadyClock;
 
 /// x (+) r with first-order covariance; the two are independent.
 PoseEstimate composeIndependent(const Pose2& x, const Eigen::Matrix3d& Px, const Pose2& r, const Eigen::Matrix3d& Pr)

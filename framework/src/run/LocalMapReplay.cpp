@@ -1,3 +1,4 @@
+#include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
 #include <esif/io/ProgressBar.h>
 #include <esif/run/LocalMapReplay.h>
@@ -10,12 +11,7 @@ namespace esif
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double microsecondsSince(Clock::time_point t0)
-{
-	return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
-}
+using Clock = SteadyClock;
 
 /// Out of memory in a plugin: a numerical failure (exit code 3), as in
 /// replay() (Replay.cpp says why). The joiner's landmark count is not at

@@ -1,3 +1,4 @@
+#include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
 #include <esif/io/ProgressBar.h>
 #include <esif/run/Replay.h>
@@ -11,12 +12,7 @@ namespace esif
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double microsecondsSince(Clock::time_point t0)
-{
-	return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
-}
+using Clock = SteadyClock;
 
 /// A plugin that runs out of memory fails the run like a numerical failure
 /// (exit code 3): the input is valid, but this estimator cannot carry on

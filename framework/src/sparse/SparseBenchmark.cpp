@@ -1,3 +1,4 @@
+#include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
 #include <esif/sparse/DslamSequenceFeeder.h>
 #include <esif/sparse/SparseBenchmark.h>
@@ -10,12 +11,7 @@ namespace esif
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point t0)
-{
-	return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using Clock = SteadyClock;
 
 /// Recovery parameters for a bench method name; false for dense_inverse.
 bool sparseParamsFor(const std::string& method, SparseRecoveryParams& p)
