@@ -48,17 +48,14 @@ const TColor kStartColor(0, 0, 0);
 /// beyond that they only clutter the picture.
 constexpr std::size_t kMaxLandmarkIds = 150;
 
-/// One of MRPT's CCanvas bitmap fonts with its cell size.
-struct Font
-{
-	const char* name;
-	int w;	///< character cell width [px]
-	int h;	///< character cell height [px]
-};
-constexpr Font kFontLarge{"10x20", 10, 20};
-constexpr Font kFontMedium{"9x15", 9, 15};
-constexpr Font kFontSmall{"6x13", 6, 13};
-constexpr Font kFontTiny{"5x7", 5, 7};
+// MRPT's bitmap fonts and text drawing, shared with the other figures.
+using figure_canvas::Font;
+using figure_canvas::kFontLarge;
+using figure_canvas::kFontMedium;
+using figure_canvas::kFontSmall;
+using figure_canvas::kFontTiny;
+using figure_canvas::text;
+using figure_canvas::textWidth;
 
 /// Pixel rectangle, corners included.
 struct Rect
@@ -172,14 +169,6 @@ void robotGlyph(mrpt::img::CImage& img, double x, double y, double heading, doub
 	filledTriangle(
 		img, {c + size * f, c - 0.6 * size * f + 0.6 * size * s, c - 0.6 * size * f - 0.6 * size * s}, color);
 }
-
-void text(mrpt::img::CImage& img, int x, int y, const std::string& s, const Font& font, const TColor& color)
-{
-	img.selectTextFont(font.name);
-	img.textOut(x, y, s, color);
-}
-
-int textWidth(const std::string& s, const Font& font) { return static_cast<int>(s.size()) * font.w; }
 
 /// One legend row: a glyph centred at (x, y) and its label.
 struct LegendEntry
