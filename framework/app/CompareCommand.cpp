@@ -5,6 +5,7 @@
 
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
+#include <esif/core/Text.h>
 #include <esif/eval/BaselineComparison.h>
 #include <esif/eval/BookTable.h>
 #include <esif/eval/ComparisonTable.h>
@@ -41,13 +42,6 @@ std::string withoutTrailingSeparator(const std::string& dir)
 {
 	const fs::path p = fs::path(dir).lexically_normal();
 	return (p.has_filename() ? p : p.parent_path()).string();
-}
-
-std::string replaceAll(std::string text, const std::string& from, const std::string& to)
-{
-	for (std::size_t at = 0; !from.empty() && (at = text.find(from, at)) != std::string::npos; at += to.size())
-		text.replace(at, from.size(), to);
-	return text;
 }
 
 /// One output folder per config, named after the file (a suffix keeps repeats apart).

@@ -2,6 +2,7 @@
 /// The all-or-nothing output folder; see RunFolder.h.
 
 #include <esif/core/Errors.h>
+#include <esif/core/Text.h>
 #include <esif/io/CheckedWrite.h>
 #include <esif/io/RunFolder.h>
 #include <esif/io/TerminationCleanup.h>
@@ -173,12 +174,6 @@ void swapIntoPlace(const fs::path& staging, const fs::path& target)
 	throw InputError(target.string() + ": cannot replace the previous folder: " + std::strerror(errno));
 }
 
-std::string replaceAll(std::string text, const std::string& from, const std::string& to)
-{
-	for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size())
-		text.replace(at, from.size(), to);
-	return text;
-}
 }  // namespace
 
 fs::path partialFolderOf(const fs::path& target)

@@ -1,0 +1,18 @@
+#pragma once
+/// \file Text.h
+/// Small string helpers shared by the host's files and commands.
+
+#include <string>
+
+namespace esif
+{
+/// `text` with every occurrence of `from` (not empty; an empty `from`
+/// changes nothing) replaced by `to`, left to right, replacements not rescanned.
+inline std::string replaceAll(std::string text, const std::string& from, const std::string& to)
+{
+	for (std::size_t at = 0; !from.empty() && (at = text.find(from, at)) != std::string::npos; at += to.size())
+		text.replace(at, from.size(), to);
+	return text;
+}
+
+}  // namespace esif
