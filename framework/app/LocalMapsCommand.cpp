@@ -3,11 +3,10 @@
 
 #include <esif/core/Errors.h>
 #include <esif/eval/LocalMapFolderSummary.h>
+#include <esif/eval/MonteCarloStatistics.h>
 #include <esif/localmap/LocalMapFiles.h>
 #include <esif/run/LocalMapBuild.h>
 #include <esif/run/LocalMapCheck.h>
-
-#include <algorithm>
 
 #include <cstdio>
 #include <cstring>
@@ -111,10 +110,9 @@ std::string consistencyLine(const Rows& rows, Nees nees_of)
 		per_dof.push_back(n.nees / static_cast<double>(n.dof));
 		inside += n.consistent() ? 1 : 0;
 	}
-	std::nth_element(per_dof.begin(), per_dof.begin() + static_cast<long>(per_dof.size() / 2), per_dof.end());
 	char buf[160];
 	std::snprintf(buf, sizeof(buf), "%zu of %zu inside their 95%% interval, median NEES/dof %.2f", inside, rows.size(),
-				  per_dof[per_dof.size() / 2]);
+				  quantilesOf(per_dof).median);
 	return buf;
 }
 
@@ -147,8 +145,13 @@ int checkAction(int argc, char** argv)
 			  << "\n  state after each fusion: "
 			  << consistencyLine(r.fusions, [](const FusionConsistency& f) -> const StateNees& { return f.nees; });
 	if (!r.fusions.empty())
-		std::printf("\n  after the last fusion: NEES %.1f for %zu dof [%.1f, %.1f]", r.fusions.back().nees.nees,
-					r.fusions.back().nees.dof, r.fusions.back().nees.lower95, r.fusions.back().nees.upper95);
+	{
+		const StateNees& last = r.fusions.back().nees;
+		char buf[160];
+		std::snprintf(buf, sizeof(buf), "\n  after the last fusion: NEES %.1f for %zu dof [%.1f, %.1f]", last.nees,
+					  last.dof, last.lower95, last.upper95);
+		std::cout << buf;
+	}
 	std::cout << std::endl;
 	return 0;
 }

@@ -54,12 +54,22 @@ StateInformation stateAt(const Eigen::VectorXd& x, const Eigen::MatrixXd& I)
 }
 }  // namespace
 
-TEST(StateNees, ChiSquareIntervalIsBoostsQuantiles)
+TEST(StateNees, TheIntervalIsTheTwoSidedChiSquareQuantiles)
 {
-	// chi2inv(0.025, 2) = -2 ln(0.975), chi2inv(0.975, 2) = -2 ln(0.025): closed form for 2 dof.
-	const auto [lo, hi] = chiSquareInterval95(2);
-	EXPECT_NEAR(lo, -2 * std::log(0.975), 1e-12);
-	EXPECT_NEAR(hi, -2 * std::log(0.025), 1e-12);
+	// One landmark: 2 dof, where chi2inv(0.025, 2) = -2 ln(0.975) and
+	// chi2inv(0.975, 2) = -2 ln(0.025) in closed form.
+	StateInformation one;
+	one.variables = {StateVariable::landmarkOf(1)};
+	one.mean = Eigen::Vector2d(0.3, -0.4);
+	one.information = Eigen::MatrixXd(Eigen::Matrix2d::Identity()).sparseView();
+	StateReference reference;
+	reference.landmarks[1] = Eigen::Vector2d::Zero();
+	const auto n = stateNees(one, reference, std::nullopt, "one landmark");
+	ASSERT_TRUE(n);
+	EXPECT_EQ(n->dof, 2u);
+	EXPECT_NEAR(n->nees, 0.25, 1e-12);
+	EXPECT_NEAR(n->lower95, -2 * std::log(0.975), 1e-12);
+	EXPECT_NEAR(n->upper95, -2 * std::log(0.025), 1e-12);
 }
 
 TEST(StateNees, DrawsFromTheStatedGaussianAreChiSquare)

@@ -1,19 +1,18 @@
+#include <esif/association/Chi2.h>
 #include <esif/core/Errors.h>
+#include <esif/eval/EstimationErrors.h>
 #include <esif/eval/LocalMapConsistency.h>
-
-#include <Eigen/Cholesky>
-#include <boost/math/distributions/chi_squared.hpp>
 
 namespace esif
 {
 namespace
 {
-/// NEES of error `e` with covariance `P` (small, dense).
+/// nees(), with a covariance that is not positive definite an error naming `what`.
 double neesOf(const Eigen::VectorXd& e, const Eigen::MatrixXd& P, const std::string& what)
 {
-	const Eigen::LLT<Eigen::MatrixXd> llt(P);
-	if (llt.info() != Eigen::Success) throw NumericalError(what + ": covariance not positive definite");
-	return e.dot(llt.solve(e));
+	const auto value = nees(e, P);
+	if (!value) throw NumericalError(what + ": covariance not positive definite");
+	return *value;
 }
 }  // namespace
 
@@ -46,7 +45,7 @@ LocalMapConsistency localMapConsistency(
 	out.end_pose_nees = neesOf(e, P.topLeftCorner<3, 3>(), what + " end pose");
 	out.end_heading_error_rad = e(2);
 
-	const double bound = boost::math::quantile(boost::math::chi_squared_distribution<double>(2), 0.95);
+	const double bound = chi2Quantile(0.95, 2);
 	std::size_t inside = 0;
 	for (std::size_t i = 0; i < map.features.size(); ++i)
 	{

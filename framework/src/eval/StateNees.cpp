@@ -1,8 +1,9 @@
 #include <esif/core/Errors.h>
 #include <esif/eval/StateNees.h>
 
+#include <esif/eval/MonteCarloStatistics.h>
+
 #include <Eigen/CholmodSupport>
-#include <boost/math/distributions/chi_squared.hpp>
 
 #include <cmath>
 #include <vector>
@@ -69,21 +70,9 @@ StateReference stateReferenceOf(const GroundTruth& truth)
 
 StateReference stateReferenceOf(const RunOutputs& run, std::size_t steps)
 {
-	StateReference r;
-	for (const LandmarkEstimate& l : run.landmarks) r.landmarks[l.id] = l.mean;
-	if (run.trajectory.size() == steps)
-		for (std::size_t k = 0; k < steps; ++k)
-		{
-			const auto& p = run.trajectory[k].pose;
-			r.poses_by_step[k] = Pose2(p.x, p.y, p.phi);
-		}
-	return r;
-}
-
-std::pair<double, double> chiSquareInterval95(std::size_t dof)
-{
-	const boost::math::chi_squared_distribution<double> chi2(static_cast<double>(dof));
-	return {boost::math::quantile(chi2, 0.025), boost::math::quantile(chi2, 0.975)};
+	GroundTruth truth = runAsGroundTruth(run);
+	if (truth.path.size() != steps) truth.path.clear();	 // rows that cannot be paired with steps
+	return stateReferenceOf(truth);
 }
 
 std::optional<StateNees> stateNees(
@@ -138,7 +127,9 @@ std::optional<StateNees> stateNees(
 	}
 	if (!std::isfinite(out.nees)) throw NumericalError(what + ": the state NEES is not finite");
 	out.dof = compared.size();
-	std::tie(out.lower95, out.upper95) = chiSquareInterval95(out.dof);
+	const AneesBounds interval = aneesBounds(static_cast<int>(out.dof), 1);	// one run: chi-square(dof) itself
+	out.lower95 = interval.lo;
+	out.upper95 = interval.hi;
 	return out;
 }
 

@@ -148,4 +148,12 @@ RunOutputs readRunOutputs(const std::string& dir)
 	return out;
 }
 
+GroundTruth runAsGroundTruth(const RunOutputs& run)
+{
+	GroundTruth truth;
+	for (const LandmarkEstimate& l : run.landmarks) truth.landmarks[l.id] = l.mean;
+	for (const TimedPose2D& row : run.trajectory) truth.path.emplace_back(row.pose.x, row.pose.y, row.pose.phi);
+	return truth;
+}
+
 }  // namespace esif

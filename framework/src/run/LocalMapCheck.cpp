@@ -27,10 +27,7 @@ GroundTruth referenceRunAsTruth(const std::string& dir, std::size_t steps)
 		throw InputError(dir + "/trajectory.tum: " + std::to_string(run.trajectory.size()) +
 						 " rows, the rawlog has " + std::to_string(steps) +
 						 " steps (the reference run must be of the same rawlog)");
-	GroundTruth truth;
-	for (const auto& l : run.landmarks) truth.landmarks[l.id] = l.mean;
-	for (const auto& row : run.trajectory) truth.path.emplace_back(row.pose.x, row.pose.y, row.pose.phi);
-	return truth;
+	return runAsGroundTruth(run);
 }
 
 /// The reference start pose of `map`: the pose its first step starts from,

@@ -58,9 +58,6 @@ StateReference stateReferenceOf(const GroundTruth& truth);
 /// has exactly `steps` rows (else no poses: the rows cannot be paired).
 StateReference stateReferenceOf(const RunOutputs& run, std::size_t steps);
 
-/// Two-sided 95% interval [2.5%, 97.5%] of chi-square(dof), dof >= 1.
-std::pair<double, double> chiSquareInterval95(std::size_t dof);
-
 /// NEES of `state` against `reference`. A landmark is compared with the
 /// reference landmark `to_reference` maps its ID to (the identity when
 /// `to_reference` is nullopt; unmapped ones are marginalised); a pose with

@@ -9,6 +9,7 @@
 /// line.
 
 #include <esif/core/Estimate.h>
+#include <esif/io/GroundTruth.h>
 
 #include <mrpt/math/TPose2D.h>
 
@@ -43,5 +44,9 @@ std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path);
 
 /// Reads DIR/trajectory.tum and DIR/landmarks.txt.
 RunOutputs readRunOutputs(const std::string& dir);
+
+/// A run's estimate as a reference in ground-truth form: its landmarks by
+/// ID, its trajectory rows in order as the path.
+GroundTruth runAsGroundTruth(const RunOutputs& run);
 
 }  // namespace esif
