@@ -71,6 +71,7 @@ std::unique_ptr<ceres::LossFunction> CeresFullSlam::makeLoss() const
 
 StepReport CeresFullSlam::processStep(const StepInput& step)
 {
+	information_evaluated_ = false;
 	if (step.odometry && !isStandStill(*step.odometry))
 	{
 		// The starting value of the new pose: odometry composed onto the
@@ -175,6 +176,7 @@ void CeresFullSlam::finalSolve()
 
 void CeresFullSlam::finish()
 {
+	information_evaluated_ = false;
 	if (params_.outliers == OutlierPolicy::Drop)
 		solveDroppingOutliers();
 	else
@@ -358,19 +360,30 @@ CostFigures CeresFullSlam::costFigures() const
 	return c;
 }
 
+const std::optional<Eigen::SparseMatrix<double>>& CeresFullSlam::informationAtOptimum() const
+{
+	if (!information_evaluated_)
+	{
+		information_.reset();
+		try
+		{
+			information_ = graph_->informationMatrix(threads());
+		}
+		catch (const NumericalError&)
+		{
+			// a collapsed solution, already reported by finish()
+		}
+		information_evaluated_ = true;
+	}
+	return information_;
+}
+
 std::optional<InformationPattern> CeresFullSlam::informationPattern() const
 {
 	// J^T J at the optimum, poses first then landmarks (the gauge pose left out).
-	if (graph_->residualDim() == 0) return std::nullopt;
+	if (graph_->residualDim() == 0 || !informationAtOptimum()) return std::nullopt;
 	InformationPattern p;
-	try
-	{
-		p.information = graph_->informationMatrix(threads());
-	}
-	catch (const NumericalError&)
-	{
-		return std::nullopt;  // a collapsed solution, already reported by finish()
-	}
+	p.information = *informationAtOptimum();
 	return p;
 }
 
@@ -378,16 +391,9 @@ std::optional<StateInformation> CeresFullSlam::stateInformation() const
 {
 	// The Laplace approximation at the optimum: mean = the solution,
 	// information = J^T J, over the blocks informationMatrix() orders.
-	if (!finished_ || graph_->residualDim() == 0) return std::nullopt;
+	if (!finished_ || graph_->residualDim() == 0 || !informationAtOptimum()) return std::nullopt;
 	StateInformation s;
-	try
-	{
-		s.information = graph_->informationMatrix(threads());
-	}
-	catch (const NumericalError&)
-	{
-		return std::nullopt;  // a collapsed solution, already reported by finish()
-	}
+	s.information = *informationAtOptimum();
 	std::vector<std::optional<std::size_t>> step_of_pose(graph_->poseCount());
 	for (std::size_t k = 0; k < step_pose_.size(); ++k) step_of_pose[step_pose_[k]] = k;
 	s.mean.resize(static_cast<Eigen::Index>(graph_->parameterDim()));

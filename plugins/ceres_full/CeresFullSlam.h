@@ -103,6 +103,14 @@ class CeresFullSlam : public FilterPlugin
 	std::unordered_map<const double*, Eigen::MatrixXd> marginals_;
 	SolveTally tally_;
 	bool finished_ = false;
+
+	/// J^T J at the current values over the estimated blocks (poses 1..N,
+	/// then landmarks), evaluated once for both info_matrix.png and
+	/// state_nees; nullopt for a collapsed solution (a derivative not
+	/// finite). Forgotten by every processStep() and finish().
+	const std::optional<Eigen::SparseMatrix<double>>& informationAtOptimum() const;
+	mutable bool information_evaluated_ = false;
+	mutable std::optional<Eigen::SparseMatrix<double>> information_;
 };
 
 }  // namespace esif

@@ -99,6 +99,7 @@ LocalMapsOfRawlog buildLocalMapsOfRawlog(const LocalMapBuildRequest& request, Pl
 	out.id_offset = makeFeatureIdsPositive(out.maps);
 	if (truth) out.truth = truth->inInitialPoseFrame();
 	out.log = std::move(log);
+	out.plugin = std::move(plugin);
 	return out;
 }
 

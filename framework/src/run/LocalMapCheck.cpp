@@ -133,11 +133,9 @@ LocalMapCheckResult checkInto(const LocalMapCheckRequest& request, const std::st
 	attachLocalMapGroundTruth(folder, built.log, reference);	 // reference landmarks by the maps' feature IDs
 	result.maps = checkEachMap(folder, reference);
 
-	const ConfigFile cfg = ConfigFile::load(request.config_path);
-	const HostParams host = loadHostParams(cfg);
-	auto plugin = createConfiguredPlugin(cfg, host, loader);
-	if (LocalMapJoiner* joiner = asLocalMapJoiner(*plugin))
-		result.fusions = checkEachFusion(folder, reference, *plugin, *joiner, request.progress_bar);
+	// The plugin that lent the builder its parameters has fused nothing yet.
+	result.fusions =
+		checkEachFusion(folder, reference, *built.plugin, *asLocalMapJoiner(*built.plugin), request.progress_bar);
 	writeOutputs(result, out_dir, request.image_size_px);
 	return result;
 }

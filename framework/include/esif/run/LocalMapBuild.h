@@ -68,6 +68,9 @@ struct LocalMapsOfRawlog
 	std::vector<LocalMap> maps;	 ///< IDs made positive
 	LandmarkId id_offset = 0;
 	std::optional<GroundTruth> truth;  ///< the rawlog's, in the frame of the initial pose
+	/// The config's plugin, configured, whose builder parameters built the
+	/// maps; it has joined none of them (a LocalMapJoiner).
+	FilterPlugin::Ptr plugin;
 };
 
 /// The reading and building half of runLocalMapBuild (same checks, same
