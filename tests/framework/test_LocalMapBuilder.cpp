@@ -264,15 +264,29 @@ std::size_t commonWithPrevious(const std::vector<LocalMap>& maps, std::size_t k)
 	return n;
 }
 
-TEST(LocalMapBuilderNoiseFree, MapsEqualTheTruthInTheirStartFrames)
+/// The featureless scenario without noise (simulated once for the tests
+/// that share it): the robot crosses a 10 m band without features eight
+/// times, so a common-features rule has to extend maps.
+const auto& noiseFreeFeatureless()
 {
-	// The featureless scenario: the robot crosses a 10 m band without features
-	// eight times, so the two-common-features rule has to extend maps.
-	const auto run = tb::simulateInMemory(
+	static const auto run = tb::simulateInMemory(
 		tb::withoutNoise(tb::scenarioFromConfig("featureless")), kFilterStdRange, kFilterStdBearing);
+	return run;
+}
+
+/// Maps of 30 steps that close only with 2 common features.
+LocalMapBuilderParams thirtyStepsTwoCommon()
+{
 	LocalMapBuilderParams params;
 	params.local_map_steps = 30;
 	params.local_map_min_common_features = 2;
+	return params;
+}
+
+TEST(LocalMapBuilderNoiseFree, MapsEqualTheTruthInTheirStartFrames)
+{
+	const auto& run = noiseFreeFeatureless();
+	const LocalMapBuilderParams params = thirtyStepsTwoCommon();
 	const auto built = tb::buildLocalMaps(params, run.steps);
 	const auto& maps = built.maps;
 	ASSERT_GT(maps.size(), 10u);
@@ -300,14 +314,11 @@ TEST(LocalMapBuilderNoiseFree, MapsEqualTheTruthInTheirStartFrames)
 
 TEST(LocalMapBuilderNoiseFree, CommonFeaturesCountedInEveryEarlierMapCloseMapsSooner)
 {
-	// The featureless scenario again: where the robot comes back to features
-	// mapped long before, the previous map shares none with the new one but
-	// the earlier maps do, so fewer maps are extended and none for longer.
-	const auto run = tb::simulateInMemory(
-		tb::withoutNoise(tb::scenarioFromConfig("featureless")), kFilterStdRange, kFilterStdBearing);
-	LocalMapBuilderParams params;
-	params.local_map_steps = 30;
-	params.local_map_min_common_features = 2;
+	// Where the robot comes back to features mapped long before, the
+	// previous map shares none with the new one but the earlier maps do, so
+	// fewer maps are extended and none for longer.
+	const auto& run = noiseFreeFeatureless();
+	LocalMapBuilderParams params = thirtyStepsTwoCommon();
 	const auto previous = tb::buildLocalMaps(params, run.steps);
 	params.local_map_common_features_in = CommonFeaturesIn::EarlierMaps;
 	const auto earlier = tb::buildLocalMaps(params, run.steps);

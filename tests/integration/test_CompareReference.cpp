@@ -25,27 +25,8 @@ using esif::test::TempDir;
 /// comparison.csv as label -> (column -> text).
 std::map<std::string, std::map<std::string, std::string>> readCsv(const std::string& path)
 {
-	std::ifstream in(path);
-	const auto split = [](const std::string& line) {
-		std::vector<std::string> cells;
-		std::stringstream ss(line);
-		std::string c;
-		while (std::getline(ss, c, ',')) cells.push_back(c);
-		if (!line.empty() && line.back() == ',') cells.emplace_back();
-		return cells;
-	};
-	std::string line;
-	std::getline(in, line);
-	const auto header = split(line);
 	std::map<std::string, std::map<std::string, std::string>> rows;
-	while (std::getline(in, line))
-	{
-		const auto cells = split(line);
-		EXPECT_EQ(cells.size(), header.size()) << line;
-		std::map<std::string, std::string> row;
-		for (std::size_t k = 0; k < header.size() && k < cells.size(); ++k) row[header[k]] = cells[k];
-		rows[row["label"]] = row;
-	}
+	for (auto& row : esif::test::readCsvRows(path)) rows[row["label"]] = std::move(row);
 	return rows;
 }
 

@@ -11,7 +11,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -24,30 +23,6 @@ using esif::test::sourcePath;
 using esif::test::TempDir;
 
 const std::string kGrid196 = sourcePath("rawlogs/grid196.rawlog");
-
-/// The rows of a CSV file as column -> text maps.
-std::vector<std::map<std::string, std::string>> readCsv(const std::string& path)
-{
-	std::ifstream in(path);
-	std::string line;
-	std::vector<std::string> header;
-	std::vector<std::map<std::string, std::string>> rows;
-	while (std::getline(in, line))
-	{
-		std::vector<std::string> cells;
-		std::stringstream ss(line);
-		for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
-		if (header.empty())
-			header = cells;
-		else
-		{
-			std::map<std::string, std::string> row;
-			for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
-			rows.push_back(row);
-		}
-	}
-	return rows;
-}
 
 double insideFraction(const std::vector<std::map<std::string, std::string>>& rows)
 {
@@ -68,8 +43,8 @@ TEST(LocalMapsCheck, SlsjfOnGrid196HasConsistentLocalMapsAndAConsistentJoinedSta
 	TempDir dir;
 	const auto r = runEsif(checkCommand("configs/slsjf.ini", kGrid196, dir.file("check")));
 	ASSERT_EQ(r.exit_code, 0) << r.out;
-	const auto maps = readCsv(dir.file("check/local_maps_nees.csv"));
-	const auto fusions = readCsv(dir.file("check/fusion_nees.csv"));
+	const auto maps = esif::test::readCsvRows(dir.file("check/local_maps_nees.csv"));
+	const auto fusions = esif::test::readCsvRows(dir.file("check/fusion_nees.csv"));
 	EXPECT_TRUE(fs::exists(dir.file("check/consistency.png")));
 	ASSERT_GT(maps.size(), 50u);  // 3000 steps in local maps of 45
 	EXPECT_EQ(fusions.size(), maps.size());
@@ -94,7 +69,7 @@ TEST(LocalMapsCheck, AgainstTheOptimumTheJoinedStateIsNoWorseThanAgainstTheTruth
 	const auto r = runEsif(
 		checkCommand("configs/dslam_lmj.ini", kGrid196, dir.file("check"), "--reference-run " + quoted(dir.file("opt"))));
 	ASSERT_EQ(r.exit_code, 0) << r.out;
-	const auto fusions = readCsv(dir.file("check/fusion_nees.csv"));
+	const auto fusions = esif::test::readCsvRows(dir.file("check/fusion_nees.csv"));
 	ASSERT_FALSE(fusions.empty());
 	// The optimum shares the filter's error, so the NEES against it is at
 	// most that against the truth in expectation: below the upper bound.

@@ -25,6 +25,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace esif::test
 {
@@ -107,6 +108,35 @@ inline std::string readText(const std::string& path)
 	std::stringstream ss;
 	ss << in.rdbuf();
 	return ss.str();
+}
+
+/// A CSV file esif wrote (a header line, then rows; no quoted cells) as one
+/// column -> text map per row. A row with another number of cells than the
+/// header is a test failure; a trailing comma is an empty last cell.
+inline std::vector<std::map<std::string, std::string>> readCsvRows(const std::string& path)
+{
+	std::ifstream in(path);
+	const auto split = [](const std::string& line) {
+		std::vector<std::string> cells;
+		std::stringstream ss(line);
+		std::string c;
+		while (std::getline(ss, c, ',')) cells.push_back(c);
+		if (!line.empty() && line.back() == ',') cells.emplace_back();
+		return cells;
+	};
+	std::string line;
+	std::getline(in, line);
+	const auto header = split(line);
+	std::vector<std::map<std::string, std::string>> rows;
+	while (std::getline(in, line))
+	{
+		const auto cells = split(line);
+		EXPECT_EQ(cells.size(), header.size()) << path << ": " << line;
+		std::map<std::string, std::string> row;
+		for (std::size_t k = 0; k < header.size() && k < cells.size(); ++k) row[header[k]] = cells[k];
+		rows.push_back(std::move(row));
+	}
+	return rows;
 }
 
 /// A figure of a run's stats.json; a test failure (and NaN) when it is absent.
