@@ -51,12 +51,10 @@ set -e
 python3 - "$out" "$log" "$update_readme" <<'PY'
 import csv, json, os, sys
 out, log, update_readme = sys.argv[1], sys.argv[2], sys.argv[3] == "1"
-lines = []
-print_ = print
-def print(*args):
-    text = " ".join(str(a) for a in args)
+lines = []  # the report, printed and kept for --update-readme
+def emit(text):
     lines.append(text)
-    print_(text)
+    print(text)
 rows = list(csv.DictReader(open(os.path.join(out, "comparison.csv"))))
 def cell(row, key, fmt):
     v = row.get(key, "")
@@ -69,16 +67,16 @@ cols = [("landmarks", "ref_landmarks_matched", "{:.0f}"),
         ("path RMS [m]", "ref_traj_rms_m", "{:.2f}"), ("path max [m]", "ref_traj_max_m", "{:.2f}"),
         ("rotation [deg]", "ref_rotation_deg", "{:.2f}"), ("RMS after it [m]", "ref_landmark_rms_aligned_m", "{:.2f}"),
         ("inside own 95%", "ref_landmarks_in_own95", "{:.1%}"), ("wall [s]", "wall_s", "{:.1f}")]
-print("| run | " + " | ".join(c[0] for c in cols) + " |")
-print("|---" * (len(cols) + 1) + "|")
+emit("| run | " + " | ".join(c[0] for c in cols) + " |")
+emit("|---" * (len(cols) + 1) + "|")
 for r in rows:
-    print("| " + r.get("label", "?") + " | " + " | ".join(cell(r, k, f) for _, k, f in cols) + " |")
+    emit("| " + r.get("label", "?") + " | " + " | ".join(cell(r, k, f) for _, k, f in cols) + " |")
 for name in sorted(os.listdir(out)):  # run folders are named after their configs
     stats = os.path.join(out, name, "stats.json")
     if os.path.exists(stats):
         s = json.load(open(stats))
         if "plugin_chi2" in s:
-            print(f"\noptimum '{s.get('label', name)}': chi2 {s['plugin_chi2']:.1f} for {s.get('plugin_chi2_dof', 'n/a')} dof,"
+            emit(f"\noptimum '{s.get('label', name)}': chi2 {s['plugin_chi2']:.1f} for {s.get('plugin_chi2_dof', 'n/a')} dof,"
                   f" plausible {s.get('plugin_optimum_plausible', 'n/a')} (GTSAM's batch optimum: 7930)")
 if update_readme:
     begin, end = "<!-- vicpark-report:begin -->", "<!-- vicpark-report:end -->"
@@ -91,7 +89,7 @@ if update_readme:
     tmp = "README.md.vicpark-report.tmp"
     open(tmp, "w").write(head + begin + body + end + rest.split(end, 1)[1])
     os.replace(tmp, "README.md")
-    print_("README.md: Victoria Park table updated")
+    print("README.md: Victoria Park table updated")
 PY
 echo "figure: $out/maps_overlay.png"
 exit $status
