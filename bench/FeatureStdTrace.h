@@ -7,7 +7,7 @@
 /// landmark (the map-joining filter maps a feature only when its local map
 /// is fused). Header-only, shared by bench/feature_std.cpp and the tests.
 
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/RawlogReader.h>
 #include <esif/plugin/FilterPlugin.h>
 
 #include <cmath>

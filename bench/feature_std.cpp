@@ -13,9 +13,9 @@
 
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
-#include <esif/io/AtomicFile.h>
-#include <esif/io/FigureWriter.h>
-#include <esif/plugin/PluginLoader.h>
+#include <esif/render/FigureWriter.h>
+#include <esif/run/PluginLoader.h>
+#include <esif/safeio/AtomicFile.h>
 
 #include <cmath>
 #include <cstdio>

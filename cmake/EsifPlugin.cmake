@@ -1,13 +1,27 @@
-# esif_add_plugin(<name> SOURCES ...)
-# Builds a filter plugin as a MODULE library libesif_plugin_<name>.so in the
-# folder the host scans (ESIF_PLUGIN_OUTPUT_DIR). A plugin links the framework
-# and nothing else of esif: plugins never depend on each other.
+# esif_add_plugin(<name> [LIBS <libs>...])
+# Builds the filter plugin in the current folder as a MODULE library
+# libesif_plugin_<name>.so in the folder the host scans (ESIF_PLUGIN_OUTPUT_DIR).
+#
+# Every *.cpp of the folder but register.cpp goes into an OBJECT library
+# esif_plugin_<name>_objects, which the module and the plugin's unit tests both
+# link, so no source is listed twice. register.cpp (the MRPT class
+# registration that the host's loader relies on) goes into the module alone.
+#
+# A plugin links the SDK (esif::sdk) and the LIBS it names, nothing else of
+# esif: no host header is on its include path, and plugins never depend on
+# each other.
 function(esif_add_plugin name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
   set(target esif_plugin_${name})
-  add_library(${target} MODULE ${ARG_SOURCES})
-  target_link_libraries(${target} PRIVATE esif::framework ${ARG_LIBS})
-  target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
+  list(REMOVE_ITEM sources ${CMAKE_CURRENT_SOURCE_DIR}/register.cpp)
+  add_library(${target}_objects OBJECT ${sources})
+  target_link_libraries(${target}_objects PUBLIC esif::sdk ${ARG_LIBS})
+  target_include_directories(${target}_objects PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
+  set_target_properties(${target}_objects PROPERTIES CXX_VISIBILITY_PRESET default)
+
+  add_library(${target} MODULE ${CMAKE_CURRENT_SOURCE_DIR}/register.cpp)
+  target_link_libraries(${target} PRIVATE ${target}_objects)
   set_target_properties(${target} PROPERTIES
     PREFIX "lib"
     LIBRARY_OUTPUT_DIRECTORY ${ESIF_PLUGIN_OUTPUT_DIR}

@@ -6,8 +6,8 @@
 #include "CommandLine.h"
 #include "Commands.h"
 
+#include <esif/bench/SparseBenchmark.h>
 #include <esif/core/Errors.h>
-#include <esif/sparse/SparseBenchmark.h>
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "ChildProcess.h"
+#include <esif/safeio/ChildProcess.h>
 #include "ConfigCheck.h"
 #include "CommandLine.h"
 #include "Commands.h"
@@ -10,15 +10,15 @@
 #include <esif/eval/BookTable.h>
 #include <esif/eval/ComparisonTable.h>
 #include <esif/eval/RunDifference.h>
-#include <esif/io/AtomicFile.h>
-#include <esif/io/MapOverlay.h>
-#include <esif/io/GroundTruth.h>
-#include <esif/io/OutputApart.h>
-#include <esif/io/RunFolder.h>
-#include <esif/io/TerminationCleanup.h>
-#include <esif/io/RunOutputReader.h>
-#include <esif/io/StatsJson.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/formats/RunOutputReader.h>
+#include <esif/formats/StatsJson.h>
+#include <esif/render/MapOverlay.h>
 #include <esif/run/RunOrder.h>
+#include <esif/safeio/AtomicFile.h>
+#include <esif/safeio/OutputApart.h>
+#include <esif/safeio/RunFolder.h>
+#include <esif/safeio/TerminationCleanup.h>
 
 #include <cerrno>
 #include <cstring>

@@ -2,8 +2,8 @@
 
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
-#include <esif/plugin/PluginLoader.h>
 #include <esif/run/LocalMapRunPipeline.h>
+#include <esif/run/PluginLoader.h>
 #include <esif/run/RunSetup.h>
 
 #include <filesystem>

@@ -2,8 +2,8 @@
 #include "Commands.h"
 
 #include <esif/core/Errors.h>
-#include <esif/io/MrclamImporter.h>
-#include <esif/io/VictoriaParkImporter.h>
+#include <esif/formats/MrclamImporter.h>
+#include <esif/formats/VictoriaParkImporter.h>
 
 #include <iostream>
 #include <memory>

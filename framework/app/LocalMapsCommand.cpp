@@ -4,7 +4,7 @@
 #include <esif/core/Errors.h>
 #include <esif/eval/LocalMapFolderSummary.h>
 #include <esif/eval/MonteCarloStatistics.h>
-#include <esif/localmap/LocalMapFiles.h>
+#include <esif/formats/LocalMapFiles.h>
 #include <esif/run/LocalMapBuild.h>
 #include <esif/run/LocalMapCheck.h>
 

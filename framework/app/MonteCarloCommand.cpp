@@ -11,10 +11,10 @@
 
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
-#include <esif/io/AtomicFile.h>
-#include <esif/io/OutputApart.h>
 #include <esif/run/MonteCarloCollect.h>
 #include <esif/run/RunSetup.h>
+#include <esif/safeio/AtomicFile.h>
+#include <esif/safeio/OutputApart.h>
 #include <esif/sim/Scenario.h>
 
 #include <climits>

@@ -3,13 +3,13 @@
 
 #include "MonteCarloJobs.h"
 
-#include "ChildProcess.h"
+#include <esif/safeio/ChildProcess.h>
 
-#include <esif/io/AtomicFile.h>
-#include <esif/io/FolderLock.h>
-#include <esif/io/ProgressBar.h>
-#include <esif/io/RunFolder.h>
-#include <esif/io/TerminationCleanup.h>
+#include <esif/run/ProgressBar.h>
+#include <esif/safeio/AtomicFile.h>
+#include <esif/safeio/FolderLock.h>
+#include <esif/safeio/RunFolder.h>
+#include <esif/safeio/TerminationCleanup.h>
 
 #include <algorithm>
 #include <atomic>

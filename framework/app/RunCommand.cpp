@@ -2,7 +2,7 @@
 #include "Commands.h"
 
 #include <esif/core/Errors.h>
-#include <esif/io/StatsJson.h>
+#include <esif/formats/StatsJson.h>
 #include <esif/run/LocalMapRunPipeline.h>
 #include <esif/run/RunPipeline.h>
 

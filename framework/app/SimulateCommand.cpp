@@ -8,8 +8,8 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
-#include <esif/io/GroundTruth.h>
-#include <esif/io/OutputApart.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/safeio/OutputApart.h>
 #include <esif/sim/MeasurementTruth.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>

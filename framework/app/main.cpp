@@ -5,7 +5,7 @@
 #include "Commands.h"
 
 #include <esif/core/Errors.h>
-#include <esif/io/TerminationCleanup.h>
+#include <esif/safeio/TerminationCleanup.h>
 
 #include <cstring>
 #include <filesystem>

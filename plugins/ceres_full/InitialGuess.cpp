@@ -1,7 +1,7 @@
 #include "InitialGuess.h"
 
 #include <esif/core/Errors.h>
-#include <esif/io/RunOutputReader.h>
+#include <esif/formats/RunOutputReader.h>
 
 #include <filesystem>
 

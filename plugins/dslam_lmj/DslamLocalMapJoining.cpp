@@ -7,7 +7,6 @@
 #include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
 #include <esif/localmap/LocalMapMerge.h>
-#include <esif/localmap/SettledReports.h>
 
 #include <algorithm>
 #include <chrono>
@@ -62,7 +61,7 @@ std::vector<Eigen::Index> featureRows(const std::vector<int>& features)
 void DslamLocalMapJoining::configure(const ConfigSection& section)
 {
 	loadParams(params_, section);
-	builder_ = std::make_unique<LocalMapBuilder>(params_.builder);
+	startBuilder(params_.builder);
 	global_ = std::make_unique<relative::FeatureMap>(params_.recovery);
 	global_->shareLinearisationPoints(params_.map_linearisation == relative::MapLinearisation::Shared);
 	global_->keepRelativeTerms(params_.relinearise_iterations > 0);
@@ -73,27 +72,12 @@ void DslamLocalMapJoining::requireConfigured() const
 	if (!global_) throw std::logic_error("DslamLocalMapJoining: used before configure()");
 }
 
-StepReport DslamLocalMapJoining::processStep(const StepInput& step)
+void DslamLocalMapJoining::checkGivenMap(const LocalMap& map) const
 {
-	requireConfigured();
-	if (step.scan)
-		for (const auto& m : step.scan->measurements) saw_measurement_without_id_ |= !m.id.has_value();
-	StepReport report = builder_->processStep(step);
-	if (auto map = builder_->takeClosedMap()) accept(*map);
-	return report;
-}
-
-void DslamLocalMapJoining::joinLocalMap(const LocalMap& map)
-{
-	requireConfigured();
-	if (map.index != feature_ids_of_map_.size() + 1)
-		throw InputError("D-SLAM map joining: local map " + std::to_string(map.index) + " given after " +
-						 std::to_string(feature_ids_of_map_.size()) + " maps (maps must come in order from 1)");
 	if (!map.ids_identify_features && map.index > 1)
 		throw InputError("D-SLAM map joining: local map " + std::to_string(map.index) +
 						 ": its feature IDs are hidden, but the upper-level association needs two features of each "
 						 "map known to be in the global map (Sec. 4.4.2); join local-map files with their IDs");
-	accept(map);
 }
 
 bool DslamLocalMapJoining::useIds(const LocalMap& map) const
@@ -101,13 +85,14 @@ bool DslamLocalMapJoining::useIds(const LocalMap& map) const
 	switch (params_.association)
 	{
 		case MapAssociationMethod::KnownIds: return true;
-		case MapAssociationMethod::Auto: return map.ids_identify_features && !saw_measurement_without_id_;
+		case MapAssociationMethod::Auto: return map.ids_identify_features && !sawMeasurementWithoutId();
 		default: return false;
 	}
 }
 
-void DslamLocalMapJoining::accept(const LocalMap& closed)
+void DslamLocalMapJoining::fuseLocalMap(const LocalMap& closed)
 {
+	requireConfigured();
 	std::vector<LandmarkId> ids;
 	for (const auto& f : closed.features) ids.push_back(f.id);
 	feature_ids_of_map_[closed.index] = ids;
@@ -389,10 +374,9 @@ void DslamLocalMapJoining::recordEnds(Fusion& fusion, const std::vector<std::siz
 	for (std::size_t j = 0; j < fusion.ends.size(); ++j) fusion.ends[j].map = originals[j];
 }
 
-void DslamLocalMapJoining::finish()
+void DslamLocalMapJoining::finishJoining()
 {
 	requireConfigured();
-	if (auto map = builder_->finish()) accept(*map);
 	if (pending_) giveUpPendingMap();
 	for (auto& fusion : fusions_) locateEnds(fusion);
 }
@@ -458,7 +442,7 @@ PoseEstimate DslamLocalMapJoining::openMapFrame() const
 std::optional<LandmarkId> DslamLocalMapJoining::globalIdOfOpenFeature(LandmarkId id) const
 {
 	const bool ids = params_.association == MapAssociationMethod::KnownIds ||
-		(params_.association == MapAssociationMethod::Auto && !saw_measurement_without_id_);
+		(params_.association == MapAssociationMethod::Auto && !sawMeasurementWithoutId());
 	if (ids) return global_->supported(id) ? std::optional<LandmarkId>(id) : std::nullopt;
 	const auto it = global_of_local_.find(id);
 	if (it != global_of_local_.end() && global_->supported(it->second)) return it->second;
@@ -468,7 +452,7 @@ std::optional<LandmarkId> DslamLocalMapJoining::globalIdOfOpenFeature(LandmarkId
 PoseEstimate DslamLocalMapJoining::robotPose() const
 {
 	requireConfigured();
-	const auto& open = builder_->openMap();
+	const auto& open = builder().openMap();
 	const PoseEstimate local = open.robotPose();
 	if (fusions_.empty() && !pending_) return local;  // map 1 is the global frame
 	// Sec. 4.4.1: two mapped features of the open map place the robot ...
@@ -539,20 +523,17 @@ StepReport DslamLocalMapJoining::mapReport(std::size_t k) const
 	return out;
 }
 
-std::optional<std::vector<StepReport>> DslamLocalMapJoining::finalReports() const
+std::vector<MapJoiningPlugin::SettledFusion> DslamLocalMapJoining::settledFusions() const
 {
-	if (fusions_.empty() || fusions_.front().map.step_reports.empty()) return std::nullopt;
-	std::vector<StepReport> out;
-	std::set<LandmarkId> started;
-	for (const auto& fusion : fusions_)
-		appendSettledReports(fusion.map.step_reports, fusion.local_ids, fusion.decisions, started, out);
+	std::vector<SettledFusion> out;
+	for (const auto& fusion : fusions_) out.push_back({fusion.map.step_reports, fusion.local_ids, fusion.decisions});
 	return out;
 }
 
-std::optional<InformationPattern> DslamLocalMapJoining::informationPattern() const
+SparseInformationCore& DslamLocalMapJoining::globalInformation() const
 {
 	requireConfigured();
-	return global_->core().pattern();
+	return global_->core();
 }
 
 std::optional<StateInformation> DslamLocalMapJoining::stateInformation() const

@@ -23,9 +23,7 @@
 #include "DslamLmjParams.h"
 #include "UpperLevelAssociation.h"
 
-#include <esif/localmap/LocalMapBuilder.h>
-#include <esif/plugin/FilterPlugin.h>
-#include <esif/plugin/LocalMapJoiner.h>
+#include <esif/plugin/MapJoiningPlugin.h>
 #include <esif/relative/FeatureMap.h>
 
 #include <map>
@@ -35,29 +33,34 @@
 
 namespace esif
 {
-class DslamLocalMapJoining : public FilterPlugin, public LocalMapJoiner
+class DslamLocalMapJoining : public MapJoiningPlugin
 {
 	DEFINE_MRPT_OBJECT(DslamLocalMapJoining, esif)
 
    public:
+	DslamLocalMapJoining() : MapJoiningPlugin("D-SLAM map joining") {}
 	std::string sectionName() const override { return "dslam_lmj"; }
 	void configure(const ConfigSection& section) override;
 	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
-	StepReport processStep(const StepInput& step) override;
-	void finish() override;
 	PoseEstimate robotPose() const override;
 	Estimate estimate() const override;
 	CostFigures costFigures() const override;
 	Formulation formulation() const override { return Formulation::DslamLocalMapJoining; }
-	std::optional<std::vector<StepReport>> finalReports() const override;
-	std::optional<InformationPattern> informationPattern() const override;
 	std::optional<StateInformation> stateInformation() const override;
 
-	LocalMapBuilderParams localMapBuilderParams() const override { return params_.builder; }
-	void joinLocalMap(const LocalMap& map) override;
 	std::vector<PoseEstimate> endPoses() const override;
 	StepReport mapReport(std::size_t k) const override;
 	std::vector<LocalMapFusionCost> fusionCosts() const override { return costs_; }
+
+   protected:
+	/// The first map's features are the global map; a later map is
+	/// associated, reduced to its relative geometry and fused (see above).
+	void fuseLocalMap(const LocalMap& map) override;
+	void finishJoining() override;
+	/// The upper-level association needs IDs on every map after the first.
+	void checkGivenMap(const LocalMap& map) const override;
+	std::vector<SettledFusion> settledFusions() const override;
+	SparseInformationCore& globalInformation() const override;
 
    private:
 	/// The end pose of one original local map, as needed for Sec. 4.4.1.
@@ -91,7 +94,6 @@ class DslamLocalMapJoining : public FilterPlugin, public LocalMapJoiner
 	};
 
 	void requireConfigured() const;
-	void accept(const LocalMap& map);
 	/// Fuses `map` (association `decided` when already made); false, with
 	/// nothing changed, when fewer than two of its features are usable in
 	/// the global map.
@@ -116,7 +118,6 @@ class DslamLocalMapJoining : public FilterPlugin, public LocalMapJoiner
 	std::optional<LandmarkId> globalIdOfOpenFeature(LandmarkId id) const;
 
 	lmj::DslamLmjParams params_;
-	std::unique_ptr<LocalMapBuilder> builder_;
 	// Behind const robotPose()/estimate(): recovery caches.
 	std::unique_ptr<relative::FeatureMap> global_;
 	std::vector<Fusion> fusions_;
@@ -131,7 +132,6 @@ class DslamLocalMapJoining : public FilterPlugin, public LocalMapJoiner
 	/// Global covariance of a feature pair, for the robot pose of each step (cleared by every fusion).
 	mutable std::map<std::pair<LandmarkId, LandmarkId>, Eigen::Matrix4d> pair_cov_cache_;
 	std::vector<LocalMapFusionCost> costs_;
-	bool saw_measurement_without_id_ = false;
 	LandmarkId next_free_id_ = 1;
 
 	struct Tally

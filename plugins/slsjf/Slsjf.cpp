@@ -4,7 +4,6 @@
 
 #include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
-#include <esif/localmap/SettledReports.h>
 
 #include <chrono>
 #include <set>
@@ -31,7 +30,7 @@ PoseEstimate composeIndependent(const Pose2& x, const Eigen::Matrix3d& Px, const
 void Slsjf::configure(const ConfigSection& section)
 {
 	loadParams(params_, section);
-	builder_ = std::make_unique<LocalMapBuilder>(params_.builder);
+	startBuilder(params_.builder);
 	global_ = std::make_unique<GlobalMap>(params_.recovery, params_.jacobians);
 }
 
@@ -40,35 +39,9 @@ void Slsjf::requireConfigured() const
 	if (!global_) throw std::logic_error("Slsjf: used before configure()");
 }
 
-StepReport Slsjf::processStep(const StepInput& step)
+void Slsjf::finishJoining()
 {
 	requireConfigured();
-	if (step.scan)
-		for (const auto& m : step.scan->measurements) saw_measurement_without_id_ |= !m.id.has_value();
-	StepReport report = builder_->processStep(step);
-	if (auto map = builder_->takeClosedMap())
-	{
-		local_poses_.push_back({toTPose2D(map->end_pose), map->covariance->topLeftCorner<3, 3>()});
-		fuse(*map);
-	}
-	else
-		local_poses_.push_back(builder_->openMap().robotPose());
-	return report;
-}
-
-void Slsjf::joinLocalMap(const LocalMap& map)
-{
-	requireConfigured();
-	if (map.index != records_.size() + 1)
-		throw InputError("SLSJF: local map " + std::to_string(map.index) + " given after " +
-						 std::to_string(records_.size()) + " maps (maps must come in order from 1)");
-	fuse(map);
-}
-
-void Slsjf::finish()
-{
-	requireConfigured();
-	if (auto map = builder_->finish()) fuse(*map);
 	if (params_.smoothing != Smoothing::None && !records_.empty()) smooth();
 	marginals();
 }
@@ -78,7 +51,7 @@ bool Slsjf::useIds(const LocalMap& map) const
 	switch (params_.association)
 	{
 		case MapAssociationMethod::KnownIds: return true;
-		case MapAssociationMethod::Auto: return map.ids_identify_features && !saw_measurement_without_id_;
+		case MapAssociationMethod::Auto: return map.ids_identify_features && !sawMeasurementWithoutId();
 		default: return false;
 	}
 }
@@ -89,8 +62,9 @@ MapAssociationOutcome Slsjf::associate(const LocalMap& map, std::optional<VarId>
 	return associateGeometrically(map, map.covarianceMatrix(), start, *global_, params_);
 }
 
-void Slsjf::fuse(const LocalMap& map)
+void Slsjf::fuseLocalMap(const LocalMap& map)
 {
+	requireConfigured();
 	const auto t0 = Clock::now();
 	const std::optional<VarId> start = global_->startPose(map);	 // Algorithm 5.1, step 1
 	const auto t_association = Clock::now();
@@ -138,7 +112,7 @@ PoseEstimate Slsjf::openMapStart() const
 {
 	if (records_.empty()) return {};
 	const Pose2 end = global_->pose(global_->fusedMaps().back().end);
-	if (const auto& link = builder_->openMapLink())
+	if (const auto& link = builder().openMapLink())
 		return composeIndependent(end, last_end_cov_, toPose2(link->delta), link->cov);
 	return {toTPose2D(end), last_end_cov_};
 }
@@ -149,7 +123,7 @@ PoseEstimate Slsjf::robotPose() const
 	// The global pose of the open map's start composed with the robot pose
 	// in the open map: two independent estimates.
 	const PoseEstimate start = openMapStart();
-	const PoseEstimate local = builder_->openMap().robotPose();
+	const PoseEstimate local = builder().openMap().robotPose();
 	return composeIndependent(toPose2(start.mean), start.cov, toPose2(local.mean), local.cov);
 }
 
@@ -168,7 +142,7 @@ Estimate Slsjf::estimate() const
 	// Features of the open map not yet in the global map, placed through the open map's start pose.
 	const PoseEstimate start = openMapStart();
 	const Pose2 s = toPose2(start.mean);
-	const auto& open = builder_->openMap();
+	const auto& open = builder().openMap();
 	for (std::size_t i = 0; i < open.ids().size(); ++i)
 	{
 		if (global_ids.count(open.ids()[i])) continue;
@@ -201,30 +175,28 @@ StepReport Slsjf::mapReport(std::size_t k) const
 	return records_[k - 1].decisions;
 }
 
-std::optional<std::vector<StepReport>> Slsjf::finalReports() const
+std::vector<MapJoiningPlugin::SettledFusion> Slsjf::settledFusions() const
 {
-	if (records_.empty() || records_.front().step_reports.empty()) return std::nullopt;
-	std::vector<StepReport> out;
-	std::set<LandmarkId> started;
-	for (const auto& record : records_)
-		appendSettledReports(record.step_reports, record.local_ids, record.decisions, started, out);
+	std::vector<SettledFusion> out;
+	for (const auto& record : records_) out.push_back({record.step_reports, record.local_ids, record.decisions});
 	return out;
 }
 
 std::optional<std::vector<PoseEstimate>> Slsjf::smoothedTrajectory() const
 {
-	if (params_.smoothing == Smoothing::None || local_poses_.empty()) return std::nullopt;
+	const std::vector<PoseEstimate>& poses = localPoses();
+	if (params_.smoothing == Smoothing::None || poses.empty()) return std::nullopt;
 	const auto& P = marginals();
 	std::vector<PoseEstimate> out;
-	out.reserve(local_poses_.size());
+	out.reserve(poses.size());
 	for (std::size_t k = 0; k < records_.size(); ++k)
 	{
 		const auto& start = global_->fusedMaps()[k].start;
 		const Pose2 s = global_->startEstimate(start);
 		const Eigen::Matrix3d Ps = start ? Eigen::Matrix3d(P[start->value]) : Eigen::Matrix3d::Zero();
 		const std::size_t first = records_[k].first_step, last = first + records_[k].step_reports.size() - 1;
-		for (std::size_t i = first; i < last && i < local_poses_.size(); ++i)
-			out.push_back(composeIndependent(s, Ps, toPose2(local_poses_[i].mean), local_poses_[i].cov));
+		for (std::size_t i = first; i < last && i < poses.size(); ++i)
+			out.push_back(composeIndependent(s, Ps, toPose2(poses[i].mean), poses[i].cov));
 		// The map's last step is its end pose, a variable of the global state.
 		const VarId end = global_->fusedMaps()[k].end;
 		Pose2 e = global_->pose(end);
@@ -234,10 +206,10 @@ std::optional<std::vector<PoseEstimate>> Slsjf::smoothedTrajectory() const
 	return out;
 }
 
-std::optional<InformationPattern> Slsjf::informationPattern() const
+SparseInformationCore& Slsjf::globalInformation() const
 {
 	requireConfigured();
-	return global_->core().pattern();
+	return global_->core();
 }
 
 std::optional<StateInformation> Slsjf::stateInformation() const

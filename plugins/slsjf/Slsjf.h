@@ -11,16 +11,15 @@
 /// relinearisation of all fused maps (`smoothing`, after the authors'
 /// I-SLSJF) reaches the optimum of the local-map formulation.
 ///
-/// On a rawlog it builds its local maps with the framework's
-/// LocalMapBuilder; on `esif run --local-maps` it fuses the maps it is given.
+/// On a rawlog its local maps come from the SDK's MapJoiningPlugin (the
+/// framework's LocalMapBuilder); on `esif run --local-maps` it fuses the maps
+/// it is given.
 
 #include "GlobalMap.h"
 #include "MapAssociation.h"
 #include "SlsjfParams.h"
 
-#include <esif/localmap/LocalMapBuilder.h>
-#include <esif/plugin/FilterPlugin.h>
-#include <esif/plugin/LocalMapJoiner.h>
+#include <esif/plugin/MapJoiningPlugin.h>
 
 #include <map>
 #include <memory>
@@ -29,33 +28,34 @@
 
 namespace esif
 {
-class Slsjf : public FilterPlugin, public LocalMapJoiner
+class Slsjf : public MapJoiningPlugin
 {
 	DEFINE_MRPT_OBJECT(Slsjf, esif)
 
    public:
+	Slsjf() : MapJoiningPlugin("SLSJF") {}
 	std::string sectionName() const override { return "slsjf"; }
 	void configure(const ConfigSection& section) override;
 	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
-	StepReport processStep(const StepInput& step) override;
-	void finish() override;
 	PoseEstimate robotPose() const override;
 	Estimate estimate() const override;
 	CostFigures costFigures() const override;
 	Formulation formulation() const override { return Formulation::Slsjf; }
-	std::optional<std::vector<StepReport>> finalReports() const override;
 	/// With smoothing, every step's pose re-estimated with all data: its map's
 	/// start pose from the final global state composed with the robot pose
 	/// in that map (first-order covariance). Plain SLSJF keeps its online poses.
 	std::optional<std::vector<PoseEstimate>> smoothedTrajectory() const override;
-	std::optional<InformationPattern> informationPattern() const override;
 	std::optional<StateInformation> stateInformation() const override;
 
-	LocalMapBuilderParams localMapBuilderParams() const override { return params_.builder; }
-	void joinLocalMap(const LocalMap& map) override;
 	std::vector<PoseEstimate> endPoses() const override;
 	StepReport mapReport(std::size_t k) const override;
 	std::vector<LocalMapFusionCost> fusionCosts() const override { return costs_; }
+
+   protected:
+	void fuseLocalMap(const LocalMap& map) override;
+	void finishJoining() override;
+	std::vector<SettledFusion> settledFusions() const override;
+	SparseInformationCore& globalInformation() const override;
 
    private:
 	/// What the fusion of one map decided, for reports and the robot pose.
@@ -68,7 +68,6 @@ class Slsjf : public FilterPlugin, public LocalMapJoiner
 	};
 
 	void requireConfigured() const;
-	void fuse(const LocalMap& map);
 	bool useIds(const LocalMap& map) const;
 	slsjf::MapAssociationOutcome associate(const LocalMap& map, std::optional<VarId> start);
 	void smooth();
@@ -76,15 +75,10 @@ class Slsjf : public FilterPlugin, public LocalMapJoiner
 	const std::vector<Eigen::MatrixXd>& marginals() const;
 
 	slsjf::SlsjfParams params_;
-	std::unique_ptr<LocalMapBuilder> builder_;
 	// Behind const estimate()/robotPose(): recovery and marginal caches.
 	std::unique_ptr<slsjf::GlobalMap> global_;
 	std::vector<MapRecord> records_;
-	/// Each step's robot pose in its local map's frame (the end pose for the
-	/// step that closed a map), for smoothedTrajectory().
-	std::vector<PoseEstimate> local_poses_;
 	std::vector<LocalMapFusionCost> costs_;
-	bool saw_measurement_without_id_ = false;
 	Eigen::Matrix3d last_end_cov_ = Eigen::Matrix3d::Zero();  // of the last fused map's end pose
 	mutable std::optional<std::vector<Eigen::MatrixXd>> marginals_;	 // cleared by every change
 

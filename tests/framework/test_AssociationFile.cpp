@@ -6,7 +6,7 @@
 #include <FakeRawlog.h>
 
 #include <esif/core/Errors.h>
-#include <esif/io/AssociationFile.h>
+#include <esif/formats/AssociationFile.h>
 
 #include <gtest/gtest.h>
 #include <filesystem>

@@ -2,10 +2,10 @@
 // the first sweep maps everything and later sweeps revisit it, and that the
 // core recovers it like the dense reference and the other methods.
 
+#include <esif/bench/DslamLikeSequence.h>
+#include <esif/bench/DslamSequenceFeeder.h>
+#include <esif/bench/SparseBenchmark.h>
 #include <esif/core/Errors.h>
-#include <esif/sparse/DslamLikeSequence.h>
-#include <esif/sparse/DslamSequenceFeeder.h>
-#include <esif/sparse/SparseBenchmark.h>
 #include <esif/sparse/SparseInformationCore.h>
 
 #include <Eigen/Dense>

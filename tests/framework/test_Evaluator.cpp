@@ -2,7 +2,7 @@
 #include <esif/eval/AssociationAudit.h>
 #include <esif/eval/ComparisonTable.h>
 #include <esif/eval/Evaluator.h>
-#include <esif/io/StatsJson.h>
+#include <esif/formats/StatsJson.h>
 
 #include <gtest/gtest.h>
 

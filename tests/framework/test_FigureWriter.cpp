@@ -7,8 +7,8 @@
 #include <EsifTestSupport.h>
 
 #include <esif/core/Errors.h>
-#include <esif/io/FigureWriter.h>
-#include <esif/io/MapOverlay.h>
+#include <esif/render/FigureWriter.h>
+#include <esif/render/MapOverlay.h>
 
 #include <mrpt/img/CImage.h>
 

@@ -10,7 +10,7 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/RawlogReader.h>
 #include <esif/run/HostParams.h>
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 #include <EsifTestSupport.h>
 
 #include <esif/core/Errors.h>
-#include <esif/io/GroundTruth.h>
+#include <esif/formats/GroundTruth.h>
 
 #include <gtest/gtest.h>
 #include <fstream>

@@ -13,8 +13,8 @@
 
 #include <esif/association/Chi2.h>
 #include <esif/core/Errors.h>
-#include <esif/io/GroundTruth.h>
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/formats/RawlogReader.h>
 #include <esif/localmap/LocalMapBuilder.h>
 #include <esif/localmap/LocalMapBuilderParams.h>
 

@@ -8,7 +8,7 @@
 #include <EsifTestSupport.h>
 #include <LocalMapBuilderTestSupport.h>
 
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/RawlogReader.h>
 #include <esif/localmap/LocalMapBuilder.h>
 #include <esif/run/Replay.h>
 

@@ -1,7 +1,7 @@
 #include <EsifTestSupport.h>
 
 #include <esif/core/Errors.h>
-#include <esif/localmap/LocalMapFiles.h>
+#include <esif/formats/LocalMapFiles.h>
 #include <esif/run/LocalMapBuild.h>
 
 #include <gtest/gtest.h>

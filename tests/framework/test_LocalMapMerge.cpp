@@ -11,8 +11,8 @@
 #include <LocalMapBuilderTestSupport.h>
 
 #include <esif/core/Errors.h>
-#include <esif/io/GroundTruth.h>
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/formats/RawlogReader.h>
 #include <esif/localmap/LocalMapBuilder.h>
 #include <esif/localmap/LocalMapMerge.h>
 #include <esif/models/LocalMapObservation.h>

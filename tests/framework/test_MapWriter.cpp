@@ -3,7 +3,8 @@
 /// MRPT's own readers (and plain parsing for the text files).
 
 #include <esif/core/Errors.h>
-#include <esif/io/MapWriter.h>
+#include <esif/formats/MapWriter.h>
+#include <esif/run/MapOutputs.h>
 
 #include <mrpt/img/CImage.h>
 #include <mrpt/io/CFileGZInputStream.h>

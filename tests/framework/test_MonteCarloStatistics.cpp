@@ -8,11 +8,11 @@
 
 #include <esif/association/Chi2.h>
 #include <esif/core/Errors.h>
+#include <esif/eval/EstimationErrorFiles.h>
 #include <esif/eval/MonteCarloStatistics.h>
 #include <esif/eval/MonteCarloTables.h>
-#include <esif/io/AtomicFile.h>
-#include <esif/io/EstimationErrorFiles.h>
 #include <esif/run/MonteCarloCollect.h>
+#include <esif/safeio/AtomicFile.h>
 
 #include <gtest/gtest.h>
 

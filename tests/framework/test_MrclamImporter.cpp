@@ -8,9 +8,9 @@
 #include <EsifTestSupport.h>
 
 #include <esif/core/Errors.h>
-#include <esif/io/GroundTruth.h>
-#include <esif/io/MrclamImporter.h>
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/formats/MrclamImporter.h>
+#include <esif/formats/RawlogReader.h>
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 #include <EsifTestSupport.h>
 
 #include <esif/core/Errors.h>
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/RawlogReader.h>
 
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/maps/CSimpleMap.h>

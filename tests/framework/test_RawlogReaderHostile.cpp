@@ -6,7 +6,7 @@
 #include <EsifTestSupport.h>
 
 #include <esif/core/Errors.h>
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/RawlogReader.h>
 
 #include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/io/CMemoryStream.h>

@@ -6,8 +6,8 @@
 #include <esif/core/Errors.h>
 #include <esif/eval/ComparisonTable.h>
 #include <esif/eval/RunDifference.h>
-#include <esif/io/MapWriter.h>
-#include <esif/io/RunOutputReader.h>
+#include <esif/formats/MapWriter.h>
+#include <esif/formats/RunOutputReader.h>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

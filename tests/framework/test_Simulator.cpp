@@ -5,7 +5,7 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
-#include <esif/io/GroundTruth.h>
+#include <esif/formats/GroundTruth.h>
 #include <esif/models/Se2.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>

@@ -18,8 +18,8 @@
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 #include <esif/eval/AssociationAudit.h>
-#include <esif/io/GroundTruth.h>
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/formats/RawlogReader.h>
 #include <esif/models/Se2.h>
 #include <esif/sim/MeasurementTruth.h>
 #include <esif/sim/Scenario.h>

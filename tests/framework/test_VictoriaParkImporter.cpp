@@ -4,7 +4,7 @@
 #include <EsifTestSupport.h>
 
 #include <esif/core/Errors.h>
-#include <esif/io/VictoriaParkImporter.h>
+#include <esif/formats/VictoriaParkImporter.h>
 
 #include <gtest/gtest.h>
 #include <cmath>

@@ -6,7 +6,7 @@
 
 #include "FuzzSupport.h"
 
-#include <esif/interop/G2oFormat.h>
+#include <esif/formats/G2oFormat.h>
 
 namespace esif::fuzz
 {

@@ -9,8 +9,8 @@
 
 #include "FuzzSupport.h"
 
-#include <esif/io/AssociationFile.h>
-#include <esif/io/GroundTruth.h>
+#include <esif/formats/AssociationFile.h>
+#include <esif/formats/GroundTruth.h>
 #include <esif/sim/MeasurementTruth.h>
 
 #include <string>

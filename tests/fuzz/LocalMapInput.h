@@ -9,7 +9,7 @@
 
 #include "FuzzSupport.h"
 
-#include <esif/localmap/LocalMapFiles.h>
+#include <esif/formats/LocalMapFiles.h>
 
 #include <filesystem>
 #include <string>

@@ -6,7 +6,7 @@
 /// InputError too.
 
 #include <esif/core/Errors.h>
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/RawlogReader.h>
 
 #include <cstdint>
 #include <cstdio>

@@ -6,7 +6,7 @@
 
 #include <EsifTestSupport.h>
 
-#include <esif/io/AssociationFile.h>
+#include <esif/formats/AssociationFile.h>
 
 #include <gtest/gtest.h>
 #include <algorithm>

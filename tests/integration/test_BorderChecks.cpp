@@ -7,7 +7,7 @@
 
 #include <EsifTestSupport.h>
 
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/RawlogReader.h>
 
 #include <gtest/gtest.h>
 

@@ -7,12 +7,12 @@
 #include <EsifTestSupport.h>
 #include <LocalMapTestSupport.h>
 
-#include <esif/io/AssociationFile.h>
-#include <esif/io/GroundTruth.h>
-#include <esif/io/RunOutputReader.h>
-#include <esif/localmap/LocalMapFiles.h>
-#include <esif/run/LocalMapBuild.h>
+#include <esif/formats/AssociationFile.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/formats/LocalMapFiles.h>
+#include <esif/formats/RunOutputReader.h>
 #include <esif/models/Se2.h>
+#include <esif/run/LocalMapBuild.h>
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 
 #include <EsifTestSupport.h>
 
-#include <esif/io/StatsJson.h>
+#include <esif/formats/StatsJson.h>
 
 #include <gtest/gtest.h>
 

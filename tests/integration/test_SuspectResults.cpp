@@ -8,7 +8,7 @@
 
 #include <esif/eval/MonteCarloTables.h>
 #include <esif/eval/SuspectResult.h>
-#include <esif/io/StatsJson.h>
+#include <esif/formats/StatsJson.h>
 
 #include <gtest/gtest.h>
 

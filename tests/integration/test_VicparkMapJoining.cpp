@@ -8,8 +8,8 @@
 #include <EsifTestSupport.h>
 
 #include <esif/eval/RunDifference.h>
-#include <esif/io/RunOutputReader.h>
-#include <esif/io/StatsJson.h>
+#include <esif/formats/RunOutputReader.h>
+#include <esif/formats/StatsJson.h>
 
 #include <gtest/gtest.h>
 

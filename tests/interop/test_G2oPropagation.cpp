@@ -6,7 +6,7 @@
 
 #include <NumericJacobian.h>
 
-#include <esif/interop/G2oFormat.h>
+#include <esif/formats/G2oFormat.h>
 #include <esif/models/Se2.h>
 
 #include <Eigen/Cholesky>

@@ -8,9 +8,9 @@
 
 #include <EsifTestSupport.h>
 
-#include <esif/interop/FullSlamProblem.h>
-#include <esif/io/RawlogReader.h>
-#include <esif/io/RunOutputReader.h>
+#include <esif/formats/FullSlamProblem.h>
+#include <esif/formats/RawlogReader.h>
+#include <esif/formats/RunOutputReader.h>
 #include <esif/models/Se2.h>
 
 #include <Eigen/Cholesky>

@@ -9,7 +9,7 @@
 
 #include <EsifTestSupport.h>
 
-#include <esif/io/RunOutputReader.h>
+#include <esif/formats/RunOutputReader.h>
 #include <esif/models/Se2.h>
 
 #include <ceres/ceres.h>

@@ -20,7 +20,7 @@
 #include <esif/association/Chi2.h>
 #include <esif/config/ConfigFile.h>
 #include <esif/eval/Evaluator.h>
-#include <esif/io/GroundTruth.h>
+#include <esif/formats/GroundTruth.h>
 #include <esif/sim/Simulator.h>
 
 #include <filesystem>

@@ -6,10 +6,10 @@
 
 #include <esif/config/ConfigFile.h>
 #include <esif/eval/Evaluator.h>
-#include <esif/io/GroundTruth.h>
-#include <esif/io/RawlogReader.h>
-#include <esif/io/StatsJson.h>
-#include <esif/plugin/PluginLoader.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/formats/RawlogReader.h>
+#include <esif/formats/StatsJson.h>
+#include <esif/run/PluginLoader.h>
 #include <esif/run/Replay.h>
 #include <esif/sim/Scenario.h>
 

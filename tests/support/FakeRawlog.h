@@ -4,7 +4,7 @@
 /// per step, the landmark IDs of its measurements (nullopt: a measurement
 /// without ID; no entry at all: an odometry-only step without scan).
 
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/RawlogReader.h>
 
 #include <mrpt/obs/CSensoryFrame.h>
 

@@ -4,7 +4,7 @@
 /// result written in the authors' layout, the test-only joining plugin's
 /// folder and configs, and stats.json read back.
 
-#include <esif/io/StatsJson.h>
+#include <esif/formats/StatsJson.h>
 #include <esif/localmap/LocalMap.h>
 
 #include <Eigen/Core>

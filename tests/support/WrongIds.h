@@ -4,7 +4,7 @@
 /// measurements are in part given another ID, with the IDs stored in the
 /// file (Rawlog::true_ids) kept as the truth the audit scores against.
 
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/RawlogReader.h>
 
 #include <algorithm>
 #include <map>

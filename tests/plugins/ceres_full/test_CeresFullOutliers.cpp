@@ -6,9 +6,9 @@
 
 #include <EsifTestSupport.h>
 
-#include <esif/io/AssociationFile.h>
-#include <esif/io/RunOutputReader.h>
-#include <esif/io/StatsJson.h>
+#include <esif/formats/AssociationFile.h>
+#include <esif/formats/RunOutputReader.h>
+#include <esif/formats/StatsJson.h>
 #include <esif/sim/MeasurementTruth.h>
 
 #include <gtest/gtest.h>

@@ -7,9 +7,9 @@
 
 #include <EsifTestSupport.h>
 
-#include <esif/io/RawlogReader.h>
-#include <esif/io/RunOutputReader.h>
-#include <esif/io/StatsJson.h>
+#include <esif/formats/RawlogReader.h>
+#include <esif/formats/RunOutputReader.h>
+#include <esif/formats/StatsJson.h>
 #include <esif/models/Se2.h>
 #include <esif/sim/Simulator.h>
 

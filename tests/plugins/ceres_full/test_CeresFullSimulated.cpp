@@ -11,7 +11,7 @@
 #include <esif/core/Errors.h>
 #include <esif/eval/Evaluator.h>
 #include <esif/eval/StateNees.h>
-#include <esif/io/GroundTruth.h>
+#include <esif/formats/GroundTruth.h>
 #include <esif/models/Se2.h>
 #include <esif/sim/Simulator.h>
 

@@ -7,7 +7,7 @@
 #include <EsifTestSupport.h>
 
 #include <esif/eval/Evaluator.h>
-#include <esif/io/GroundTruth.h>
+#include <esif/formats/GroundTruth.h>
 
 #include <gtest/gtest.h>
 

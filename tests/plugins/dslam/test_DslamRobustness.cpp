@@ -18,8 +18,8 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
 #include <esif/eval/Evaluator.h>
-#include <esif/io/GroundTruth.h>
-#include <esif/io/StatsJson.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/formats/StatsJson.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>
 

@@ -11,8 +11,8 @@
 #include <LocalMapTestSupport.h>
 
 #include <esif/eval/Evaluator.h>
-#include <esif/io/GroundTruth.h>
-#include <esif/io/StatsJson.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/formats/StatsJson.h>
 
 #include <gtest/gtest.h>
 

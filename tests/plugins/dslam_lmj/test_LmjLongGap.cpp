@@ -22,8 +22,8 @@
 
 #include <esif/config/ConfigFile.h>
 #include <esif/eval/Evaluator.h>
-#include <esif/io/GroundTruth.h>
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/formats/RawlogReader.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>
 

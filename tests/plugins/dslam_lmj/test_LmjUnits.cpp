@@ -13,7 +13,7 @@
 #include "ReferenceChoice.h"
 #include "UpperLevelAssociation.h"
 
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/RawlogReader.h>
 #include <esif/localmap/LocalMapBuilder.h>
 #include <esif/models/LocalMapObservation.h>
 #include <esif/plugin/LocalMapJoiner.h>

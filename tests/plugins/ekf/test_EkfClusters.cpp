@@ -8,7 +8,7 @@
 #include <EsifTestSupport.h>
 
 #include <esif/config/ConfigFile.h>
-#include <esif/io/RawlogReader.h>
+#include <esif/formats/RawlogReader.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>
 

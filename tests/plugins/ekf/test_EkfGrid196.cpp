@@ -6,7 +6,7 @@
 
 #include <esif/config/ConfigFile.h>
 #include <esif/eval/Evaluator.h>
-#include <esif/io/GroundTruth.h>
+#include <esif/formats/GroundTruth.h>
 #include <esif/sim/Simulator.h>
 
 #include <gtest/gtest.h>

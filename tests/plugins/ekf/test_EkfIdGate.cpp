@@ -8,7 +8,7 @@
 #include <WrongIds.h>
 
 #include <esif/eval/Evaluator.h>
-#include <esif/io/GroundTruth.h>
+#include <esif/formats/GroundTruth.h>
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 #include <EsifTestSupport.h>
 
 #include <esif/eval/Evaluator.h>
-#include <esif/io/GroundTruth.h>
+#include <esif/formats/GroundTruth.h>
 
 #include <MrptKfSlamReplay.h>
 

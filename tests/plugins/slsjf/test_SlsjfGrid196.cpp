@@ -10,7 +10,7 @@
 #include <esif/association/Chi2.h>
 #include <esif/config/ConfigFile.h>
 #include <esif/eval/Evaluator.h>
-#include <esif/io/GroundTruth.h>
+#include <esif/formats/GroundTruth.h>
 #include <esif/plugin/LocalMapJoiner.h>
 
 #include <Eigen/Geometry>

@@ -11,7 +11,7 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
 #include <esif/eval/Evaluator.h>
-#include <esif/io/GroundTruth.h>
+#include <esif/formats/GroundTruth.h>
 #include <esif/plugin/LocalMapJoiner.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>

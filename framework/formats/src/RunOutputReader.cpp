@@ -1,0 +1,159 @@
+/// \file RunOutputReader.cpp
+/// trajectory.tum and landmarks.txt read back, strictly: every token must be
+/// a whole number (std::from_chars, locale-independent like the writers'
+/// std::to_chars), so a damaged file is reported at its line, never misread.
+
+#include <esif/core/Errors.h>
+#include <esif/core/TextInput.h>
+#include <esif/formats/RunOutputReader.h>
+#include <esif/models/Se2.h>
+
+#include <Eigen/Geometry>
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <sstream>
+
+namespace esif
+{
+namespace
+{
+/// Whitespace-separated tokens of a line; empty for blank and '#' comment lines.
+std::vector<std::string> tokens(const std::string& line)
+{
+	std::vector<std::string> out;
+	std::istringstream ss(line);
+	std::string tok;
+	while (ss >> tok)
+	{
+		if (out.empty() && tok[0] == '#') return {};
+		out.push_back(tok);
+	}
+	return out;
+}
+
+/// The whole token as a double ("nan" and "inf" included); nullopt otherwise.
+std::optional<double> parseNumber(const std::string& tok)
+{
+	double v = 0;
+	const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v);
+	if (r.ec != std::errc() || r.ptr != tok.data() + tok.size()) return std::nullopt;
+	return v;
+}
+
+std::string numberText(double v)
+{
+	char buf[32];
+	const auto r = std::to_chars(buf, buf + sizeof(buf), v);
+	return std::string(buf, r.ptr);
+}
+
+/// "file:line: problem", the one-line error of a bad row.
+[[noreturn]] void failAt(const std::string& path, std::size_t lineno, const std::string& problem)
+{
+	throw InputError(path + ":" + std::to_string(lineno) + ": " + problem);
+}
+
+/// Parses `toks` as exactly `count` numbers, naming `columns` in errors.
+std::vector<double> numbersOf(
+	const std::vector<std::string>& toks, std::size_t first, std::size_t count, const std::string& path,
+	std::size_t lineno, const std::string& columns)
+{
+	if (toks.size() != first + count)
+		failAt(path, lineno, "expected " + columns + ", found " + std::to_string(toks.size()) + " values");
+	std::vector<double> v;
+	for (std::size_t k = first; k < toks.size(); ++k)
+	{
+		const auto x = parseNumber(toks[k]);
+		if (!x) failAt(path, lineno, "'" + toks[k] + "' is not a number (expected " + columns + ")");
+		v.push_back(*x);
+	}
+	return v;
+}
+
+/// Yaw [rad] of the rotation (qx, qy, qz, qw) about the vertical axis; NaN
+/// when a component is not finite.
+double yawOf(double qx, double qy, double qz, double qw, const std::string& path, std::size_t lineno)
+{
+	const Eigen::Quaterniond q(qw, qx, qy, qz);
+	if (!q.coeffs().allFinite()) return std::nan("");
+	if (q.norm() < 1e-9) failAt(path, lineno, "quaternion (qx qy qz qw) = (0, 0, 0, 0) is not a rotation");
+	const Eigen::Matrix3d r = q.normalized().toRotationMatrix();
+	return wrapAngle(std::atan2(r(1, 0), r(0, 0)));
+}
+}  // namespace
+
+std::vector<TimedPose2D> readTrajectoryTum(const std::string& path)
+{
+	static const std::string kColumns = "8 numbers 'timestamp x y z qx qy qz qw'";
+	TextLineReader in(path, "trajectory");
+	std::vector<TimedPose2D> out;
+	for (std::string line; in.next(line);)
+	{
+		const std::size_t lineno = in.lineNumber();
+		const auto toks = tokens(line);
+		if (toks.empty()) continue;
+		const auto v = numbersOf(toks, 0, 8, path, lineno, kColumns);
+		if (!std::isfinite(v[0])) failAt(path, lineno, "timestamp " + toks[0] + " is not finite");
+		if (!out.empty() && !(v[0] > out.back().time_s))
+			failAt(
+				path, lineno,
+				"timestamp " + toks[0] + " is not after the previous one (" + numberText(out.back().time_s) +
+					"): times must increase");
+		TimedPose2D p;
+		p.time_s = v[0];
+		p.pose = mrpt::math::TPose2D(v[1], v[2], yawOf(v[4], v[5], v[6], v[7], path, lineno));
+		out.push_back(p);
+	}
+	return out;
+}
+
+std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path)
+{
+	static const std::string kColumns = "'id x y cxx cxy cyy' (an integer ID and 5 numbers)";
+	TextLineReader in(path, "landmark map");
+	std::vector<LandmarkEstimate> out;
+	std::map<LandmarkId, std::size_t> line_of_id;
+	for (std::string line; in.next(line);)
+	{
+		const std::size_t lineno = in.lineNumber();
+		const auto toks = tokens(line);
+		if (toks.empty()) continue;
+		const auto v = numbersOf(toks, 1, 5, path, lineno, kColumns);
+		LandmarkEstimate lm;
+		const std::string& id = toks[0];
+		const auto r = std::from_chars(id.data(), id.data() + id.size(), lm.id);
+		if (r.ec != std::errc() || r.ptr != id.data() + id.size())
+			failAt(path, lineno, "landmark ID '" + id + "' is not an integer (expected " + kColumns + ")");
+		if (const auto [it, added] = line_of_id.emplace(lm.id, lineno); !added)
+			failAt(
+				path, lineno,
+				"duplicate landmark ID " + std::to_string(lm.id) + " (first on line " + std::to_string(it->second) +
+					")");
+		lm.mean << v[0], v[1];
+		lm.cov << v[2], v[3], v[3], v[4];
+		out.push_back(lm);
+	}
+	return out;
+}
+
+RunOutputs readRunOutputs(const std::string& dir)
+{
+	RunOutputs out;
+	out.trajectory = readTrajectoryTum((std::filesystem::path(dir) / "trajectory.tum").string());
+	out.landmarks = readLandmarksTxt((std::filesystem::path(dir) / "landmarks.txt").string());
+	return out;
+}
+
+GroundTruth runAsGroundTruth(const RunOutputs& run)
+{
+	GroundTruth truth;
+	for (const LandmarkEstimate& l : run.landmarks) truth.landmarks[l.id] = l.mean;
+	for (const TimedPose2D& row : run.trajectory) truth.path.emplace_back(row.pose.x, row.pose.y, row.pose.phi);
+	return truth;
+}
+
+}  // namespace esif

@@ -1,0 +1,31 @@
+#pragma once
+/// \file LandmarkIdRequirement.h
+/// The host's check that a plugin which cannot associate measurements itself
+/// (FilterPlugin::needsLandmarkIds, e.g. a full-SLAM optimizer) is given
+/// landmark IDs: otherwise it would map nothing, and the run would look like
+/// a result rather than a configuration mistake.
+
+#include <esif/formats/RawlogReader.h>
+#include <esif/plugin/FilterPlugin.h>
+
+#include <string>
+
+namespace esif
+{
+/// Where the landmark IDs of a run's input come from, for the error message.
+struct LandmarkIdSource
+{
+	std::string config_path;  ///< the run's INI file
+	bool ids_hidden = false;  ///< [esif] hide_landmark_ids = true
+	std::string associations_file;	///< associations.txt applied to the rawlog; empty when none
+};
+
+/// Whether any measurement of `log` carries a landmark ID.
+bool hasAnyLandmarkId(const Rawlog& log);
+
+/// Throws ConfigError when `plugin` needs landmark IDs and no measurement of
+/// `log` has one, naming the config, the plugin class, the rawlog (or the
+/// associations file that left none) and the fix: `[esif] associations_from`.
+void requireLandmarkIds(const FilterPlugin& plugin, const Rawlog& log, const LandmarkIdSource& source);
+
+}  // namespace esif

@@ -1,0 +1,40 @@
+/// \file G2oExport.cpp
+/// The rawlog, with a run's data association applied, built into a
+/// full-SLAM problem and written as g2o text.
+
+#include <esif/core/Errors.h>
+#include <esif/formats/AssociationFile.h>
+#include <esif/formats/RunOutputReader.h>
+#include <esif/run/G2oExport.h>
+#include <esif/run/RunSetup.h>
+#include <esif/safeio/OutputApart.h>
+
+#include <filesystem>
+
+namespace esif
+{
+G2oExportSummary exportG2o(const G2oExportRequest& request)
+{
+	requireOutputApart(request.out_path, {{"the rawlog", request.rawlog_path}, {"the run folder", request.run_dir.value_or("")}});
+	Rawlog log = readRawlog(request.rawlog_path);
+	std::optional<RunOutputs> initial;
+	if (request.run_dir)
+	{
+		const std::string& dir = *request.run_dir;
+		if (!std::filesystem::is_directory(dir)) throw InputError(dir + ": run folder not found");
+		const std::string associations = (std::filesystem::path(dir) / kAssociationFileName).string();
+		applyAssociations(log, readAssociationFile(associations, log.steps.size()), associations);
+		initial = readRunOutputs(dir);
+	}
+	const FullSlamProblem problem =
+		buildFullSlamProblem(log, initial ? &*initial : nullptr, request.run_dir.value_or(""));
+	if (problem.observations.empty() && problem.measurements_without_id > 0)
+		throw InputError(
+			request.rawlog_path + ": no measurement carries a landmark ID: give --associations-from a run folder "
+								  "of this rawlog (its associations.txt gives the IDs)");
+	writeG2oFile(request.out_path, problem, request.landmark_edge, request.rawlog_path);
+	return {problem.poses.size(), problem.landmarks.size(), problem.odometry.size(), problem.observations.size(),
+			problem.measurements_without_id};
+}
+
+}  // namespace esif

@@ -1,0 +1,143 @@
+#include "RunFiles.h"
+
+#include <esif/core/Errors.h>
+#include <esif/eval/LocalMapEvaluation.h>
+#include <esif/eval/ReferenceResultDifference.h>
+#include <esif/formats/AssociationFile.h>
+#include <esif/formats/LocalMapFiles.h>
+#include <esif/run/LocalMapReplay.h>
+#include <esif/run/LocalMapRunPipeline.h>
+#include <esif/run/RunSetup.h>
+
+#include <chrono>
+#include <filesystem>
+
+namespace esif
+{
+namespace
+{
+/// What every local-map run writes, checked before the folder is put in place.
+const std::vector<std::string> kLocalMapRunOutputFiles = {
+	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "landmarks.gz",
+	"localmap_times.png", "params.ini", kAssociationFileName, "stats.json"};
+
+/// What the run was given, read before any output is written.
+struct LocalMapInput
+{
+	LocalMapFolder folder;
+	std::optional<ReferenceResult> reference;
+	std::size_t steps = 0;	///< the maps' steps (0 when read from files)
+	std::size_t feature_entries = 0;
+};
+
+LocalMapInput readInput(const LocalMapRunRequest& request)
+{
+	LocalMapInput in;
+	in.folder = readLocalMapFolder(request.local_maps_dir);
+	if (request.reference_result_dir) in.reference = readReferenceResult(*request.reference_result_dir);
+	for (const auto& map : in.folder.maps)
+	{
+		in.steps += map.steps;
+		in.feature_entries += map.features.size();
+	}
+	return in;
+}
+
+/// The host settings that only apply to rawlogs are refused rather than ignored.
+void rejectRawlogOnlyKeys(const ConfigFile& cfg, const HostParams& host)
+{
+	if (!host.associations_from.empty())
+		throw ConfigError(cfg.section(kHostSection)
+							  .describeKey("associations_from", "applies to rawlog input only, not to --local-maps"));
+}
+
+Stats collectStats(
+	const HostParams& host, const LocalMapRunRequest& request, const LocalMapInput& in,
+	const LocalMapReplayResult& result, const FilterPlugin& plugin, const std::optional<Accuracy>& accuracy,
+	const std::optional<ReferenceResultDifference>& difference, double total_wall_s)
+{
+	Stats s;
+	const auto cost = plugin.costFigures();
+	setRunIdentityStats(s, host, plugin, request.config_path);
+	s.set("local_map_folder", StatValue(request.local_maps_dir));
+	s.set("local_maps", StatValue(static_cast<long long>(in.folder.maps.size())));
+	s.set("steps", StatValue(static_cast<long long>(in.steps)));
+	s.set("measurements", StatValue(static_cast<long long>(in.feature_entries)));
+	s.set("landmarks", StatValue(static_cast<long long>(result.record.final_estimate.landmarks.size())));
+	s.set("wall_s", StatValue(result.wall_s));
+	s.set("total_wall_s", StatValue(total_wall_s));
+	setLocalMapJoinStats(s, in.folder.maps.size(), result.join_us, result.fusion_costs);
+	setRunOutcomeStats(s, result.finish_us, cost, result.audit, accuracy);
+	if (difference) setReferenceResultStats(s, *difference);
+	setPluginCounters(s, cost);
+	return s;
+}
+
+/// The whole-state NEES against the folder's ground truth: its landmarks,
+/// and the true end pose of map k for the state's pose of map k.
+std::optional<StateNees> truthStateNees(
+	const LocalMapFolder& folder, const FilterPlugin& plugin, const std::map<LandmarkId, LandmarkId>& filter_to_file,
+	const std::string& what)
+{
+	if (!folder.truth_landmarks && !folder.truth_end_poses) return std::nullopt;
+	StateReference reference;
+	if (folder.truth_landmarks) reference.landmarks = *folder.truth_landmarks;
+	if (folder.truth_end_poses) reference.poses_by_local_map = *folder.truth_end_poses;
+	return finalStateNees(plugin, reference, filter_to_file, what);
+}
+}  // namespace
+
+LocalMapJoiner& requireLocalMapJoiner(FilterPlugin& plugin, const std::string& config, const std::string& name)
+{
+	if (auto* joiner = asLocalMapJoiner(plugin)) return *joiner;
+	throw ConfigError(
+		config + ": plugin " + name + " cannot join local maps (--local-maps needs a local-map joining plugin)");
+}
+
+namespace
+{
+/// The whole run, writing into request.out_dir (the partial folder).
+Stats runInto(const LocalMapRunRequest& request, PluginLoader& loader)
+{
+	const auto t0 = std::chrono::steady_clock::now();
+	const ConfigFile cfg = ConfigFile::load(request.config_path);
+	const HostParams host = loadHostParams(cfg);
+	rejectRawlogOnlyKeys(cfg, host);
+	auto plugin = createConfiguredPlugin(cfg, host, loader);
+	requireLocalMapJoiner(*plugin, cfg.origin(), host.plugin);
+	const LocalMapInput in = readInput(request);
+
+	LocalMapReplayResult result = replayLocalMaps(
+		*plugin, in.folder.maps, request.local_maps_dir, {host.hide_landmark_ids, request.progress_bar});
+	result.record.truth = localMapGroundTruth(in.folder);
+	const auto filter_to_file = result.audit.filterToTrue();
+	const auto accuracy =
+		evaluateLocalMapRun(in.folder, result.record.trajectory, result.record.final_estimate, filter_to_file);
+	std::optional<ReferenceResultDifference> difference;
+	if (in.reference)
+		difference = referenceResultDifference(
+			result.record.final_estimate, result.record.trajectory, filter_to_file, *in.reference);
+
+	// fusion_costs holds one entry per map at least (LocalMapReplay.h), so
+	// localmap_times.png is always written.
+	writeRunFiles(
+		request.out_dir, host, *plugin, {result.record, result.reports, result.fusion_costs, request.local_maps_dir});
+	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	Stats stats = collectStats(host, request, in, result, *plugin, accuracy, difference, total_wall_s);
+	closeRunStats(
+		stats, truthStateNees(in.folder, *plugin, filter_to_file, request.config_path), "truth", request.out_dir);
+	return stats;
+}
+}  // namespace
+
+Stats runLocalMapPipeline(const LocalMapRunRequest& request, PluginLoader& loader)
+{
+	return runInStagedFolder(
+		request,
+		{{"the config", request.config_path},
+		 {"the local-map folder", request.local_maps_dir},
+		 {"the reference result", request.reference_result_dir.value_or("")}},
+		kLocalMapRunOutputFiles, [&](const LocalMapRunRequest& staged) { return runInto(staged, loader); });
+}
+
+}  // namespace esif

@@ -1,0 +1,94 @@
+/// \file MonteCarloCollect.cpp
+/// Reading a campaign folder into statistics and writing its outputs; see
+/// MonteCarloCollect.h.
+
+#include <esif/core/Errors.h>
+#include <esif/eval/EstimationErrorFiles.h>
+#include "eval/MonteCarloFigures.h"
+#include <esif/eval/SuspectResult.h>
+#include <esif/formats/StatsJson.h>
+#include <esif/run/MonteCarloCollect.h>
+#include <esif/safeio/AtomicFile.h>
+
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace esif
+{
+namespace
+{
+constexpr int kFigureWidthPx = 1200;
+
+std::string failureLine(const std::string& id, const FailureRecord& r)
+{
+	return id + ": failed (exit " + std::to_string(r.exit_code) + "): " + r.error_line;
+}
+}  // namespace
+
+CampaignRunErrors readCampaignRun(const std::string& run_folder, std::size_t seed_index)
+{
+	const fs::path d(run_folder);
+	CampaignRunErrors run;
+	run.seed_index = seed_index;
+	run.poses = readPoseErrors((d / kPoseErrorsFile).string());
+	run.landmarks = readLandmarkErrors((d / kLandmarkErrorsFile).string());
+	const std::string stats_path = (d / "stats.json").string();
+	const Stats stats = Stats::load(stats_path);
+	const auto wall = stats.number("wall_s");
+	if (!wall) throw InputError(stats_path + ": no wall_s");
+	run.wall_s = *wall;
+	run.da_wrong = static_cast<long long>(stats.number("da_wrong").value_or(0));
+	run.suspect_reason = recordedSuspectReason(stats);
+	run.state_nees = stats.number("state_nees");
+	if (run.state_nees) run.state_nees_dof = static_cast<std::size_t>(stats.number("state_nees_dof").value_or(0));
+	return run;
+}
+
+CampaignCollection collectCampaign(const std::string& dir, const CampaignPlan& plan)
+{
+	CampaignCollection out;
+	out.gaps.planned = static_cast<std::size_t>(plan.runs);
+	std::vector<std::vector<CampaignRunErrors>> by_config(plan.configs.size());
+	for (const auto& job : campaignJobs(plan))
+	{
+		++out.total;
+		const std::string id = campaign_layout::jobId(plan, job);
+		const std::string& name = plan.names[job.config];
+		switch (jobState(dir, plan, job))
+		{
+			case JobState::Finished:
+				by_config[job.config].push_back(readCampaignRun(
+					campaign_layout::runFolder(dir, name, job.noise_seed),
+					static_cast<std::size_t>(job.noise_seed - plan.seed0)));
+				if (const auto& reason = by_config[job.config].back().suspect_reason)
+					out.gaps.suspect.push_back(id + ": suspect: " + *reason);
+				++out.finished;
+				break;
+			case JobState::Failed:
+				out.gaps.failed.push_back(
+					failureLine(id, readFailureRecord(campaign_layout::failureFile(dir, name, job.noise_seed))));
+				break;
+			case JobState::Pending: out.gaps.pending.push_back(id + ": not finished"); break;
+		}
+	}
+	for (std::size_t c = 0; c < plan.configs.size(); ++c)
+		if (!by_config[c].empty()) out.configs.push_back(aggregateRuns(plan.names[c], by_config[c]));
+	return out;
+}
+
+std::string writeCampaignOutputs(const std::string& dir, const CampaignPlan& plan, const CampaignCollection& c)
+{
+	const fs::path d(dir);
+	const std::string title = fs::path(plan.scenario).stem().string() + ", noise seeds " + std::to_string(plan.seed0) +
+							  ".." + std::to_string(plan.seed0 + plan.runs - 1);
+	const std::string markdown = monteCarloSummaryMarkdown("esif montecarlo: " + title, c.configs, c.gaps);
+	writeTextAtomically((d / "summary.csv").string(), monteCarloSummaryCsv(c.configs, c.gaps.planned));
+	writeTextAtomically((d / "summary.md").string(), markdown);
+	writeTextAtomically((d / "per_step.csv").string(), monteCarloPerStepCsv(c.configs));
+	writeTextAtomically((d / "landmarks.csv").string(), monteCarloLandmarksCsv(c.configs));
+	writeMonteCarloFigures(c.configs, title, dir, kFigureWidthPx);
+	return markdown;
+}
+
+}  // namespace esif

@@ -1,0 +1,54 @@
+#include "RunFiles.h"
+
+#include <esif/formats/AssociationFile.h>
+#include <esif/render/FigureWriter.h>
+#include <esif/run/MapOutputs.h>
+#include <esif/run/RunSetup.h>
+#include <esif/safeio/AtomicFile.h>
+
+#include <filesystem>
+
+namespace esif
+{
+void writeRunFiles(const std::string& dir, const HostParams& host, const FilterPlugin& plugin, const RunFilesInput& in)
+{
+	MapWriterOptions map_options;
+	map_options.image_size_px = host.image_size_px;
+	writeMapOutputs(in.record, dir, map_options);
+	const auto d = std::filesystem::path(dir);
+	if (const auto pattern = plugin.informationPattern())
+		writeInformationPatternImage(*pattern, (d / "info_matrix.png").string(), host.image_size_px);
+	if (!in.fusion_costs.empty())
+		writeLocalMapTimesImage(in.fusion_costs, (d / "localmap_times.png").string(), host.image_size_px);
+	writeTextAtomically((d / "params.ini").string(), effectiveParamsIni(host, plugin));
+	writeAssociationFile((d / kAssociationFileName).string(), in.reports, host.plugin, in.input_path);
+}
+
+void setRunIdentityStats(Stats& stats, const HostParams& host, const FilterPlugin& plugin, const std::string& config)
+{
+	stats.set("plugin", StatValue(host.plugin));
+	stats.set("formulation", StatValue(std::string(formulationName(plugin.formulation()))));
+	stats.set("label", StatValue(host.label));
+	stats.set("config", StatValue(config));
+}
+
+void setRunOutcomeStats(
+	Stats& stats, double finish_us, const CostFigures& cost, const AssociationAudit& audit,
+	const std::optional<Accuracy>& accuracy)
+{
+	stats.set("finish_us", StatValue(finish_us));
+	stats.set("peak_rss_mb", StatValue(peakRssMb()));
+	setCostStats(stats, cost);
+	setAssociationStats(stats, audit);
+	setAccuracyStats(stats, accuracy);
+}
+
+void closeRunStats(Stats& stats, const std::optional<StateNees>& nees, const std::string& nees_reference,
+				   const std::string& dir)
+{
+	setStateNeesStats(stats, nees, nees_reference);
+	flagSuspectResult(stats);
+	writeTextAtomically((std::filesystem::path(dir) / "stats.json").string(), stats.toJson());
+}
+
+}  // namespace esif

@@ -1,0 +1,67 @@
+#pragma once
+/// \file RunFiles.h
+/// What the two pipelines (RunPipeline.cpp on rawlogs, LocalMapRunPipeline.cpp
+/// on local-map folders) share: the run's files beside stats.json, the
+/// stats.json keys every run has, its closing (whole-state NEES, suspect
+/// flag, stats.json), and the staged, all-or-nothing run folder.
+
+#include <esif/eval/AssociationAudit.h>
+#include <esif/eval/Evaluator.h>
+#include <esif/eval/StateNees.h>
+#include <esif/formats/RunRecord.h>
+#include <esif/formats/StatsJson.h>
+#include <esif/plugin/FilterPlugin.h>
+#include <esif/plugin/LocalMapJoiner.h>
+#include <esif/run/HostParams.h>
+#include <esif/safeio/OutputApart.h>
+#include <esif/safeio/RunFolder.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace esif
+{
+/// What a replay produced, as the run's files need it.
+struct RunFilesInput
+{
+	const RunRecord& record;
+	const std::vector<StepReport>& reports;	 ///< one per step or per local map
+	const std::vector<LocalMapFusionCost>& fusion_costs;  ///< empty but for map joining
+	std::string input_path;	 ///< the rawlog or local-map folder, named in associations.txt
+};
+
+/// Writes the map outputs (MapOutputs.h), info_matrix.png (information-form
+/// plugins), localmap_times.png (map joining), params.ini and
+/// associations.txt into `dir`.
+void writeRunFiles(const std::string& dir, const HostParams& host, const FilterPlugin& plugin, const RunFilesInput& in);
+
+/// Sets plugin, formulation, label and config: the keys every stats.json starts with.
+void setRunIdentityStats(Stats& stats, const HostParams& host, const FilterPlugin& plugin, const std::string& config);
+
+/// Sets finish_us, peak_rss_mb, the cost, association and accuracy keys.
+void setRunOutcomeStats(
+	Stats& stats, double finish_us, const CostFigures& cost, const AssociationAudit& audit,
+	const std::optional<Accuracy>& accuracy);
+
+/// Sets the whole-state NEES keys, flags a suspect result and writes
+/// `dir`/stats.json: the last file of a run.
+void closeRunStats(Stats& stats, const std::optional<StateNees>& nees, const std::string& nees_reference,
+				   const std::string& dir);
+
+/// Runs `run(staged)` with the request's out_dir replaced by a staging
+/// folder, after checking that no input is inside --out, and swaps the
+/// folder into place when every `required` file is there (RunFolder.h).
+template <class Request, class Run>
+auto runInStagedFolder(
+	const Request& request, const std::vector<NamedInput>& inputs, const std::vector<std::string>& required, Run&& run)
+{
+	requireOutputApart(request.out_dir, inputs);
+	return writeRunFolder(request.out_dir, required, [&](const std::string& staging) {
+		Request staged = request;
+		staged.out_dir = staging;
+		return run(staged);
+	});
+}
+
+}  // namespace esif

@@ -1,0 +1,138 @@
+#include "RunFiles.h"
+
+#include <esif/config/ConfigFile.h>
+#include <esif/core/Errors.h>
+#include <esif/eval/EstimationErrorFiles.h>
+#include <esif/eval/Evaluator.h>
+#include <esif/formats/AssociationFile.h>
+#include <esif/formats/GroundTruth.h>
+#include <esif/formats/RawlogReader.h>
+#include <esif/render/FigureWriter.h>
+#include <esif/run/HostParams.h>
+#include <esif/run/LandmarkIdRequirement.h>
+#include <esif/run/Replay.h>
+#include <esif/run/RunPipeline.h>
+#include <esif/run/RunSetup.h>
+#include <esif/sim/MeasurementTruth.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+
+namespace esif
+{
+namespace
+{
+/// What every run writes, checked before the folder is put in place.
+const std::vector<std::string> kRunOutputFiles = {
+	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "landmarks.gz",
+	"step_times.png", "params.ini", kAssociationFileName, "stats.json"};
+
+/// A simulated rawlog with misread IDs or clutter has its measurements'
+/// true landmarks beside it (MeasurementTruth.h): data association is then
+/// scored against those, not against the rawlog's own (partly wrong) IDs.
+void scoreAgainstMeasurementTruth(Rawlog& log, const std::string& prefix)
+{
+	auto truth = loadMeasurementTruth(prefix, log.true_ids.size());
+	if (!truth) return;
+	const std::string file = measurementTruthFileOf(prefix);
+	truth->resize(log.true_ids.size());
+	for (std::size_t k = 0; k < truth->size(); ++k)
+		if ((*truth)[k].size() != log.true_ids[k].size())
+			throw InputError(file + ": step " + std::to_string(k) + " lists " + std::to_string((*truth)[k].size()) +
+							 " measurements, the rawlog has " + std::to_string(log.true_ids[k].size()));
+	log.true_ids = std::move(*truth);
+}
+
+Stats collectStats(
+	const HostParams& host, const RunRequest& request, const Rawlog& log, const ReplayResult& result,
+	const FilterPlugin& plugin, const std::optional<Accuracy>& accuracy, double total_wall_s)
+{
+	Stats s;
+	const auto cost = plugin.costFigures();
+	setRunIdentityStats(s, host, plugin, request.config_path);
+	s.set("rawlog", StatValue(request.rawlog_path));
+	s.set("steps", StatValue(static_cast<long long>(log.steps.size())));
+	s.set("measurements", StatValue(static_cast<long long>(log.measurement_count)));
+	s.set("landmarks", StatValue(static_cast<long long>(result.record.final_estimate.landmarks.size())));
+	s.set("wall_s", StatValue(result.wall_s));
+	s.set("total_wall_s", StatValue(total_wall_s));
+	setTimeStats(s, "step_us", result.step_us);
+	setRunOutcomeStats(s, result.finish_us, cost, result.audit, accuracy);
+	s.set("truncated", StatValue(log.truncation_warning ? 1LL : 0LL));
+	if (!result.fusion_costs.empty()) setLocalMapJoinStats(s, result.fusion_costs.size(), {}, result.fusion_costs);
+	setPluginCounters(s, cost);
+	return s;
+}
+
+/// The whole run, writing into request.out_dir (the partial folder).
+Stats runInto(const RunRequest& request, PluginLoader& loader)
+{
+	const auto t0 = std::chrono::steady_clock::now();
+	const ConfigFile cfg = ConfigFile::load(request.config_path);
+	HostParams host = loadHostParams(cfg);
+	if (request.associations_from) host.associations_from = *request.associations_from;	// params.ini shows the folder used
+	auto plugin = createConfiguredPlugin(cfg, host, loader);
+	const auto associations = locateAssociations(cfg, host, request.associations_from.has_value());
+
+	Rawlog log = readRawlog(request.rawlog_path, readOptionsOf(host));
+	if (log.truncation_warning) std::cerr << "esif: warning: " << *log.truncation_warning << "\n";
+	if (associations) applyAssociations(log, readAssociationFile(*associations, log.steps.size()), *associations);
+	scoreAgainstMeasurementTruth(
+		log, request.ground_truth_prefix.value_or(groundTruthPrefixFor(request.rawlog_path)));
+	requireLandmarkIds(*plugin, log, {cfg.origin(), host.hide_landmark_ids, associations.value_or("")});
+	auto truth = findGroundTruth(request.ground_truth_prefix, request.rawlog_path);
+	if (truth)
+		if (const auto problem = groundTruthProblem(*truth, log.steps.size(), log.truncation_warning.has_value()))
+		{
+			std::cerr << "esif: warning: " << *problem << "; accuracy and consistency figures left null\n";
+			truth.reset();
+		}
+	const auto reference_run =
+		request.reference_run ? std::optional<RunOutputs>(readRunOutputs(*request.reference_run)) : std::nullopt;
+	ReplayResult result = replay(*plugin, log, {host.keyframe_min_distance_m, request.progress_bar});
+	const std::map<LandmarkId, LandmarkId> filter_to_true = result.audit.filterToTrue();
+
+	std::optional<Accuracy> accuracy;
+	if (truth)
+	{
+		result.record.truth = truth->inInitialPoseFrame();
+		const auto pose_errors = poseErrors(*result.record.truth, result.record.trajectory);
+		const auto landmark_errors =
+			landmarkErrors(*result.record.truth, result.record.final_estimate, filter_to_true);
+		accuracy = summarizeErrors(pose_errors, landmark_errors);
+		// Per step and per landmark, for campaigns over many runs (esif montecarlo).
+		writeEstimationErrorFiles(request.out_dir, pose_errors, landmark_errors);
+	}
+
+	writeRunFiles(
+		request.out_dir, host, *plugin, {result.record, result.reports, result.fusion_costs, request.rawlog_path});
+	writeStepTimesImage(
+		result.step_us, result.landmark_counts, (std::filesystem::path(request.out_dir) / "step_times.png").string(),
+		host.image_size_px);
+	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	Stats stats = collectStats(host, request, log, result, *plugin, accuracy, total_wall_s);
+	if (reference_run)
+		closeRunStats(
+			stats, finalStateNees(*plugin, stateReferenceOf(*reference_run, log.steps.size()), filter_to_true, request.config_path),
+			*request.reference_run, request.out_dir);
+	else if (result.record.truth)
+		closeRunStats(
+			stats, finalStateNees(*plugin, stateReferenceOf(*result.record.truth), filter_to_true, request.config_path),
+			"truth", request.out_dir);
+	else
+		closeRunStats(stats, std::nullopt, "", request.out_dir);
+	return stats;
+}
+}  // namespace
+
+Stats runPipeline(const RunRequest& request, PluginLoader& loader)
+{
+	auto inputs = rawlogRunInputs(
+		request.config_path, request.rawlog_path, request.ground_truth_prefix, request.associations_from);
+	inputs.push_back({"the reference run", request.reference_run.value_or("")});
+	return runInStagedFolder(
+		request, inputs, kRunOutputFiles, [&](const RunRequest& staged) { return runInto(staged, loader); });
+}
+
+}  // namespace esif

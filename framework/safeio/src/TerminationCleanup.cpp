@@ -1,0 +1,133 @@
+/// \file TerminationCleanup.cpp
+/// The signal watcher thread and its registry; see TerminationCleanup.h.
+
+#include <esif/safeio/TerminationCleanup.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <filesystem>
+#include <thread>
+#include <vector>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace esif::termination
+{
+namespace
+{
+struct Registry
+{
+	std::mutex mutex;
+	std::vector<std::string> paths;
+	std::vector<pid_t> children;
+};
+
+Registry& registry()
+{
+	static Registry r;
+	return r;
+}
+
+sigset_t terminationSignals()
+{
+	sigset_t set;
+	sigemptyset(&set);
+	sigaddset(&set, SIGINT);
+	sigaddset(&set, SIGTERM);
+	sigaddset(&set, SIGHUP);
+	return set;
+}
+
+/// Passes the signal on to the child runs (each cleans up its own folder)
+/// and waits for them, so that no orphan keeps writing into a folder that
+/// is about to be removed.
+void stopChildren(const std::vector<pid_t>& children, int sig)
+{
+	for (const pid_t child : children) ::kill(child, sig);
+	for (const pid_t child : children)
+	{
+		int status = 0;
+		while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
+		{
+		}
+	}
+}
+
+/// Never throws: a folder that cannot be removed is left, to be found by
+/// the next run's stale-folder sweep.
+void removeRegistered(const std::vector<std::string>& paths)
+{
+	for (auto it = paths.rbegin(); it != paths.rend(); ++it)
+	{
+		std::error_code ec;
+		std::filesystem::remove_all(*it, ec);
+	}
+}
+
+[[noreturn]] void watch()
+{
+	const sigset_t set = terminationSignals();
+	int sig = 0;
+	while (sigwait(&set, &sig) != 0)
+	{
+	}
+	Registry& r = registry();
+	r.mutex.lock();	 // held until _exit: nothing may start a swap now
+	stopChildren(r.children, sig);
+	removeRegistered(r.paths);
+	// _exit, not exit: other threads may be inside library code that static
+	// destructors would pull from under them.
+	::_exit(128 + sig);
+}
+}  // namespace
+
+void blockSignals()
+{
+	const sigset_t set = terminationSignals();
+	pthread_sigmask(SIG_BLOCK, &set, nullptr);
+}
+
+void unblockSignals()
+{
+	sigset_t none;
+	sigemptyset(&none);
+	pthread_sigmask(SIG_SETMASK, &none, nullptr);
+}
+
+void startWatcher()
+{
+	static std::once_flag once;
+	std::call_once(once, [] { std::thread(watch).detach(); });
+}
+
+void addPath(const std::string& path)
+{
+	std::lock_guard<std::mutex> lock(registry().mutex);
+	registry().paths.push_back(path);
+}
+
+void removePath(const std::string& path)
+{
+	std::lock_guard<std::mutex> lock(registry().mutex);
+	auto& paths = registry().paths;
+	const auto it = std::find(paths.rbegin(), paths.rend(), path);
+	if (it != paths.rend()) paths.erase(std::next(it).base());
+}
+
+void addChild(pid_t pid)
+{
+	std::lock_guard<std::mutex> lock(registry().mutex);
+	registry().children.push_back(pid);
+}
+
+void removeChild(pid_t pid)
+{
+	std::lock_guard<std::mutex> lock(registry().mutex);
+	auto& children = registry().children;
+	children.erase(std::remove(children.begin(), children.end(), pid), children.end());
+}
+
+std::unique_lock<std::mutex> holdOff() { return std::unique_lock<std::mutex>(registry().mutex); }
+
+}  // namespace esif::termination

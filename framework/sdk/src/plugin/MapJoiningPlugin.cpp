@@ -1,0 +1,84 @@
+#include <esif/core/Errors.h>
+#include "localmap/SettledReports.h"
+#include <esif/models/Se2.h>
+#include <esif/plugin/MapJoiningPlugin.h>
+#include <esif/sparse/SparseInformationCore.h>
+
+#include <set>
+#include <stdexcept>
+
+namespace esif
+{
+void MapJoiningPlugin::startBuilder(const LocalMapBuilderParams& params)
+{
+	builder_params_ = params;
+	builder_ = std::make_unique<LocalMapBuilder>(params);
+}
+
+void MapJoiningPlugin::requireBuilder() const
+{
+	if (!builder_) throw std::logic_error(filter_name_ + ": used before configure()");
+}
+
+const LocalMapBuilder& MapJoiningPlugin::builder() const
+{
+	requireBuilder();
+	return *builder_;
+}
+
+StepReport MapJoiningPlugin::processStep(const StepInput& step)
+{
+	requireBuilder();
+	if (step.scan)
+		for (const auto& m : step.scan->measurements) saw_measurement_without_id_ |= !m.id.has_value();
+	StepReport report = builder_->processStep(step);
+	if (auto map = builder_->takeClosedMap())
+	{
+		local_poses_.push_back({toTPose2D(map->end_pose), map->covariance->topLeftCorner<3, 3>()});
+		++maps_given_;
+		fuseLocalMap(*map);
+	}
+	else
+		local_poses_.push_back(builder_->openMap().robotPose());
+	return report;
+}
+
+void MapJoiningPlugin::joinLocalMap(const LocalMap& map)
+{
+	requireBuilder();
+	if (map.index != maps_given_ + 1)
+		throw InputError(filter_name_ + ": local map " + std::to_string(map.index) + " given after " +
+						 std::to_string(maps_given_) + " maps (maps must come in order from 1)");
+	checkGivenMap(map);
+	++maps_given_;
+	fuseLocalMap(map);
+}
+
+void MapJoiningPlugin::finish()
+{
+	requireBuilder();
+	if (auto map = builder_->finish())
+	{
+		++maps_given_;
+		fuseLocalMap(*map);
+	}
+	finishJoining();
+}
+
+std::optional<std::vector<StepReport>> MapJoiningPlugin::finalReports() const
+{
+	const std::vector<SettledFusion> fusions = settledFusions();
+	if (fusions.empty() || fusions.front().step_reports.empty()) return std::nullopt;
+	std::vector<StepReport> out;
+	std::set<LandmarkId> started;
+	for (const auto& f : fusions) appendSettledReports(f.step_reports, f.feature_ids, f.decisions, started, out);
+	return out;
+}
+
+std::optional<InformationPattern> MapJoiningPlugin::informationPattern() const
+{
+	requireBuilder();
+	return globalInformation().pattern();
+}
+
+}  // namespace esif

@@ -1,0 +1,250 @@
+#include <esif/core/Errors.h>
+#include <esif/sparse/IncrementalCholesky.h>
+#include "sparse/PivotCheck.h"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+
+namespace esif
+{
+namespace
+{
+const std::string kWhat = "sparse recovery (incremental Cholesky)";
+
+/// Placeholders reserved beyond the current dimension at each fresh
+/// factorisation: enough for many steps of new features, few enough that
+/// the identity rows cost nothing noticeable in the solves.
+int capacityFor(int n)
+{
+	return n + std::max(64, n / 4);
+}
+}  // namespace
+
+IncrementalCholesky::IncrementalCholesky(const SparseRecoveryParams& params, SparseCounters& counters,
+										 CholmodCommon& common)
+	: params_(params), counters_(counters), common_(common)
+{
+}
+
+void IncrementalCholesky::noteUpdate(const InformationForm& info, const UpdateTerm& term)
+{
+	if (!L_) return;
+	if (info.scalarDim() > capacity_) updates_.overflow();  // out of padding rows: Case (ii)
+	updates_.record(info, term, ordering_.position, params_.n0);
+}
+
+void IncrementalCholesky::refresh(const InformationForm& info, const Eigen::Vector2d& reference)
+{
+	if (info.scalarDim() == 0) throw NumericalError(kWhat + ": the information form has no variables");
+	if (!L_ || updates_.overflowed() || info.scalarDim() > capacity_)
+		factorAfresh(info, reference);
+	else if (!updates_.empty() || info.scalarDim() > factored_dim_)
+		refactorTrailingPart(info);
+}
+
+void IncrementalCholesky::factorAfresh(const InformationForm& info, const Eigen::Vector2d& reference)
+{
+	const int n = info.scalarDim();
+	capacity_ = capacityFor(n);
+	const ScalarOrdering wanted = expandOrdering(info, reorderVariables(info, reference, params_, common_), capacity_);
+
+	// A = I bordered by identity padding rows, in natural order; the
+	// ordering goes to CHOLMOD as given.
+	std::vector<int> identity(capacity_);
+	std::iota(identity.begin(), identity.end(), 0);
+	auto A = toCholmod(info.matrix().permutedLower(identity, capacity_), common_);
+	common_.useGivenOrderingForModification();
+	std::vector<int> perm = wanted.order;
+	L_ = ownFactor(cholmod_analyze_p(A.get(), perm.data(), nullptr, 0, common_.get()), common_);
+	if (!L_) common_.check(kWhat + ": analysis");
+	cholmod_factorize(A.get(), L_.get(), common_.get());
+	common_.check(kWhat + ": factorisation");
+
+	const auto* p = static_cast<const int*>(L_->Perm);
+	if (!std::equal(wanted.order.begin(), wanted.order.end(), p))
+		throw std::logic_error(kWhat + ": CHOLMOD did not keep the given ordering");
+	ordering_ = wanted;
+	factored_dim_ = n;
+	try
+	{
+		checkFactor(info, 0, kWhat);
+	}
+	catch (...)
+	{
+		L_.reset();  // never keep a factor that failed its check
+		throw;
+	}
+	forwardSolve(info);
+	delta_b_ = zeroDense(capacity_, 1, common_);
+	updates_.restart(n);
+	++counters_.full_reorders;
+}
+
+void IncrementalCholesky::refactorTrailingPart(const InformationForm& info)
+{
+	try
+	{
+		applyPendingUpdates();
+		addNewVariables(info);
+		checkFactor(info, updates_.start(), kWhat);
+	}
+	catch (...)
+	{
+		L_.reset();  // the factor is unusable; the next refresh starts over
+		throw;
+	}
+	factored_dim_ = info.scalarDim();
+	updates_.restart(factored_dim_);
+	++counters_.partial_refactorisations;
+}
+
+void IncrementalCholesky::applyPendingUpdates()
+{
+	// C of all pending updates side by side, rows permuted by L->Perm
+	// (cholmod_updown works on the rows of L, not of A), restricted to the
+	// variables already in the factor; new ones come in by rowadd.
+	int columns = 0;
+	std::size_t nnz = 0;
+	for (const auto& p : updates_.terms())
+	{
+		columns += static_cast<int>(p.C.cols());
+		nnz += p.C.size();
+	}
+	auto C = ownSparse(cholmod_allocate_sparse(capacity_, columns, nnz, true, true, 0, CHOLMOD_REAL, common_.get()),
+					   common_);
+	if (!C) common_.check(kWhat + ": allocating the update");
+	auto* cp = static_cast<int*>(C->p);
+	auto* ci = static_cast<int*>(C->i);
+	auto* cx = static_cast<double*>(C->x);
+	auto* db = static_cast<double*>(delta_b_->x);
+	int col = 0, k = 0;
+	std::vector<std::pair<int, int>> rows;  // (position, row of p.C)
+	for (const auto& p : updates_.terms())
+	{
+		rows.clear();
+		for (std::size_t r = 0; r < p.scalars.size(); ++r)
+			if (p.scalars[r] < factored_dim_)
+			{
+				rows.emplace_back(position(p.scalars[r]), static_cast<int>(r));
+				db[rows.back().first] += p.delta_i[r];
+			}
+		std::sort(rows.begin(), rows.end());
+		for (int c = 0; c < p.C.cols(); ++c, ++col)
+		{
+			cp[col] = k;
+			for (const auto& [pos, r] : rows)
+			{
+				ci[k] = pos;
+				cx[k++] = p.C(r, c);
+			}
+		}
+	}
+	cp[columns] = k;
+	if (k == 0) return;
+	cholmod_updown_solve(true, C.get(), L_.get(), y_.get(), delta_b_.get(), common_.get());
+	common_.check(kWhat + ": update of the trailing factor");
+}
+
+void IncrementalCholesky::addNewVariables(const InformationForm& info)
+{
+	// Placeholders were ordered last in natural order, so a new scalar g
+	// sits at position g. Its row/column of I enters with cholmod_rowadd,
+	// restricted to scalars already in the factor (natural index <= g); the
+	// later new scalars are still identity rows.
+	for (int g = factored_dim_; g < info.scalarDim(); ++g)
+	{
+		std::vector<std::pair<int, double>> column;
+		for (const auto& [r, v] : info.matrix().scalarColumn(g))
+			if (r <= g) column.emplace_back(position(r), v);
+		std::sort(column.begin(), column.end());
+		auto R = ownSparse(
+			cholmod_allocate_sparse(capacity_, 1, column.size(), true, true, 0, CHOLMOD_REAL, common_.get()), common_);
+		if (!R) common_.check(kWhat + ": allocating a new row");
+		static_cast<int*>(R->p)[0] = 0;
+		static_cast<int*>(R->p)[1] = static_cast<int>(column.size());
+		for (std::size_t k = 0; k < column.size(); ++k)
+		{
+			static_cast<int*>(R->i)[k] = column[k].first;
+			static_cast<double*>(R->x)[k] = column[k].second;
+		}
+		double bk[2] = {info.vector()[g], 0.0};
+		cholmod_rowadd_solve(position(g), R.get(), bk, L_.get(), y_.get(), delta_b_.get(), common_.get());
+		common_.check(kWhat + ": adding " + info.describeScalar(g));
+	}
+}
+
+void IncrementalCholesky::forwardSolve(const InformationForm& info)
+{
+	auto b = zeroDense(capacity_, 1, common_);
+	std::copy(info.vector().data(), info.vector().data() + info.scalarDim(), static_cast<double*>(b->x));
+	CholmodDensePtr pb;
+	cholmodSolve(CHOLMOD_P, L_.get(), b.get(), pb, ws_, common_, kWhat + ": permuting i");
+	cholmodSolve(CHOLMOD_L, L_.get(), pb.get(), y_, ws_, common_, kWhat + ": forward substitution");
+}
+
+void IncrementalCholesky::checkFactor(const InformationForm& info, int first_position, const std::string& what)
+{
+	checkPivots(factorPivots(*L_), first_position, ordering_.order, params_.min_pivot_ratio, info, what);
+}
+
+void IncrementalCholesky::solveState(const InformationForm& info, Eigen::VectorXd& x)
+{
+	// Eq. (3.37): back substitution D L^T z = y, then x = P^T z.
+	cholmodSolve(CHOLMOD_DLt, L_.get(), y_.get(), z_, ws_, common_, kWhat + ": back substitution");
+	cholmodSolve(CHOLMOD_Pt, L_.get(), z_.get(), x_, ws_, common_, kWhat + ": permuting the state");
+	x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(x_->x), info.scalarDim());
+}
+
+Eigen::MatrixXd IncrementalCholesky::solveColumns(const InformationForm& info, const std::vector<int>& scalars)
+{
+	// Eq. (3.25) for several unit vectors at once.
+	const int k = static_cast<int>(scalars.size());
+	auto B = zeroDense(capacity_, k, common_);
+	for (int j = 0; j < k; ++j) static_cast<double*>(B->x)[static_cast<std::size_t>(j) * capacity_ + scalars[j]] = 1.0;
+	CholmodDensePtr X;
+	cholmodSolve(CHOLMOD_A, L_.get(), B.get(), X, ws_, common_, kWhat + ": covariance columns");
+	const Eigen::Map<const Eigen::MatrixXd> all(static_cast<const double*>(X->x), capacity_, k);
+	return all.topRows(info.scalarDim());
+}
+
+Eigen::MatrixXd IncrementalCholesky::solveCovarianceBlock(const InformationForm& info, const std::vector<int>& scalars)
+{
+	if (L_->is_super || L_->is_ll) return RecoverySolver::solveCovarianceBlock(info, scalars);
+	// P A P^T = L D L^T, so A^-1 = P^T L^-T D^-1 L^-1 P and the entry for
+	// positions a, b is sum_k y_a(k) y_b(k) / d_k with y_a = L^-1 e_a, whose
+	// non-zeros lie at positions >= a: a forward solve on the trailing part.
+	const int k = static_cast<int>(scalars.size());
+	const int n = static_cast<int>(L_->n);
+	std::vector<int> pos(k);
+	for (int a = 0; a < k; ++a) pos[a] = ordering_.position[scalars[a]];
+	const int first = *std::min_element(pos.begin(), pos.end());
+	const auto* p = static_cast<const int*>(L_->p);
+	const auto* nz = static_cast<const int*>(L_->nz);
+	const auto* li = static_cast<const int*>(L_->i);
+	const auto* lx = static_cast<const double*>(L_->x);
+
+	Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(n - first, k);  // rows: positions first..n-1
+	for (int a = 0; a < k; ++a)
+	{
+		auto y = Y.col(a);
+		y(pos[a] - first) = 1.0;
+		for (int j = pos[a]; j < n; ++j)
+		{
+			const double yj = y(j - first);
+			if (yj == 0.0) continue;
+			for (int t = p[j] + 1; t < p[j] + nz[j]; ++t) y(li[t] - first) -= lx[t] * yj;	// t = p[j] is d_j
+		}
+	}
+	Eigen::VectorXd d_inv(n - first);
+	for (int j = first; j < n; ++j) d_inv(j - first) = 1.0 / lx[p[j]];
+	Eigen::MatrixXd P = Y.transpose() * d_inv.asDiagonal() * Y;
+	return 0.5 * (P + P.transpose());
+}
+
+std::size_t IncrementalCholesky::factorNonZeros() const
+{
+	return L_ ? countFactorNonZeros(*L_, factored_dim_) : 0;
+}
+
+}  // namespace esif

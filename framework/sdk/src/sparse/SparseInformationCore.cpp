@@ -1,0 +1,196 @@
+#include <esif/core/Errors.h>
+#include "sparse/FreshCholesky.h"
+#include <esif/sparse/IncrementalCholesky.h>
+#include <esif/sparse/PatternExport.h>
+#include "sparse/PcgSolver.h"
+#include <esif/sparse/SparseInformationCore.h>
+#include <esif/sparse/SparseInverse.h>
+
+#include <chrono>
+
+namespace esif
+{
+namespace
+{
+/// Adds the wall time of its scope to a counter.
+class ScopedTimer
+{
+   public:
+	explicit ScopedTimer(double& total_s) : total_s_(total_s), start_(std::chrono::steady_clock::now()) {}
+	~ScopedTimer() { total_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+   private:
+	double& total_s_;
+	std::chrono::steady_clock::time_point start_;
+};
+
+std::unique_ptr<RecoverySolver> makeSolver(const SparseRecoveryParams& params, SparseCounters& counters,
+										   CholmodCommon& common)
+{
+	switch (params.recovery)
+	{
+		case RecoveryMethod::Pcg:
+			return std::make_unique<PcgSolver>(params, counters, common);
+		case RecoveryMethod::FreshCholesky:
+			return std::make_unique<FreshCholesky>(params, counters, common);
+		case RecoveryMethod::IncrementalCholesky:
+			break;
+	}
+	return std::make_unique<IncrementalCholesky>(params, counters, common);
+}
+}  // namespace
+
+SparseInformationCore::SparseInformationCore(const SparseRecoveryParams& params)
+	: params_(params), solver_(makeSolver(params_, counters_, cholmod_))
+{
+}
+
+SparseInformationCore::~SparseInformationCore() = default;
+
+VarId SparseInformationCore::addPoint(const Eigen::Vector2d& initial)
+{
+	ScopedTimer t(counters_.update_time_s);
+	return info_.addVariable(VarKind::Point2, initial);
+}
+
+VarId SparseInformationCore::addPose(const Eigen::Vector3d& initial)
+{
+	ScopedTimer t(counters_.update_time_s);
+	return info_.addVariable(VarKind::Pose2, initial);
+}
+
+UpdateTerm SparseInformationCore::addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+												 const Eigen::MatrixXd& R, const Eigen::VectorXd& innovation)
+{
+	ScopedTimer t(counters_.update_time_s);
+	UpdateTerm term = info_.addMeasurement(vars, J, R, innovation);
+	noteUpdate(term);
+	return term;
+}
+
+UpdateTerm SparseInformationCore::addInformationMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+															const Eigen::MatrixXd& information,
+															const Eigen::VectorXd& innovation)
+{
+	ScopedTimer t(counters_.update_time_s);
+	UpdateTerm term = info_.addInformationMeasurement(vars, J, information, innovation);
+	noteUpdate(term);
+	return term;
+}
+
+void SparseInformationCore::withdraw(const UpdateTerm& term)
+{
+	ScopedTimer t(counters_.update_time_s);
+	info_.subtract(term);
+	solver_->noteWithdrawal();
+}
+
+void SparseInformationCore::addPrior(VarId v, const Eigen::VectorXd& mean, const Eigen::MatrixXd& information)
+{
+	ScopedTimer t(counters_.update_time_s);
+	noteUpdate(info_.addPrior(v, mean, information));
+}
+
+void SparseInformationCore::noteUpdate(const UpdateTerm& term)
+{
+	solver_->noteUpdate(info_, term);
+}
+
+void SparseInformationCore::refresh()
+{
+	ScopedTimer t(counters_.factor_time_s);
+	solver_->refresh(info_, reference_);
+}
+
+const Eigen::VectorXd& SparseInformationCore::recoverState()
+{
+	refresh();
+	ScopedTimer t(counters_.recovery_time_s);
+	Eigen::VectorXd x = info_.estimate();
+	solver_->solveState(info_, x);
+	if (!x.allFinite()) throw NumericalError("sparse recovery: the recovered state is not finite");
+	info_.setEstimate(x);
+	return info_.estimate();
+}
+
+Eigen::VectorXd SparseInformationCore::estimate(VarId v) const
+{
+	return info_.estimate().segment(info_.offset(v), info_.dim(v));
+}
+
+Eigen::MatrixXd SparseInformationCore::covariance(const std::vector<VarId>& vars)
+{
+	refresh();
+	ScopedTimer t(counters_.recovery_time_s);
+	const Eigen::MatrixXd P = solver_->solveCovarianceBlock(info_, info_.scalarIndices(vars));
+	if (!P.allFinite()) throw NumericalError("sparse recovery: a recovered covariance is not finite");
+	return 0.5 * (P + P.transpose());
+}
+
+std::vector<Eigen::MatrixXd> SparseInformationCore::marginalCovariances()
+{
+	refresh();
+	ScopedTimer t(counters_.recovery_time_s);
+	cholmod_factor* L = solver_->choleskyFactor();
+	SparseCounters scratch;  // a one-off factorisation, not a reordering of the method's own
+	std::unique_ptr<FreshCholesky> fresh;
+	if (!L)
+	{
+		fresh = std::make_unique<FreshCholesky>(params_, scratch, cholmod_);
+		fresh->refresh(info_, reference_);
+		L = fresh->choleskyFactor();
+	}
+	const SparseInverse Z(*L, cholmod_);
+	std::vector<Eigen::MatrixXd> out;
+	out.reserve(info_.variableCount());
+	for (int v = 0; v < info_.variableCount(); ++v) out.push_back(Z.block(info_.scalarIndices({VarId{v}})));
+	return out;
+}
+
+StateInformation SparseInformationCore::stateInformation(const std::function<StateVariable(VarId)>& describe) const
+{
+	StateInformation out;
+	for (int v = 0; v < info_.variableCount(); ++v)
+	{
+		out.variables.push_back(describe(VarId{v}));
+		if (out.variables.back().dim() != info_.dim(VarId{v}))
+			throw std::logic_error("SparseInformationCore::stateInformation: variable " + std::to_string(v) +
+								   " described with the wrong dimension");
+	}
+	out.mean = info_.estimate();
+	out.information = toEigenSparse(info_.matrix());
+	return out;
+}
+
+InformationPattern SparseInformationCore::pattern()
+{
+	InformationPattern out;
+	out.information = toEigenSparse(info_.matrix());
+	if (info_.scalarDim() == 0) return out;
+	refresh();
+	const int n = info_.scalarDim();
+	const char* order = params_.recovery == RecoveryMethod::FreshCholesky ? "AMD ordering"
+		: params_.reordering == Reordering::Camd								? "CAMD reordering"
+																				: "distance reordering";
+	if (cholmod_factor* L = solver_->choleskyFactor())
+	{
+		out.factor = toEigenSparse(*L, n, cholmod_);
+		out.factor_order = std::string("Cholesky factor, ") + order;
+	}
+	else if (const LowerCsc* Lic = solver_->incompleteFactor())
+	{
+		out.factor = toEigenSparse(*Lic, n);
+		out.factor_order = std::string("incomplete Cholesky preconditioner, ") + order;
+	}
+	return out;
+}
+
+SparseCounters SparseInformationCore::counters() const
+{
+	SparseCounters c = counters_;
+	c.information_nnz = info_.matrix().nonZeros();
+	c.factor_nnz = solver_->factorNonZeros();
+	return c;
+}
+
+}  // namespace esif
