@@ -1,7 +1,8 @@
 #include "CommandLine.h"
 #include "Commands.h"
 
-#include <esif/plugin/PluginLoader.h>
+#include <esif/run/HostParams.h>
+#include <esif/run/PluginLoader.h>
 
 #include <iostream>
 
@@ -9,7 +10,9 @@ namespace esif::app
 {
 int pluginsCommand(int argc, char** argv)
 {
-	TCLAP::CmdLine cmd("Lists the plugins found and their INI parameters with defaults.", ' ', ESIF_VERSION);
+	TCLAP::CmdLine cmd(
+		"Lists the host's [esif] keys, the plugins found and their INI parameters, each with its default.", ' ',
+		ESIF_VERSION);
 	TCLAP::ValueArg<std::string> plugin_dir("", "plugin-dir", "extra folder to search for plugins", false, "", "DIR",
 											cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
@@ -19,6 +22,10 @@ int pluginsCommand(int argc, char** argv)
 	std::cout << "Plugin folders searched:";
 	for (const auto& d : loader.searchDirs()) std::cout << " " << d;
 	std::cout << "\n";
+	// The host's own section first: every config has one.
+	std::cout << "\n[esif]    (the host: which plugin runs, how the rawlog becomes its input, outputs)\n";
+	for (const auto& p : describeParams(HostParams{}))
+		std::cout << "  " << p.key << " = " << p.value << "\n      " << p.doc << "\n";
 	const auto names = loader.available();
 	if (names.empty()) std::cout << "No plugins found.\n";
 	for (const auto& name : names)

@@ -194,4 +194,17 @@ TEST(Cli, PluginsListsEkfWithDefaults)
 	EXPECT_NE(r.out.find("gate_chi2_quantile = 0.99"), std::string::npos);
 }
 
+TEST(Cli, PluginsListsTheHostKeysWithDefaults)
+{
+	const auto r = runEsif("plugins");
+	EXPECT_EQ(r.exit_code, 0);
+	const auto host = r.out.find("[esif]");
+	ASSERT_NE(host, std::string::npos);
+	// Before any plugin: the host's section is listed first.
+	EXPECT_LT(host, r.out.find("EkfSlam"));
+	for (const char* key : {"plugin = ", "label = ", "hide_landmark_ids = false", "keyframe_min_distance_m = 0",
+							"image_size_px = 1000", "max_measurements_per_scan = 1000", "associations_from = "})
+		EXPECT_NE(r.out.find(std::string("\n  ") + key, host), std::string::npos) << key;
+}
+
 }  // namespace
