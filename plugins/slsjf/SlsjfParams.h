@@ -29,9 +29,9 @@ struct SlsjfParams : MapLevelAssociationParams
 {
 	/// Slack of the overlap test between local maps and of the candidates'
 	/// distance to the new map's features (the authors' EstBias) [m]. 2 m
-	/// suits the book's simulations (features 3 m apart, 5 m range; measured
-	/// on grid1225_large: 1 and 2 m find the same associations, 5 m costs
-	/// 3.4x the association time); the authors use 30 m on Victoria Park.
+	/// suits the book's simulations (features 3 m apart, 5 m range); the
+	/// authors use 30 m on Victoria Park. Measurements behind the default:
+	/// docs/plugins/slsjf.md, "Defaults".
 	double overlap_margin_m = 2.0;
 	/// Sigmas added to local-map radii and to the start-pose uncertainty in
 	/// the overlap test (the authors' SigmaMultiplier).
@@ -51,10 +51,9 @@ struct SlsjfParams : MapLevelAssociationParams
 
 	LocalMapBuilderParams builder;	///< local maps built from a rawlog
 	/// Recovery, reordering, n0 (Sec. 5.4.2, 3.3.2). SLSJF's defaults are
-	/// CAMD and n0 = 1000, measured on the 401 local maps of grid1225_large
-	/// (dimension 2961): the book's distance order with n0 = 500 joins them
-	/// in 7.0 s (62 reorders, 617k factor non-zeros), CAMD with n0 = 500 in
-	/// 2.1 s, 1000 in 1.4 s (38 reorders, 313k), 2000 in 1.8 s.
+	/// CAMD and n0 = 1000, chosen by joining the 401 local maps of
+	/// grid1225_large with each ordering and n0 (docs/plugins/slsjf.md,
+	/// "Defaults", has the times, reorders and factor sizes).
 	SparseRecoveryParams recovery = defaultRecovery();
 
 	void declare(ParamBinder& b);
