@@ -7,6 +7,8 @@
 # link, so no source is listed twice. register.cpp (the MRPT class
 # registration that the host's loader relies on) goes into the module alone.
 #
+# Its unit tests, in tests/ of the folder, are added with it.
+#
 # A plugin links the SDK (esif::sdk) and the LIBS it names, nothing else of
 # esif: no host header is on its include path, and plugins never depend on
 # each other.
@@ -27,5 +29,8 @@ function(esif_add_plugin name)
     LIBRARY_OUTPUT_DIRECTORY ${ESIF_PLUGIN_OUTPUT_DIR}
     BUILD_RPATH "$ORIGIN/.."
     CXX_VISIBILITY_PRESET default)
-  set_property(GLOBAL APPEND PROPERTY ESIF_PLUGIN_TARGETS ${target})
+  add_dependencies(esif_all_plugins ${target})
+  if(BUILD_TESTING AND EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/tests/CMakeLists.txt)
+    add_subdirectory(tests)
+  endif()
 endfunction()

@@ -6,8 +6,15 @@
 #
 #   bash scripts/output_snapshot.sh SNAPSHOT_DIR [ESIF_BINARY]
 #
-# Ground truth beside a rawlog is found by esif itself. Third-party data is read from ../shared/data (or ESIF_DATA); configs whose
-# data is missing are skipped with a message naming the path.
+# Ground truth beside a rawlog is found by esif itself. Third-party data is
+# read from ../shared/data (or ESIF_DATA); configs whose data is missing are
+# skipped with a message naming the path. Paths of the temporary work folder
+# are written as WORK.
+#
+# One known difference that is not a change: Ceres' covariance (SPARSE_QR:
+# the full-SLAM baseline's landmark covariances and the NEES from them)
+# varies in its last bits from run to run of one binary (about 1e-13
+# relative); everything else is byte for byte.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 snapshot=${1:?usage: output_snapshot.sh SNAPSHOT_DIR [ESIF_BINARY]}
@@ -21,7 +28,7 @@ mkdir -p "$snapshot"
 strip_timings() {
   /usr/bin/python3 - "$1" <<'EOF'
 import json, re, sys
-timing = re.compile(r'(wall|cpu|time|seconds|_ms$|_us$|_s$|rss|memory|peak)', re.I)
+timing = re.compile(r'(wall|cpu|time|seconds|_ms$|_us$|_us_|_s$|rss|memory|peak)', re.I)
 def clean(v):
     if isinstance(v, dict):
         return {k: clean(x) for k, x in v.items() if not timing.search(k)}
@@ -36,9 +43,9 @@ keep_run() {  # keep_run RUN_DIR NAME
   local dst="$snapshot/$2"
   mkdir -p "$dst"
   for f in landmarks.txt trajectory.tum associations.txt; do
-    [[ -f "$1/$f" ]] && cp "$1/$f" "$dst/$f"
+    [[ -f "$1/$f" ]] && sed "s|$work|WORK|g" "$1/$f" > "$dst/$f"
   done
-  [[ -f "$1/stats.json" ]] && strip_timings "$1/stats.json" > "$dst/stats.json"
+  [[ -f "$1/stats.json" ]] && strip_timings "$1/stats.json" | sed "s|$work|WORK|g" > "$dst/stats.json"
   return 0
 }
 

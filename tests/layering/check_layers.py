@@ -35,7 +35,11 @@ def header_layers(framework):
 
 
 def sources(root):
-    for dirpath, _, files in os.walk(root):
+    """The library's or plugin's own sources. Its tests/ folder is left out:
+    tests link esif::host and may use any layer (a simulated rawlog, the
+    host's replay) to exercise a lower one."""
+    for dirpath, dirs, files in os.walk(root):
+        dirs[:] = [d for d in dirs if d != "tests"]
         for f in sorted(files):
             if f.endswith((".h", ".cpp")):
                 yield os.path.join(dirpath, f)
