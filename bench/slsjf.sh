@@ -13,21 +13,19 @@
 #            from ${VICPARK_TXT:-../shared/data/victoria_park/victoria_park.txt}):
 #            SLSJF plain and relinearised against the full-SLAM optimum.
 #
-# usage: bench/slsjf.sh [RUNS] [PARTS]   (default 5, "join grid1225 vicpark")
+# With --update-docs the tables are written to docs/results/slsjf.md (the
+# whole file, generated).
+#
+# usage: bench/slsjf.sh [RUNS] [PARTS] [--update-docs]   (default 5, "join grid1225 vicpark")
+# Environment: ESIF (the binary), ESIF_BENCH_OUT, ESIF_RESULTS_DIR,
+# VICPARK_RAWLOG, VICPARK_TXT (bench/common.sh, bench/vicpark_data.sh).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+source "$(dirname "$0")/common.sh"
 runs=${1:-5}
 parts=${2:-"join grid1225 vicpark"}
-esif=$(realpath build/bin/esif)
-cache=out/bench; mkdir -p "$cache"
+cache=$bench_out; mkdir -p "$cache"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-
-now() { date +%s.%N; }
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
-stat() { python3 -c "import json; v=json.load(open('$1/stats.json')).get('$2'); print('null' if v is None else v)"; }
-# Runs `esif ARGS` once, appending its whole-process seconds to FILE.
-timed() { local file=$1; shift; local t0 t1; t0=$(now); "$esif" "$@" >/dev/null; t1=$(now); awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}' >>"$file"; }
 
 grid1225_rawlog() {
   [ -f "$cache/grid1225_large.rawlog" ] || "$esif" simulate --config configs/sim/grid1225_large.ini --out "$cache/grid1225_large.rawlog" >&2
@@ -40,7 +38,7 @@ join_part() {
   [ -d "$maps" ] || "$esif" localmaps build -q --config configs/slsjf.ini --rawlog "$(grid1225_rawlog)" --out "$maps" >&2
   printf '[esif]\nplugin = Slsjf\n[slsjf]\nassociation = known_ids\n' >"$work/ids.ini"
   printf '[esif]\nplugin = Slsjf\nhide_landmark_ids = true\n[slsjf]\nassociation = jcbb\n' >"$work/jcbb.ini"
-  echo "### Joining the 401 local maps of grid1225_large (book: 120 s with association given, 459 s computing it)"
+  printf '### Joining the 401 local maps of grid1225_large (book: 120 s with association given, 459 s computing it)\n\n'
   printf '| association | maps | fusion s (sum) | per map ms (median) | of which association s | finish s | whole process s | state dim | non-zeros | wrong | landmark RMSE m |\n'
   printf '|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n'
   for a in ids jcbb; do
@@ -51,10 +49,10 @@ join_part() {
       stat "$d" join_us_p50 >>"$d.p50"; stat "$d" plugin_association_s >>"$d.assoc"; stat "$d" finish_us >>"$d.finish"
     done
     cp "$d/localmap_times.png" "$cache/slsjf_join_${a}_localmap_times.png"
-    printf '| %s | %s | %.3f | %.2f | %.3f | %.3f | %.2f | %s | %s | %s | %.4f |\n' "$a" "$(stat "$d" local_maps)" \
+    printf '| %s | %s | %.3f | %.2f | %.3f | %.3f | %.2f | %s | %s | %s | %s |\n' "$a" "$(stat "$d" local_maps)" \
       "$(median <"$d.sum")" "$(awk '{print $1 / 1000}' "$d.p50" | median)" "$(median <"$d.assoc")" \
       "$(awk '{print $1 / 1e6}' "$d.finish" | median)" "$(median <"$d.total")" "$(stat "$d" state_dim)" \
-      "$(stat "$d" info_nnz)" "$(stat "$d" da_wrong)" "$(stat "$d" landmark_rmse_m)"
+      "$(stat "$d" info_nnz)" "$(stat "$d" da_wrong)" "$(num %.4f "$(stat "$d" landmark_rmse_m)")"
   done
 }
 
@@ -63,13 +61,13 @@ end_to_end_row() {
   local data=$1 config=$2 n=$3 log=$4 d=$work/$1_$(basename "$2" .ini)
   for i in $(seq 1 "$n"); do timed "$d.total" run -q --config "$config" --rawlog "$log" --out "$d"; done
   printf '| %s | %s | %.2f | %s | %s | %s | %s | %s | %s | %s |\n' "$data" "$(stat "$d" label)" "$(median <"$d.total")" \
-    "$(stat "$d" landmark_rmse_m)" "$(stat "$d" ate_rmse_m)" "$(stat "$d" landmark_consistent_fraction)" \
-    "$(stat "$d" info_nnz)" "$(stat "$d" landmarks)" "$(stat "$d" poses_in_state)" "$(stat "$d" state_dim)"
+    "$(num %.3f "$(stat "$d" landmark_rmse_m)")" "$(num %.3f "$(stat "$d" ate_rmse_m)")" "$(pct "$(stat "$d" landmark_consistent_fraction)")" \
+    "$(num %s "$(stat "$d" info_nnz)")" "$(stat "$d" landmarks)" "$(stat "$d" poses_in_state)" "$(stat "$d" state_dim)"
 }
 
 grid1225_part() {
   local log; log=$(grid1225_rawlog)
-  echo "### End to end on grid1225_large (book Table 5.1: SLSJF 143,414 non-zeros, 876 features, 400 poses, dimension 2,952)"
+  printf '### End to end on grid1225_large (book Table 5.1: SLSJF 143,414 non-zeros, 876 features, 400 poses, dimension 2,952)\n\n'
   printf '| data | run | whole process s | landmark RMSE m | ATE m | consistent | non-zeros | features | poses | state dim |\n'
   printf '|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n'
   end_to_end_row grid1225 configs/slsjf.ini "$runs" "$log"
@@ -87,7 +85,7 @@ vicpark_part() {
   # what keeps the relinearised 35-step maps from the optimum.
   sed -e 's/label = vicpark_slsjf_smoothed/label = vicpark_slsjf_smoothed_10/' -e 's/^local_map_steps = .*/local_map_steps = 10/' \
     "$work/vp_smoothed.ini" >"$work/vp_smoothed_10.ini"
-  echo "### Victoria Park: SLSJF against the full-SLAM optimum (no ground truth)"
+  printf '### Victoria Park: SLSJF against the full-SLAM optimum (no ground truth)\n\n'
   for i in $(seq 1 "$runs"); do
     timed "$work/vp_slsjf.total" run -q --config configs/vicpark/slsjf.ini --rawlog "$log" --out "$work/vp_slsjf"
     timed "$work/vp_smoothed.total" run -q --config "$work/vp_smoothed.ini" --rawlog "$log" --out "$work/vp_smoothed"
@@ -100,12 +98,40 @@ vicpark_part() {
   for pair in vicpark_slsjf:vp_slsjf vicpark_slsjf_smoothed:vp_smoothed vicpark_slsjf_smoothed_10:vp_smoothed_10; do  # label : timing file
     python3 - "$work/vp_cmp/comparison.csv" "${pair%%:*}" "$(median <"$work/${pair##*:}.total")" <<'PY'
 import csv, sys
+def f(v):
+    try: return "%.2f" % float(v)
+    except ValueError: return v or "-"
 for row in csv.DictReader(open(sys.argv[1])):
     if row["label"] == sys.argv[2]:
-        print("| %s | %.2f | %s | %s | %s |" % (row["label"], float(sys.argv[3]), row["ref_traj_rms_m"],
-                                               row["ref_landmark_rms_m"], row["ref_landmark_max_m"]))
+        print("| %s | %.2f | %s | %s | %s |" % (row["label"], float(sys.argv[3]), f(row["ref_traj_rms_m"]),
+                                               f(row["ref_landmark_rms_m"]), f(row["ref_landmark_max_m"])))
 PY
   done
 }
 
-for p in $parts; do "${p}_part"; echo; done
+for p in $parts; do "${p}_part"; echo; done | tee "$work/tables.md"
+
+if [ "$update_docs" = 1 ]; then
+  data=""
+  for p in $parts; do
+    case $p in
+      join) data+="\`configs/sim/grid1225_large.ini\` simulated by \`esif simulate\` and its local maps built by \`esif localmaps build\`; " ;;
+      grid1225) data+="\`configs/sim/grid1225_large.ini\` simulated by \`esif simulate\`; " ;;
+      vicpark) data+="$(vicpark_description "$(vicpark_rawlog)"); " ;;
+    esac
+  done
+  {
+    cat <<'MD'
+SLSJF (`Slsjf`, book Ch. 5; [plugins/slsjf.md](../plugins/slsjf.md)) against
+the book's figures and beside its competitors; whole `esif` processes,
+medians over the runs. `join`: grid1225_large's 401 local maps fused with
+their IDs and with the IDs hidden (JCBB, Sec. 5.4.1). `grid1225`: end to
+end on grid1225_large, SLSJF plain and relinearised beside the EKF and the
+full-SLAM baseline (these two run once). `vicpark`: SLSJF plain and
+relinearised (35- and 10-step maps) against the full-SLAM optimum (no
+ground truth).
+
+MD
+    cat "$work/tables.md"
+  } | results_page slsjf "SLSJF: joining cost, end to end, Victoria Park" "${data%; }, $runs runs"
+fi

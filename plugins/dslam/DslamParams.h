@@ -110,7 +110,7 @@ struct DslamParams
 	/// left the whole map turned 2.5 deg about the start with 0.3% of the
 	/// features inside their 95% ellipse; relinearising every 200 steps: 1.0
 	/// deg (the full-SLAM optimum's 0.8 deg), 95.6%, for a replay 2-3 times
-	/// as long (docs/plugins/dslam.md, "Defaults").
+	/// as long (docs/plugins/dslam.md, "Relinearising the map updates").
 	int relinearise_every_steps = 200;
 	/// ... only the updates whose features' relative geometry (offsets from
 	/// the update's f1) moved more than this since they were evaluated [m];

@@ -17,8 +17,8 @@
 /// estimate instead, the innovation still at the current one. Maps fused at
 /// different estimates of the same variables then no longer inform
 /// directions no map observes (the chain's rotation about the origin), the
-/// over-confidence that turns the book's filter's map on real data (README,
-/// SLSJF section, has the figures). FEJ's points can be metres from the
+/// over-confidence that turns the book's filter's map on real data (docs/plugins/slsjf.md
+/// and docs/results/slsjf-jacobians.md have the figures). FEJ's points can be metres from the
 /// estimate after a long loop closes; the observability-constrained
 /// Jacobians (ObservabilityConstraint.h) keep the current point and only
 /// the shared null space.

@@ -97,7 +97,7 @@ TEST(MonteCarlo, ASmallCampaignResumesAndEqualsItsJobListRunByXargs)
 	EXPECT_EQ(fs::last_write_time(stats), before);
 	EXPECT_TRUE(fs::is_regular_file(direct + "/runs/ekf/seed_0005/stats.json"));
 
-	// The job list, run as the README says, then collected.
+	// The job list, run as docs/user-guide.md says, then collected.
 	const std::string dir = tmp.file("cluster"), jobs = tmp.file("jobs.txt");
 	const auto emitted = runEsif(campaignArgs(dir) + " --emit-jobs '" + jobs + "'");
 	ASSERT_EQ(emitted.exit_code, 0) << emitted.out;

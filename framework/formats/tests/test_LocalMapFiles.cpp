@@ -445,7 +445,7 @@ TEST(LocalMapFiles, VictoriaParkLocalMaps)
 	EXPECT_EQ(folder.maps[131].featuresInEarlierMaps(), 1u);
 	std::cout << "vicpark_200: fewest features in earlier maps, maps 2..200 except 132: " << min_shared_elsewhere
 			  << "\n";
-	EXPECT_EQ(folder.maps[1].end_pose.x(), 9.058080766467171);	 // the README's example
+	EXPECT_EQ(folder.maps[1].end_pose.x(), 9.058080766467171);	 // the example in ../shared/data/localmaps/README.md
 	EXPECT_FALSE(folder.truth_landmarks);
 
 	const auto ref = readReferenceResult(path + "/linear_slam_result");

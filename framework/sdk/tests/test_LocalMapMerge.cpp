@@ -300,7 +300,7 @@ const Grid196& grid196()
 
 /// Local maps of grid196 as the joining configs build them: measurements
 /// closer than 3 range sigmas (0.3 m) are left out, as configs/slsjf.ini
-/// and dslam_lmj.ini do (README, `local_min_range_m`: one update with such a
+/// and dslam_lmj.ini do (docs/plugins/slsjf.md, `local_min_range_m`: one update with such a
 /// measurement turns a map's heading, and the maps then disagree by several
 /// sigmas, which no merge can reconcile).
 std::vector<LocalMap> grid196Maps(int steps, LocalMapLink link)

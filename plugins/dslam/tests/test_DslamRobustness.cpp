@@ -158,7 +158,7 @@ TEST(DslamRobustness, WithoutIdsSurvivesLongStretchesWithNothingInView)
 	// neighbour after the first crossing, lost the local SLAM's features at
 	// the corners, and the run stopped as diverged at step 1312. The first
 	// 1400 steps hold both crossings, not the loop closure: closing the loop
-	// without IDs is still open (README: JCBB accepts wrong closures on
+	// without IDs is still open (docs/results/consistency.md: JCBB accepts wrong closures on
 	// long_gap, and about half the noise draws stop as diverged there).
 	test::TempDir dir;
 	const std::string log = dir.file("long_gap.rawlog");

@@ -63,7 +63,7 @@ TEST(LmjGrid196, FiveLocalMapsAsAccurateAsTheEkfAndConsistent)
 {
 	const Scored ekf = run("EkfSlam", "association = known_ids\nmin_range_m = 0.3\n", false);
 	// The book's 5 maps of 600 steps (configs/dslam_lmj.ini joins 100-step
-	// maps, more consistent over 50 noise draws: README "Consistency campaigns").
+	// maps, more consistent over 50 noise draws: docs/results/consistency.md).
 	std::string book = sectionOf("configs/dslam_lmj.ini");
 	book.replace(book.find("local_map_steps = 100"), std::string("local_map_steps = 100").size(), "local_map_steps = 600");
 	const Scored lmj = run("DslamLocalMapJoining", book, false);
