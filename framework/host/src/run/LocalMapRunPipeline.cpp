@@ -100,32 +100,38 @@ namespace
 Stats runInto(const LocalMapRunRequest& request, PluginLoader& loader)
 {
 	const auto t0 = std::chrono::steady_clock::now();
+	PhaseTimes times;
 	const ConfigFile cfg = ConfigFile::load(request.config_path);
 	const HostParams host = loadHostParams(cfg);
 	rejectRawlogOnlyKeys(cfg, host);
 	auto plugin = createConfiguredPlugin(cfg, host, loader);
 	requireLocalMapJoiner(*plugin, cfg.origin(), host.plugin);
-	const LocalMapInput in = readInput(request);
+	const LocalMapInput in = times.time("read", [&] { return readInput(request); });
 
 	LocalMapReplayResult result = replayLocalMaps(
 		*plugin, in.folder.maps, request.local_maps_dir, {host.hide_landmark_ids, request.progress_bar});
 	result.record.truth = localMapGroundTruth(in.folder);
 	const auto filter_to_file = result.audit.filterToTrue();
-	const auto accuracy =
-		evaluateLocalMapRun(in.folder, result.record.trajectory, result.record.final_estimate, filter_to_file);
+	const auto accuracy = times.time("evaluate", [&] {
+		return evaluateLocalMapRun(in.folder, result.record.trajectory, result.record.final_estimate, filter_to_file);
+	});
 	std::optional<ReferenceResultDifference> difference;
 	if (in.reference)
-		difference = referenceResultDifference(
-			result.record.final_estimate, result.record.trajectory, filter_to_file, *in.reference);
+		difference = times.time("evaluate", [&] {
+			return referenceResultDifference(
+				result.record.final_estimate, result.record.trajectory, filter_to_file, *in.reference);
+		});
 
 	// fusion_costs holds one entry per map at least (LocalMapReplay.h), so
 	// localmap_times.png is always written.
 	writeRunFiles(
-		request.out_dir, host, *plugin, {result.record, result.reports, result.fusion_costs, request.local_maps_dir});
+		request.out_dir, host, *plugin, {result.record, result.reports, result.fusion_costs, request.local_maps_dir},
+		times);
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	Stats stats = collectStats(host, request, in, result, *plugin, accuracy, difference, total_wall_s);
-	closeRunStats(
-		stats, truthStateNees(in.folder, *plugin, filter_to_file, request.config_path), "truth", request.out_dir);
+	const auto nees =
+		times.time("state_nees", [&] { return truthStateNees(in.folder, *plugin, filter_to_file, request.config_path); });
+	closeRunStats(stats, nees, "truth", times, request.out_dir);
 	return stats;
 }
 }  // namespace

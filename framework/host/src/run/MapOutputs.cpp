@@ -11,7 +11,7 @@ namespace fs = std::filesystem;
 
 namespace esif
 {
-void writeMapOutputs(const RunRecord& run, const std::string& dir, const MapWriterOptions& options)
+void writeMapOutputs(const RunRecord& run, const std::string& dir, const MapWriterOptions& options, PhaseTimes* times)
 {
 	// Checked before any file is written, so a bad option or folder leaves the
 	// folder untouched rather than with half of the outputs.
@@ -21,14 +21,16 @@ void writeMapOutputs(const RunRecord& run, const std::string& dir, const MapWrit
 		throw InputError(dir + ": output folder does not exist or is not a folder");
 
 	const fs::path d(dir);
-	writeLandmarksTxt(run.final_estimate, (d / "landmarks.txt").string());
-	writeTrajectoryTum(run.trajectory, (d / "trajectory.tum").string());
-	writeSimpleMap(run, (d / "map.simplemap").string());
-	writeScene(run, (d / "scene.3Dscene").string(), options);
-	writeMapImage(run, (d / "map.png").string(), options);
+	PhaseTimes untimed;
+	PhaseTimes& t = times ? *times : untimed;
+	t.time("landmarks_txt", [&] { writeLandmarksTxt(run.final_estimate, (d / "landmarks.txt").string()); });
+	t.time("trajectory_tum", [&] { writeTrajectoryTum(run.trajectory, (d / "trajectory.tum").string()); });
+	t.time("map_simplemap", [&] { writeSimpleMap(run, (d / "map.simplemap").string()); });
+	t.time("scene_3dscene", [&] { writeScene(run, (d / "scene.3Dscene").string(), options); });
+	t.time("map_png", [&] { writeMapImage(run, (d / "map.png").string(), options); });
 	// Last: it is the one output that can be refused for a map too large
 	// for CLandmarksMap, and the others should exist even then.
-	writeLandmarksGz(run.final_estimate, (d / "landmarks.gz").string());
+	t.time("landmarks_gz", [&] { writeLandmarksGz(run.final_estimate, (d / "landmarks.gz").string()); });
 }
 
 }  // namespace esif

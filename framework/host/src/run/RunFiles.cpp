@@ -10,18 +10,26 @@
 
 namespace esif
 {
-void writeRunFiles(const std::string& dir, const HostParams& host, const FilterPlugin& plugin, const RunFilesInput& in)
+void writeRunFiles(
+	const std::string& dir, const HostParams& host, const FilterPlugin& plugin, const RunFilesInput& in,
+	PhaseTimes& times)
 {
 	MapWriterOptions map_options;
 	map_options.image_size_px = host.image_size_px;
-	writeMapOutputs(in.record, dir, map_options);
+	writeMapOutputs(in.record, dir, map_options, &times);
 	const auto d = std::filesystem::path(dir);
-	if (const auto pattern = plugin.informationPattern())
-		writeInformationPatternImage(*pattern, (d / "info_matrix.png").string(), host.image_size_px);
+	times.time("info_matrix_png", [&] {
+		if (const auto pattern = plugin.informationPattern())
+			writeInformationPatternImage(*pattern, (d / "info_matrix.png").string(), host.image_size_px);
+	});
 	if (!in.fusion_costs.empty())
-		writeLocalMapTimesImage(in.fusion_costs, (d / "localmap_times.png").string(), host.image_size_px);
-	writeTextAtomically((d / "params.ini").string(), effectiveParamsIni(host, plugin));
-	writeAssociationFile((d / kAssociationFileName).string(), in.reports, host.plugin, in.input_path);
+		times.time("localmap_times_png", [&] {
+			writeLocalMapTimesImage(in.fusion_costs, (d / "localmap_times.png").string(), host.image_size_px);
+		});
+	times.time("params_ini", [&] { writeTextAtomically((d / "params.ini").string(), effectiveParamsIni(host, plugin)); });
+	times.time("associations_txt", [&] {
+		writeAssociationFile((d / kAssociationFileName).string(), in.reports, host.plugin, in.input_path);
+	});
 }
 
 void setRunIdentityStats(Stats& stats, const HostParams& host, const FilterPlugin& plugin, const std::string& config)
@@ -44,9 +52,10 @@ void setRunOutcomeStats(
 }
 
 void closeRunStats(Stats& stats, const std::optional<StateNees>& nees, const std::string& nees_reference,
-				   const std::string& dir)
+				   const PhaseTimes& times, const std::string& dir)
 {
 	setStateNeesStats(stats, nees, nees_reference);
+	times.setStats(stats);
 	flagSuspectResult(stats);
 	writeTextAtomically((std::filesystem::path(dir) / "stats.json").string(), stats.toJson());
 }

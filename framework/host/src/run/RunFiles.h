@@ -13,6 +13,7 @@
 #include <esif/plugin/FilterPlugin.h>
 #include <esif/plugin/LocalMapJoiner.h>
 #include <esif/run/HostParams.h>
+#include <esif/run/PhaseTimes.h>
 #include <esif/safeio/OutputApart.h>
 #include <esif/safeio/RunFolder.h>
 
@@ -33,8 +34,10 @@ struct RunFilesInput
 
 /// Writes the map outputs (MapOutputs.h), info_matrix.png (information-form
 /// plugins), localmap_times.png (map joining), params.ini and
-/// associations.txt into `dir`.
-void writeRunFiles(const std::string& dir, const HostParams& host, const FilterPlugin& plugin, const RunFilesInput& in);
+/// associations.txt into `dir`, each file's time recorded in `times`.
+void writeRunFiles(
+	const std::string& dir, const HostParams& host, const FilterPlugin& plugin, const RunFilesInput& in,
+	PhaseTimes& times);
 
 /// Sets plugin, formulation, label and config: the keys every stats.json starts with.
 void setRunIdentityStats(Stats& stats, const HostParams& host, const FilterPlugin& plugin, const std::string& config);
@@ -44,10 +47,10 @@ void setRunOutcomeStats(
 	Stats& stats, double finish_us, const CostFigures& cost, const AssociationAudit& audit,
 	const std::optional<Accuracy>& accuracy);
 
-/// Sets the whole-state NEES keys, flags a suspect result and writes
-/// `dir`/stats.json: the last file of a run.
+/// Sets the whole-state NEES keys and the phase times, flags a suspect
+/// result and writes `dir`/stats.json: the last file of a run.
 void closeRunStats(Stats& stats, const std::optional<StateNees>& nees, const std::string& nees_reference,
-				   const std::string& dir);
+				   const PhaseTimes& times, const std::string& dir);
 
 /// Runs `run(staged)` with the request's out_dir replaced by a staging
 /// folder, after checking that no input is inside --out, and swaps the

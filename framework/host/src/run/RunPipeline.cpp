@@ -69,13 +69,14 @@ Stats collectStats(
 Stats runInto(const RunRequest& request, PluginLoader& loader)
 {
 	const auto t0 = std::chrono::steady_clock::now();
+	PhaseTimes times;
 	const ConfigFile cfg = ConfigFile::load(request.config_path);
 	HostParams host = loadHostParams(cfg);
 	if (request.associations_from) host.associations_from = *request.associations_from;	// params.ini shows the folder used
 	auto plugin = createConfiguredPlugin(cfg, host, loader);
 	const auto associations = locateAssociations(cfg, host, request.associations_from.has_value());
 
-	Rawlog log = readRawlog(request.rawlog_path, readOptionsOf(host));
+	Rawlog log = times.time("read", [&] { return readRawlog(request.rawlog_path, readOptionsOf(host)); });
 	if (log.truncation_warning) std::cerr << "esif: warning: " << *log.truncation_warning << "\n";
 	if (associations) applyAssociations(log, readAssociationFile(*associations, log.steps.size()), *associations);
 	scoreAgainstMeasurementTruth(
@@ -95,7 +96,7 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 
 	std::optional<Accuracy> accuracy;
 	if (truth)
-	{
+		times.time("evaluate", [&] {
 		result.record.truth = truth->inInitialPoseFrame();
 		const auto pose_errors = poseErrors(*result.record.truth, result.record.trajectory);
 		const auto landmark_errors =
@@ -103,25 +104,30 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 		accuracy = summarizeErrors(pose_errors, landmark_errors);
 		// Per step and per landmark, for campaigns over many runs (esif montecarlo).
 		writeEstimationErrorFiles(request.out_dir, pose_errors, landmark_errors);
-	}
+	});
 
 	writeRunFiles(
-		request.out_dir, host, *plugin, {result.record, result.reports, result.fusion_costs, request.rawlog_path});
-	writeStepTimesImage(
-		result.step_us, result.landmark_counts, (std::filesystem::path(request.out_dir) / "step_times.png").string(),
-		host.image_size_px);
+		request.out_dir, host, *plugin, {result.record, result.reports, result.fusion_costs, request.rawlog_path},
+		times);
+	times.time("step_times_png", [&] {
+		writeStepTimesImage(
+			result.step_us, result.landmark_counts,
+			(std::filesystem::path(request.out_dir) / "step_times.png").string(), host.image_size_px);
+	});
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	Stats stats = collectStats(host, request, log, result, *plugin, accuracy, total_wall_s);
-	if (reference_run)
-		closeRunStats(
-			stats, finalStateNees(*plugin, stateReferenceOf(*reference_run, log.steps.size()), filter_to_true, request.config_path),
-			*request.reference_run, request.out_dir);
-	else if (result.record.truth)
-		closeRunStats(
-			stats, finalStateNees(*plugin, stateReferenceOf(*result.record.truth), filter_to_true, request.config_path),
-			"truth", request.out_dir);
-	else
-		closeRunStats(stats, std::nullopt, "", request.out_dir);
+	// After total_wall_s: the whole-state test is a figure about the result.
+	const auto nees = times.time("state_nees", [&]() -> std::optional<StateNees> {
+		if (reference_run)
+			return finalStateNees(
+				*plugin, stateReferenceOf(*reference_run, log.steps.size()), filter_to_true, request.config_path);
+		if (result.record.truth)
+			return finalStateNees(*plugin, stateReferenceOf(*result.record.truth), filter_to_true, request.config_path);
+		return std::nullopt;
+	});
+	const std::string nees_reference =
+		reference_run ? *request.reference_run : result.record.truth ? std::string("truth") : std::string();
+	closeRunStats(stats, nees, nees_reference, times, request.out_dir);
 	return stats;
 }
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <esif/formats/RunRecord.h>
 #include <esif/render/MapRender.h>
+#include <esif/run/PhaseTimes.h>
 
 #include <string>
 
@@ -15,7 +16,9 @@ namespace esif
 /// ConfigError for invalid options before writing anything, and InputError
 /// naming the file when one cannot be written. landmarks.gz is written last:
 /// it is the one output refused for a map too wide for CLandmarksMap
-/// (esif/formats/MapWriter.h), and the others should exist even then.
-void writeMapOutputs(const RunRecord& run, const std::string& dir, const MapWriterOptions& options = {});
+/// (esif/formats/MapWriter.h), and the others should exist even then. With
+/// `times`, each file's writing is recorded under its name (map_png, ...).
+void writeMapOutputs(
+	const RunRecord& run, const std::string& dir, const MapWriterOptions& options = {}, PhaseTimes* times = nullptr);
 
 }  // namespace esif
