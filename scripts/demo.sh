@@ -5,6 +5,6 @@
 # out/demo/comparison.csv and comparison.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh esif esif_all_plugins  # the host and the plugins only: the tests are test.sh's
 configs=$(ls configs/*.ini | paste -sd, -)
 ./build/bin/esif compare --configs "$configs" --rawlog rawlogs/grid196.rawlog --out out/demo

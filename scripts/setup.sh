@@ -1,6 +1,12 @@
 #!/usr/bin/env bash
 # Installs what esif needs from Debian 12 packages (only what is missing) and
 # builds it in ./build. Safe to run again: it only does what is left to do.
+#
+#   bash scripts/setup.sh [TARGET...]   # default: everything (tests included)
+#
+# scripts/demo.sh builds only the host and the plugins (targets esif and
+# esif_all_plugins); scripts/test.sh builds the rest. ccache is used when it
+# is installed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -21,5 +27,11 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
+if [ $# -gt 0 ]; then
+  cmake --build build --target "$@"
+else
+  cmake --build build
+fi
