@@ -82,9 +82,10 @@ void checkGridSize(const GridBounds& b, const std::string& path)
 /// Cells per side of the lookup grid the writer gives CLandmarksMap. The grid
 /// is never serialized (the file holds the landmarks alone, and a reader
 /// builds its own 0.2 m grid), so the writer needs none: at 0.2 m, grown by
-/// one resize per landmark that extends it, filling it cost a quarter of a
-/// Victoria Park run (a 300 m map: over 2 million cells). One coarse grid,
-/// sized once, leaves the file byte for byte the same.
+/// one resize per landmark that extends it, it is millions of cells for a
+/// park-sized map and its filling dominated writing the file (time_landmarks_gz_s,
+/// docs/results/end_to_end.md). One coarse grid, sized once, leaves the file
+/// byte for byte the same.
 constexpr double kWriterGridCellsPerSide = 16;
 
 void writeLandmarksGz(const Estimate& estimate, const std::string& path)
