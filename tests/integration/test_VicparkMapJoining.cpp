@@ -81,4 +81,14 @@ TEST_F(VicparkMapJoining, SmoothedSlsjfReachesTheOptimumWithinTheTreesUncertaint
 	EXPECT_GE(*d.landmarks_inside_own95_fraction, 0.95);
 }
 
+TEST_F(VicparkMapJoining, OnlineSlsjfWithShortMapsIsWithinFifteenCentimetresOfTheOptimum)
+{
+	const RunDifference d = fromOptimum("slsjf_online");
+	// The target of configs/vicpark/slsjf_online.ini: 0.15 m RMS, a tenth of
+	// the trees' median uncertainty, and a consistent filter's 95% inside.
+	EXPECT_EQ(d.landmarks_matched, 151u);
+	EXPECT_LT(*d.landmark_rms_m, 0.15);
+	EXPECT_GE(*d.landmarks_inside_own95_fraction, 0.95);
+}
+
 }  // namespace
