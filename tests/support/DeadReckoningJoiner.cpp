@@ -1,10 +1,10 @@
 #include "DeadReckoningJoiner.h"
 
+#include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
 #include <esif/models/Se2.h>
 
 #include <Eigen/Cholesky>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -14,9 +14,7 @@ namespace esif::test
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using Clock = SteadyClock;
 
 /// `a` (+) `b` with first-order covariance, a and b independent.
 PoseEstimate composeEstimates(const PoseEstimate& a, const Pose2& b, const Eigen::Matrix3d& b_cov)

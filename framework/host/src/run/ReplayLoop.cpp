@@ -10,6 +10,13 @@ namespace esif
 {
 namespace
 {
+/// "step 12", "local map 3": input i as messages name it. Built only for a
+/// message, not on every input.
+std::string inputLabel(const ReplaySource& source, std::size_t i)
+{
+	return source.input_name + " " + std::to_string(source.input_number(i));
+}
+
 NumericalError outOfMemory(const ReplaySource& source, const std::string& when)
 {
 	return NumericalError(
@@ -26,7 +33,6 @@ ReplayTimes runReplayLoop(FilterPlugin& plugin, const ReplaySource& source, bool
 	const auto t_start = SteadyClock::now();
 	for (std::size_t i = 0; i < source.count; ++i)
 	{
-		const std::string input = source.input_name + " " + std::to_string(source.input_number(i));
 		const auto t0 = SteadyClock::now();
 		try
 		{
@@ -34,11 +40,11 @@ ReplayTimes runReplayLoop(FilterPlugin& plugin, const ReplaySource& source, bool
 		}
 		catch (const NumericalError& e)
 		{
-			throw NumericalError(source.origin + ": " + input + ": " + e.what());
+			throw NumericalError(source.origin + ": " + inputLabel(source, i) + ": " + e.what());
 		}
 		catch (const std::bad_alloc&)
 		{
-			throw outOfMemory(source, "at " + input);
+			throw outOfMemory(source, "at " + inputLabel(source, i));
 		}
 		out.feed_us.push_back(microsecondsSince(t0));
 		source.after(i);

@@ -116,17 +116,24 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 	});
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	Stats stats = collectStats(host, request, log, result, *plugin, accuracy, total_wall_s);
-	// After total_wall_s: the whole-state test is a figure about the result.
+	// After total_wall_s: the whole-state test is a figure about the result,
+	// against the reference run when one is given, else the ground truth.
+	std::optional<StateReference> nees_against;
+	std::string nees_reference;
+	if (reference_run)
+	{
+		nees_against = stateReferenceOf(*reference_run, log.steps.size());
+		nees_reference = *request.reference_run;
+	}
+	else if (result.record.truth)
+	{
+		nees_against = stateReferenceOf(*result.record.truth);
+		nees_reference = "truth";
+	}
 	const auto nees = times.time("state_nees", [&]() -> std::optional<StateNees> {
-		if (reference_run)
-			return finalStateNees(
-				*plugin, stateReferenceOf(*reference_run, log.steps.size()), filter_to_true, request.config_path);
-		if (result.record.truth)
-			return finalStateNees(*plugin, stateReferenceOf(*result.record.truth), filter_to_true, request.config_path);
-		return std::nullopt;
+		if (!nees_against) return std::nullopt;
+		return finalStateNees(*plugin, *nees_against, filter_to_true, request.config_path);
 	});
-	const std::string nees_reference =
-		reference_run ? *request.reference_run : result.record.truth ? std::string("truth") : std::string();
 	closeRunStats(stats, nees, nees_reference, times, request.out_dir);
 	return stats;
 }
