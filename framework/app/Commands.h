@@ -7,6 +7,12 @@
 
 namespace esif::app
 {
+/// Everything main() does after blocking the termination signals and
+/// starting their watcher: dispatches argv ("esif", "<command>", ...) and
+/// turns an exception into one error line and the exit code. Also what a
+/// run forked by the run server calls (RunServer.h).
+int runMain(int argc, char** argv);
+
 int runCommand(int argc, char** argv);
 int compareCommand(int argc, char** argv);
 int simulateCommand(int argc, char** argv);

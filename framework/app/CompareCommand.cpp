@@ -18,6 +18,7 @@
 #include <esif/safeio/AtomicFile.h>
 #include <esif/safeio/OutputApart.h>
 #include <esif/safeio/RunFolder.h>
+#include <esif/safeio/RunServer.h>
 #include <esif/safeio/TerminationCleanup.h>
 
 #include <cerrno>
@@ -377,6 +378,9 @@ int compareCommand(int argc, char** argv)
 		"optimization baseline (the full-SLAM run), if any",
 		false, "", "LABEL|DIR", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
+	// Each config's run is a fork of the run server (RunServer.h), started
+	// before this process opens a file or starts a thread.
+	const RunServer server(runMain);
 	if (rawlog.isSet() == local_maps.isSet())
 		throw ConfigError("esif compare: give exactly one of --rawlog FILE and --local-maps DIR (see --help)");
 	if (local_maps.isSet() && ground_truth.isSet())

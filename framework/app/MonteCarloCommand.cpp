@@ -15,11 +15,13 @@
 #include <esif/run/RunSetup.h>
 #include <esif/safeio/AtomicFile.h>
 #include <esif/safeio/OutputApart.h>
+#include <esif/safeio/RunServer.h>
 #include <esif/sim/Scenario.h>
 
 #include <climits>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 namespace fs = std::filesystem;
@@ -128,6 +130,10 @@ int monteCarloCommand(int argc, char** argv)
 		"", "job", "with --out DIR: run one job of the campaign in DIR (what an --emit-jobs line runs)", false, "",
 		"CONFIG/seed_S", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
+	// Runs are forks of the run server (RunServer.h), started before this
+	// process opens a file or starts a thread.
+	std::optional<RunServer> server;
+	if (!collect.isSet() && !emit_jobs.isSet()) server.emplace(runMain);
 
 	const bool planning = scenario.isSet() || configs.isSet() || runs.isSet() || seed0.isSet();
 	if (collect.isSet())

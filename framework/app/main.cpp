@@ -74,13 +74,8 @@ int report(const char* kind, const std::string& what, int code)
 }
 }  // namespace
 
-int main(int argc, char** argv)
+int esif::app::runMain(int argc, char** argv)
 {
-	// Before any thread exists (plugins and libraries start theirs later),
-	// so that only the watcher receives SIGINT/SIGTERM/SIGHUP and can remove
-	// partial output before exiting with 128 + the signal.
-	esif::termination::blockSignals();
-	esif::termination::startWatcher();
 	try
 	{
 		return dispatch(argc, argv);
@@ -112,4 +107,14 @@ int main(int argc, char** argv)
 		// MRPT exceptions carry a banner and a multi-line stack: one line of reason.
 		return report("esif: internal error: ", esif::oneLineReason(e.what()), 4);
 	}
+}
+
+int main(int argc, char** argv)
+{
+	// Before any thread exists (plugins and libraries start theirs later),
+	// so that only the watcher receives SIGINT/SIGTERM/SIGHUP and can remove
+	// partial output before exiting with 128 + the signal.
+	esif::termination::blockSignals();
+	esif::termination::startWatcher();
+	return esif::app::runMain(argc, argv);
 }

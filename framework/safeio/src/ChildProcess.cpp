@@ -4,6 +4,7 @@
 #include <esif/safeio/ChildProcess.h>
 
 #include <esif/core/Errors.h>
+#include <esif/safeio/RunServer.h>
 #include <esif/safeio/TerminationCleanup.h>
 
 #include <cerrno>
@@ -58,41 +59,60 @@ std::string firstErrorLine(const std::string& text)
 	return last.empty() ? "(nothing on stderr)" : last;
 }
 
-ChildResult runEsifChild(const std::vector<std::string>& args, ChildOutput output, const std::string& who)
+namespace
+{
+/// fork + exec of /proc/self/exe: the way without a run server.
+pid_t forkExec(const std::vector<std::string>& args, int stderr_fd, bool discard_stdout)
 {
 	std::vector<char*> argv;
 	for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
 	argv.push_back(nullptr);
+	const pid_t pid = fork();
+	if (pid != 0) return pid;
+	// The child is an esif run with its own signal watcher; until its
+	// main() blocks them again, a signal may end it by default. dup2
+	// clears close-on-exec on the copy.
+	termination::unblockSignals();
+	dup2(stderr_fd, STDERR_FILENO);
+	if (discard_stdout)
+	{
+		const int null_fd = open("/dev/null", O_WRONLY);
+		if (null_fd >= 0) dup2(null_fd, STDOUT_FILENO);
+		if (null_fd > STDOUT_FILENO) close(null_fd);
+	}
+	execv("/proc/self/exe", argv.data());
+	const char message[] = "esif: error: cannot execute /proc/self/exe for the run\n";
+	(void)!write(STDERR_FILENO, message, sizeof(message) - 1);
+	_exit(127);
+}
+
+int waitChild(pid_t pid)
+{
+	int status = 0;
+	while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+	{
+	}
+	return status;
+}
+}  // namespace
+
+ChildResult runEsifChild(const std::vector<std::string>& args, ChildOutput output, const std::string& who)
+{
 	int pipe_fds[2];
 	// Close-on-exec: a child forked meanwhile by another thread must not
 	// hold this pipe open (its reader would wait for that child's end).
 	if (pipe2(pipe_fds, O_CLOEXEC) != 0) throw InputError(who + ": cannot start a run: pipe failed");
 	std::cout.flush();
 	std::cerr.flush();
-	const pid_t pid = fork();
+	const bool discard_stdout = output == ChildOutput::Kept;
+	ServedRun served;
+	if (runServerStarted()) served = startServedRun(args, pipe_fds[1], discard_stdout);
+	const pid_t pid = served.pid > 0 ? served.pid : forkExec(args, pipe_fds[1], discard_stdout);
 	if (pid < 0)
 	{
 		close(pipe_fds[0]);
 		close(pipe_fds[1]);
 		throw InputError(who + ": cannot start a run: fork failed");
-	}
-	if (pid == 0)
-	{
-		// The child is an esif run with its own signal watcher; until its
-		// main() blocks them again, a signal may end it by default. dup2
-		// clears close-on-exec on the copy.
-		termination::unblockSignals();
-		dup2(pipe_fds[1], STDERR_FILENO);
-		if (output == ChildOutput::Kept)
-		{
-			const int null_fd = open("/dev/null", O_WRONLY);
-			if (null_fd >= 0) dup2(null_fd, STDOUT_FILENO);
-			if (null_fd > STDOUT_FILENO) close(null_fd);
-		}
-		execv("/proc/self/exe", argv.data());
-		const char message[] = "esif: error: cannot execute /proc/self/exe for the run\n";
-		(void)!write(STDERR_FILENO, message, sizeof(message) - 1);
-		_exit(127);
 	}
 	// A signal to the parent is passed on to this child and waited for.
 	termination::addChild(pid);
@@ -100,10 +120,7 @@ ChildResult runEsifChild(const std::vector<std::string>& args, ChildOutput outpu
 	ChildResult result;
 	result.stderr_text = drain(pipe_fds[0], output == ChildOutput::Shown);
 	close(pipe_fds[0]);
-	int status = 0;
-	while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-	{
-	}
+	const int status = served.pid > 0 ? waitServedRun(served) : waitChild(pid);
 	termination::removeChild(pid);
 	if (WIFEXITED(status))
 		result.exit_code = WEXITSTATUS(status);

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <thread>
 #include <vector>
+#include <poll.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,6 +23,7 @@ struct Registry
 	std::mutex mutex;
 	std::vector<std::string> paths;
 	std::vector<pid_t> children;
+	std::vector<std::pair<pid_t, int>> servers;	 ///< pid and socket
 };
 
 Registry& registry()
@@ -39,6 +42,24 @@ sigset_t terminationSignals()
 	return set;
 }
 
+/// Waits for a run that is not our child (one the run server forked,
+/// RunServer.h): its pidfd becomes readable when it ends. Without pidfds
+/// (Linux before 5.3) it is polled.
+void waitForOtherProcess(pid_t pid)
+{
+	const int fd = static_cast<int>(::syscall(SYS_pidfd_open, pid, 0));
+	if (fd >= 0)
+	{
+		pollfd ended{fd, POLLIN, 0};
+		while (::poll(&ended, 1, -1) < 0 && errno == EINTR)
+		{
+		}
+		::close(fd);
+		return;
+	}
+	while (::kill(pid, 0) == 0) ::usleep(10000);
+}
+
 /// Passes the signal on to the child runs (each cleans up its own folder)
 /// and waits for them, so that no orphan keeps writing into a folder that
 /// is about to be removed.
@@ -48,7 +69,22 @@ void stopChildren(const std::vector<pid_t>& children, int sig)
 	for (const pid_t child : children)
 	{
 		int status = 0;
-		while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
+		pid_t waited;
+		while ((waited = ::waitpid(child, &status, 0)) < 0 && errno == EINTR)
+		{
+		}
+		if (waited < 0 && errno == ECHILD) waitForOtherProcess(child);
+	}
+}
+
+/// A server ends when its socket closes, after its own children.
+void stopServers(const std::vector<std::pair<pid_t, int>>& servers)
+{
+	for (const auto& [pid, fd] : servers)
+	{
+		::close(fd);
+		int status = 0;
+		while (::waitpid(pid, &status, 0) < 0 && errno == EINTR)
 		{
 		}
 	}
@@ -75,6 +111,7 @@ void removeRegistered(const std::vector<std::string>& paths)
 	Registry& r = registry();
 	r.mutex.lock();	 // held until _exit: nothing may start a swap now
 	stopChildren(r.children, sig);
+	stopServers(r.servers);
 	removeRegistered(r.paths);
 	// _exit, not exit: other threads may be inside library code that static
 	// destructors would pull from under them.
@@ -99,6 +136,15 @@ void startWatcher()
 {
 	static std::once_flag once;
 	std::call_once(once, [] { std::thread(watch).detach(); });
+}
+
+void restartInForkedChild()
+{
+	Registry& r = registry();
+	r.paths.clear();
+	r.children.clear();
+	r.servers.clear();
+	std::thread(watch).detach();
 }
 
 void addPath(const std::string& path)
@@ -126,6 +172,20 @@ void removeChild(pid_t pid)
 	std::lock_guard<std::mutex> lock(registry().mutex);
 	auto& children = registry().children;
 	children.erase(std::remove(children.begin(), children.end(), pid), children.end());
+}
+
+void addServer(pid_t pid, int fd)
+{
+	std::lock_guard<std::mutex> lock(registry().mutex);
+	registry().servers.emplace_back(pid, fd);
+}
+
+void removeServer(pid_t pid)
+{
+	std::lock_guard<std::mutex> lock(registry().mutex);
+	auto& servers = registry().servers;
+	servers.erase(
+		std::remove_if(servers.begin(), servers.end(), [pid](const auto& s) { return s.first == pid; }), servers.end());
 }
 
 std::unique_lock<std::mutex> holdOff() { return std::unique_lock<std::mutex>(registry().mutex); }

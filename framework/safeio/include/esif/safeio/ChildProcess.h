@@ -1,10 +1,11 @@
 #pragma once
 /// \file ChildProcess.h
-/// Runs esif itself (/proc/self/exe) as a child process, as `esif compare`
-/// and `esif montecarlo` run each `esif run`: its wall time and peak memory
-/// are its own, and a crash ends only it. A signal to the parent is passed
-/// on to every running child and waited for (TerminationCleanup.h). Safe to
-/// call from several threads at once.
+/// Runs esif itself as a child process, as `esif compare` and `esif
+/// montecarlo` run each `esif run`: a fork of the run server when one is
+/// running (RunServer.h), else /proc/self/exe executed again. Either way
+/// its wall time and peak memory are its own, and a crash ends only it. A
+/// signal to the parent is passed on to every running child and waited for
+/// (TerminationCleanup.h). Safe to call from several threads at once.
 
 #include <string>
 #include <vector>

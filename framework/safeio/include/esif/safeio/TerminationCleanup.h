@@ -27,6 +27,12 @@ void unblockSignals();
 /// blocked signals would stay pending forever.
 void startWatcher();
 
+/// For a process forked without exec (a run of the run server, RunServer.h):
+/// forgets the paths and children inherited from the process it was forked
+/// from, and starts its own watcher (the parent's thread was not copied).
+/// Signals must still be blocked, as they are when inherited.
+void restartInForkedChild();
+
 /// Registers `path` (file or folder) to be removed if a signal ends the
 /// process; paths are removed in the reverse order of registration.
 void addPath(const std::string& path);
@@ -34,9 +40,16 @@ void addPath(const std::string& path);
 void removePath(const std::string& path);
 
 /// A child process to forward a signal to and wait for; several may run
-/// at once (esif montecarlo --jobs). Unregister it once it has been waited for.
+/// at once (esif montecarlo --jobs). It may also be a run the run server
+/// forked, which is not our child. Unregister it once it has ended.
 void addChild(pid_t pid);
 void removeChild(pid_t pid);
+
+/// A server process (RunServer.h) that ends once `fd`, its socket, is
+/// closed: after the children have ended, the watcher closes `fd` and waits
+/// for the server. Unregister it before closing `fd` yourself.
+void addServer(pid_t pid, int fd);
+void removeServer(pid_t pid);
 
 /// Held over steps that must not be cut in two by the cleanup (the swap of
 /// a finished folder into place): the watcher waits for it.
