@@ -30,7 +30,24 @@ function(esif_add_plugin name)
     BUILD_RPATH "$ORIGIN/.."
     CXX_VISIBILITY_PRESET default)
   add_dependencies(esif_all_plugins ${target})
+  set_property(GLOBAL APPEND PROPERTY ESIF_PLUGIN_TARGETS ${target})
   if(BUILD_TESTING AND EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/tests/CMakeLists.txt)
     add_subdirectory(tests)
   endif()
+endfunction()
+
+# esif_add_plugin_cache(): after every esif_add_plugin, writes the cache that
+# lets the launcher answer `esif plugins` without loading the host
+# (framework/app/launcher/PluginCache.h). It is rebuilt whenever a plugin or
+# an esif library is; a cache that is out of date anyway is not used.
+function(esif_add_plugin_cache)
+  get_property(plugins GLOBAL PROPERTY ESIF_PLUGIN_TARGETS)
+  set(cache ${ESIF_PLUGIN_OUTPUT_DIR}/plugins.cache)
+  add_custom_command(OUTPUT ${cache}
+    COMMAND esif_query_plugins
+    DEPENDS esif_query_plugins esif_app esif_host esif_render esif_formats esif_safeio esif_sdk ${plugins}
+    COMMENT "Writing the plugin cache for esif plugins"
+    VERBATIM)
+  add_custom_target(esif_plugin_cache DEPENDS ${cache})
+  add_dependencies(esif_all_plugins esif_plugin_cache)
 endfunction()

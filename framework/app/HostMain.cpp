@@ -1,16 +1,19 @@
-/// \file main.cpp
-/// `esif`: replays MRPT rawlogs through SLAM plugins and compares them.
+/// \file HostMain.cpp
+/// The host of `esif` (libesif_app.so): replays MRPT rawlogs through SLAM
+/// plugins and compares them. The `esif` executable is the launcher that
+/// loads it (launcher/Launcher.cpp).
 /// Every error reaches the user as one line on stderr and a non-zero exit.
 
+#include "CommandList.h"
 #include "Commands.h"
 
 #include <esif/core/Errors.h>
 #include <esif/safeio/TerminationCleanup.h>
 
-#include <cstring>
 #include <filesystem>
-#include <new>
 #include <iostream>
+#include <iterator>
+#include <new>
 #include <string>
 
 namespace
@@ -19,26 +22,30 @@ struct Subcommand
 {
 	const char* name;
 	int (*run)(int, char**);
-	const char* summary;
 };
 
-const Subcommand kSubcommands[] = {
-	{"run", esif::app::runCommand, "replay a rawlog through one plugin and write maps and stats"},
-	{"compare", esif::app::compareCommand, "run several configs on one rawlog and tabulate them"},
-	{"simulate", esif::app::simulateCommand, "generate a rawlog and ground truth from a scenario INI"},
-	{"import", esif::app::importCommand, "convert a dataset (victoria-park) into an MRPT rawlog, or a g2o solution into a run folder"},
-	{"export", esif::app::exportCommand, "write a rawlog's full-SLAM problem for other solvers (g2o, GTSAM)"},
-	{"plugins", esif::app::pluginsCommand, "list the plugins found and their parameters"},
-	{"localmaps", esif::app::localMapsCommand, "build local maps from a rawlog, or summarise a folder of them"},
-	{"montecarlo", esif::app::monteCarloCommand, "Monte Carlo campaign: ANEES and RMSE of configs over N noise draws"},
-	{"bench", esif::app::benchCommand, "benchmarks (sparse: recovery methods of the sparse core)"},
+/// Every name of kCommandSummaries (CommandList.h), with its function.
+constexpr Subcommand kSubcommands[] = {
+	{"run", esif::app::runCommand},
+	{"compare", esif::app::compareCommand},
+	{"simulate", esif::app::simulateCommand},
+	{"import", esif::app::importCommand},
+	{"export", esif::app::exportCommand},
+	{"plugins", esif::app::pluginsCommand},
+	{"localmaps", esif::app::localMapsCommand},
+	{"montecarlo", esif::app::monteCarloCommand},
+	{"bench", esif::app::benchCommand},
 };
+constexpr bool sameText(const char* a, const char* b) { return *a == *b && (*a == '\0' || sameText(a + 1, b + 1)); }
 
-void printUsage(std::ostream& out)
+constexpr bool namesMatchTheSummaries()
 {
-	out << "usage: esif <command> [options]   (esif <command> --help for details)\n\ncommands:\n";
-	for (const auto& c : kSubcommands) out << "  " << c.name << std::string(12 - std::strlen(c.name), ' ') << c.summary << "\n";
+	if (std::size(kSubcommands) != std::size(esif::app::kCommandSummaries)) return false;
+	for (std::size_t i = 0; i < std::size(kSubcommands); ++i)
+		if (!sameText(kSubcommands[i].name, esif::app::kCommandSummaries[i].name)) return false;
+	return true;
 }
+static_assert(namesMatchTheSummaries(), "kSubcommands and kCommandSummaries list the same commands in the same order");
 
 /// Exit codes: 1 bad input, config or command line (a missing or unknown
 /// command too); 3 numerical failure or out of memory; 4 unexpected
@@ -48,9 +55,9 @@ int dispatch(int argc, char** argv)
 	if (argc < 2)
 		throw esif::ConfigError("no command given (usage: esif <command> [options]; esif --help lists the commands)");
 	const std::string name = argv[1];
-	if (name == "--help" || name == "-h" || name == "help")
+	if (esif::app::isHelpRequest(name))
 	{
-		printUsage(std::cout);
+		esif::app::printUsage(std::cout);
 		return 0;
 	}
 	for (const auto& c : kSubcommands)
@@ -109,7 +116,9 @@ int esif::app::runMain(int argc, char** argv)
 	}
 }
 
-int main(int argc, char** argv)
+/// The host's entry point, which the launcher (launcher/Launcher.cpp) calls
+/// once it has loaded this library.
+extern "C" __attribute__((visibility("default"))) int esif_app_main(int argc, char** argv)
 {
 	// Before any thread exists (plugins and libraries start theirs later),
 	// so that only the watcher receives SIGINT/SIGTERM/SIGHUP and can remove
