@@ -21,13 +21,14 @@ void CholmodCommon::useGivenOrderingForModification()
 	common_.nmethods = 1;
 	common_.method[0].ordering = CHOLMOD_GIVEN;
 	common_.postorder = false;  // postordering could move the trailing variables forward
-	// Supernodal numeric factorisation where CHOLMOD finds it faster (BLAS),
-	// converted at the end to the simplicial LDL^T that updown/rowadd modify;
-	// the zeros of relaxed supernodes are dropped from the pattern.
-	common_.supernodal = CHOLMOD_AUTO;
+	// Simplicial LDL^T straight away: updown and rowadd modify only that
+	// form, and on the filters' factors (a few thousand scalars, a few
+	// hundred thousand non-zeros) a supernodal factorisation converted to it
+	// afterwards cost more in the conversion and the resymbolic pass than
+	// its BLAS kernels saved (docs/plugins/slsjf.md, "Recovery").
+	common_.supernodal = CHOLMOD_SIMPLICIAL;
 	common_.final_asis = false;
 	common_.final_super = false;
-	common_.final_resymbol = true;
 	common_.final_ll = false;
 	common_.final_pack = false;  // leave slack in each column for the fill of later updates
 	common_.final_monotonic = true;

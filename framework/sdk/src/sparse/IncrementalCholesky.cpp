@@ -3,6 +3,7 @@
 #include "sparse/PivotCheck.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 
@@ -224,21 +225,24 @@ Eigen::MatrixXd IncrementalCholesky::solveCovarianceBlock(const InformationForm&
 	const auto* li = static_cast<const int*>(L_->i);
 	const auto* lx = static_cast<const double*>(L_->x);
 
-	Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(n - first, k);  // rows: positions first..n-1
-	for (int a = 0; a < k; ++a)
+	// Column j - first of Yt holds y_a(j) for every a: each column of L is
+	// read once for all k right-hand sides, which share most of their
+	// elimination-tree paths (up to the root).
+	Eigen::MatrixXd Yt = Eigen::MatrixXd::Zero(k, n - first);
+	for (int a = 0; a < k; ++a) Yt(a, pos[a] - first) = 1.0;
+	std::vector<int> reached;  // the positions with some y_a(j) != 0: the union of the paths
+	for (int j = first; j < n; ++j)
 	{
-		auto y = Y.col(a);
-		y(pos[a] - first) = 1.0;
-		for (int j = pos[a]; j < n; ++j)
-		{
-			const double yj = y(j - first);
-			if (yj == 0.0) continue;
-			for (int t = p[j] + 1; t < p[j] + nz[j]; ++t) y(li[t] - first) -= lx[t] * yj;	// t = p[j] is d_j
-		}
+		const auto yj = Yt.col(j - first);
+		if (yj.isZero(0.0)) continue;
+		reached.push_back(j);
+		for (int t = p[j] + 1; t < p[j] + nz[j]; ++t) Yt.col(li[t] - first) -= lx[t] * yj;  // t = p[j] is d_j
 	}
-	Eigen::VectorXd d_inv(n - first);
-	for (int j = first; j < n; ++j) d_inv(j - first) = 1.0 / lx[p[j]];
-	Eigen::MatrixXd P = Y.transpose() * d_inv.asDiagonal() * Y;
+	// P = sum over reached j of y(j) y(j)^T / d_j, on the reached columns only.
+	Eigen::MatrixXd Z(k, reached.size());
+	for (std::size_t c = 0; c < reached.size(); ++c)
+		Z.col(static_cast<Eigen::Index>(c)) = Yt.col(reached[c] - first) / std::sqrt(lx[p[reached[c]]]);
+	const Eigen::MatrixXd P = Z * Z.transpose();
 	return 0.5 * (P + P.transpose());
 }
 
