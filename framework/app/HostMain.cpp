@@ -10,6 +10,8 @@
 #include <esif/core/Errors.h>
 #include <esif/safeio/TerminationCleanup.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <iterator>
@@ -125,5 +127,13 @@ extern "C" __attribute__((visibility("default"))) int esif_app_main(int argc, ch
 	// partial output before exiting with 128 + the signal.
 	esif::termination::blockSignals();
 	esif::termination::startWatcher();
-	return esif::app::runMain(argc, argv);
+	const int code = esif::app::runMain(argc, argv);
+	// Every output is written, synced and in place by now (AtomicFile.h):
+	// end without running the static destructors of the ~300 libraries the
+	// host loaded, which only free memory the kernel reclaims anyway (as
+	// clang's -disable-free does). Streams are flushed first.
+	std::cout.flush();
+	std::cerr.flush();
+	std::fflush(nullptr);
+	std::_Exit(code);
 }

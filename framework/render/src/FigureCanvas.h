@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <initializer_list>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -91,9 +92,23 @@ inline std::vector<std::string> wrapText(const std::string& s, const Font& font,
 	return lines;
 }
 
+/// MRPT unpacks its bitmap fonts on the first selectTextFont() without a
+/// lock (init_fonts_list in CCanvas.cpp), and figures are drawn beside other
+/// outputs (host OutputJobs.h): the first unpacking happens once, here.
+/// Later selections only look the font up.
+inline void loadFontsOnce()
+{
+	static std::once_flag once;
+	std::call_once(once, [] {
+		mrpt::img::CImage probe(1, 1, mrpt::img::CH_RGB);
+		probe.selectTextFont("9x15");
+	});
+}
+
 /// Text with its top-left corner at (x, y).
 inline void text(mrpt::img::CImage& img, int x, int y, const std::string& s, const Font& font, const TColor& color)
 {
+	loadFontsOnce();
 	img.selectTextFont(font.name);
 	img.textOut(x, y, s, color);
 }

@@ -11,7 +11,7 @@ namespace fs = std::filesystem;
 
 namespace esif
 {
-void writeMapOutputs(const RunRecord& run, const std::string& dir, const MapWriterOptions& options, PhaseTimes* times)
+void addMapOutputJobs(OutputJobs& jobs, const RunRecord& run, const std::string& dir, const MapWriterOptions& options)
 {
 	// Checked before any file is written, so a bad option or folder leaves the
 	// folder untouched rather than with half of the outputs.
@@ -21,16 +21,21 @@ void writeMapOutputs(const RunRecord& run, const std::string& dir, const MapWrit
 		throw InputError(dir + ": output folder does not exist or is not a folder");
 
 	const fs::path d(dir);
-	PhaseTimes untimed;
-	PhaseTimes& t = times ? *times : untimed;
-	t.time("landmarks_txt", [&] { writeLandmarksTxt(run.final_estimate, (d / "landmarks.txt").string()); });
-	t.time("trajectory_tum", [&] { writeTrajectoryTum(run.trajectory, (d / "trajectory.tum").string()); });
-	t.time("map_simplemap", [&] { writeSimpleMap(run, (d / "map.simplemap").string()); });
-	t.time("scene_3dscene", [&] { writeScene(run, (d / "scene.3Dscene").string(), options); });
-	t.time("map_png", [&] { writeMapImage(run, (d / "map.png").string(), options); });
-	// Last: it is the one output that can be refused for a map too large
-	// for CLandmarksMap, and the others should exist even then.
-	t.time("landmarks_gz", [&] { writeLandmarksGz(run.final_estimate, (d / "landmarks.gz").string()); });
+	jobs.add("landmarks_txt", [&run, d] { writeLandmarksTxt(run.final_estimate, (d / "landmarks.txt").string()); });
+	jobs.add("trajectory_tum", [&run, d] { writeTrajectoryTum(run.trajectory, (d / "trajectory.tum").string()); });
+	jobs.add("map_simplemap", [&run, d] { writeSimpleMap(run, (d / "map.simplemap").string()); });
+	jobs.add("scene_3dscene", [&run, d, options] { writeScene(run, (d / "scene.3Dscene").string(), options); });
+	jobs.addFigure("map_png", [&run, d, options] { writeMapImage(run, (d / "map.png").string(), options); });
+	// landmarks.gz is the one output that can be refused for a map too
+	// large for CLandmarksMap; the jobs finish the others even then.
+	jobs.add("landmarks_gz", [&run, d] { writeLandmarksGz(run.final_estimate, (d / "landmarks.gz").string()); });
+}
+
+void writeMapOutputs(const RunRecord& run, const std::string& dir, const MapWriterOptions& options, PhaseTimes* times)
+{
+	OutputJobs jobs;
+	addMapOutputJobs(jobs, run, dir, options);
+	jobs.run(times);
 }
 
 }  // namespace esif

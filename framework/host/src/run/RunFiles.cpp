@@ -12,24 +12,30 @@ namespace esif
 {
 void writeRunFiles(
 	const std::string& dir, const HostParams& host, const FilterPlugin& plugin, const RunFilesInput& in,
-	PhaseTimes& times)
+	PhaseTimes& times, OutputJobs extra)
 {
 	MapWriterOptions map_options;
 	map_options.image_size_px = host.image_size_px;
-	writeMapOutputs(in.record, dir, map_options, &times);
+	OutputJobs jobs;
+	addMapOutputJobs(jobs, in.record, dir, map_options);
 	const auto d = std::filesystem::path(dir);
-	times.time("info_matrix_png", [&] {
-		if (const auto pattern = plugin.informationPattern())
-			writeInformationPatternImage(*pattern, (d / "info_matrix.png").string(), host.image_size_px);
+	// The pattern is taken here, on the calling thread: plugins are not
+	// asked to be thread-safe.
+	auto pattern = plugin.informationPattern();
+	jobs.addFigure("info_matrix_png", [pattern = std::move(pattern), d, &host] {
+		if (pattern) writeInformationPatternImage(*pattern, (d / "info_matrix.png").string(), host.image_size_px);
 	});
 	if (!in.fusion_costs.empty())
-		times.time("localmap_times_png", [&] {
+		jobs.addFigure("localmap_times_png", [&in, d, &host] {
 			writeLocalMapTimesImage(in.fusion_costs, (d / "localmap_times.png").string(), host.image_size_px);
 		});
-	times.time("params_ini", [&] { writeTextAtomically((d / "params.ini").string(), effectiveParamsIni(host, plugin)); });
-	times.time("associations_txt", [&] {
+	const std::string params_ini = effectiveParamsIni(host, plugin);
+	jobs.add("params_ini", [params_ini, d] { writeTextAtomically((d / "params.ini").string(), params_ini); });
+	jobs.add("associations_txt", [&in, d, &host] {
 		writeAssociationFile((d / kAssociationFileName).string(), in.reports, host.plugin, in.input_path);
 	});
+	jobs.append(std::move(extra));
+	jobs.run(&times);
 }
 
 void setRunIdentityStats(Stats& stats, const HostParams& host, const FilterPlugin& plugin, const std::string& config)

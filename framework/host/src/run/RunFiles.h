@@ -13,6 +13,7 @@
 #include <esif/plugin/FilterPlugin.h>
 #include <esif/plugin/LocalMapJoiner.h>
 #include <esif/run/HostParams.h>
+#include <esif/run/OutputJobs.h>
 #include <esif/run/PhaseTimes.h>
 #include <esif/safeio/OutputApart.h>
 #include <esif/safeio/RunFolder.h>
@@ -33,11 +34,12 @@ struct RunFilesInput
 };
 
 /// Writes the map outputs (MapOutputs.h), info_matrix.png (information-form
-/// plugins), localmap_times.png (map joining), params.ini and
-/// associations.txt into `dir`, each file's time recorded in `times`.
+/// plugins), localmap_times.png (map joining), params.ini, associations.txt
+/// and the caller's `extra` files into `dir`, side by side (OutputJobs.h),
+/// each file's time recorded in `times`.
 void writeRunFiles(
 	const std::string& dir, const HostParams& host, const FilterPlugin& plugin, const RunFilesInput& in,
-	PhaseTimes& times);
+	PhaseTimes& times, OutputJobs extra = {});
 
 /// Sets plugin, formulation, label and config: the keys every stats.json starts with.
 void setRunIdentityStats(Stats& stats, const HostParams& host, const FilterPlugin& plugin, const std::string& config);

@@ -106,14 +106,15 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 		writeEstimationErrorFiles(request.out_dir, pose_errors, landmark_errors);
 	});
 
-	writeRunFiles(
-		request.out_dir, host, *plugin, {result.record, result.reports, result.fusion_costs, request.rawlog_path},
-		times);
-	times.time("step_times_png", [&] {
+	OutputJobs step_times;
+	step_times.addFigure("step_times_png", [&] {
 		writeStepTimesImage(
 			result.step_us, result.landmark_counts,
 			(std::filesystem::path(request.out_dir) / "step_times.png").string(), host.image_size_px);
 	});
+	writeRunFiles(
+		request.out_dir, host, *plugin, {result.record, result.reports, result.fusion_costs, request.rawlog_path},
+		times, std::move(step_times));
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	Stats stats = collectStats(host, request, log, result, *plugin, accuracy, total_wall_s);
 	// After total_wall_s: the whole-state test is a figure about the result,

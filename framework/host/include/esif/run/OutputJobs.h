@@ -1,0 +1,50 @@
+#pragma once
+/// \file OutputJobs.h
+/// A run's output files are independent of each other: encoding map.png
+/// does not need map.simplemap's gzip. OutputJobs writes the figures on a
+/// second thread while the calling thread writes the rest, each timed under
+/// its own phase, and keeps what a sequential writer promised: the phases
+/// appear in stats.json in the order the jobs were added, and when some
+/// fail, every other job still finishes before the first failure (in that
+/// order) is thrown.
+///
+/// Two lanes, not a pool: MRPT's serialisers (simple maps, scenes, landmark
+/// maps) keep lazily built global state, so they stay on one thread; a
+/// figure (drawn on an MRPT image, encoded by OpenCV) shares nothing with
+/// them once the canvas fonts are loaded (render/FigureCanvas.h).
+
+#include <esif/run/PhaseTimes.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace esif
+{
+class OutputJobs
+{
+   public:
+	/// Adds `write`, timed as `phase` (e.g. "map_simplemap"), to the calling
+	/// thread's lane.
+	void add(std::string phase, std::function<void()> write);
+	/// Adds a figure: drawn and encoded beside the calling thread's lane.
+	void addFigure(std::string phase, std::function<void()> write);
+	/// Adds `other`'s jobs after these.
+	void append(OutputJobs&& other);
+
+	/// Runs every job added (figures on a second thread when one can be
+	/// started), records each one's time in `times` when given, and forgets
+	/// the jobs. Rethrows the first failure in the order added.
+	void run(PhaseTimes* times);
+
+   private:
+	struct Job
+	{
+		std::string phase;
+		std::function<void()> write;
+		bool figure = false;
+	};
+	std::vector<Job> jobs_;
+};
+
+}  // namespace esif
