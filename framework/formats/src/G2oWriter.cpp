@@ -138,8 +138,8 @@ PointInRobotFrame pointInRobotFrame(const RangeBearingFactor& m)
 std::string g2oText(const FullSlamProblem& problem, G2oLandmarkEdge edge, const std::string& source)
 {
 	const VertexIds ids(problem.poses.size());
-	std::string text = header(problem, edge, source);
-	text.reserve(text.size() + 64 * problem.poses.size() + 48 * problem.landmarks.size() +
+	std::string text;
+	text.reserve(512 + 64 * problem.poses.size() + 48 * problem.landmarks.size() +
 				 128 * problem.odometry.size() + 96 * problem.observations.size());
 	for (std::size_t i = 0; i < problem.poses.size(); ++i)
 	{
@@ -154,7 +154,6 @@ std::string g2oText(const FullSlamProblem& problem, G2oLandmarkEdge edge, const 
 		appendNumbers(text, {position.x(), position.y()});
 		text += '\n';
 	}
-	text += "FIX 0\n";
 	// Edges in rawlog order: each step's odometry, then its measurements.
 	std::size_t next_observation = 0;
 	const auto appendObservationsUpTo = [&](std::size_t step_limit) {
@@ -175,6 +174,14 @@ std::string g2oText(const FullSlamProblem& problem, G2oLandmarkEdge edge, const 
 		appendOdometry(text, f, ids);
 	}
 	appendObservationsUpTo(std::numeric_limits<std::size_t>::max());
+	// FIX and the comments come after the last edge. GTSAM's readG2o reads a
+	// tag and then, in its bearing-range parser, two vertex ids before it
+	// checks the tag; on a line without two numbers after its first word
+	// (a comment, "FIX 0") the stream fails and GTSAM stops reading the
+	// file, silently dropping every factor after it. Here nothing is left
+	// to drop. g2o reads FIX and skips comments wherever they are.
+	text += "FIX 0\n";
+	text += header(problem, edge, source);
 	return text;
 }
 

@@ -12,11 +12,13 @@
 /// Lines written (information matrices as their upper triangle, row by row):
 ///   VERTEX_SE2 i x y theta
 ///   VERTEX_XY  P+L x y
-///   FIX 0
 ///   EDGE_SE2 i j dx dy dtheta  I11 I12 I13 I22 I23 I33      (odometry)
 /// and per measurement, one of
 ///   EDGE_SE2_XY i P+L px py  I11 I12 I22                    (G2oLandmarkEdge::PointXY)
 ///   BR i P+L bearing range sigma_bearing sigma_range        (G2oLandmarkEdge::BearingRange)
+/// then, after the last edge, `FIX 0` and the comment lines describing the
+/// file: GTSAM's readG2o stops at the first line it cannot parse, and some
+/// of its versions cannot parse either (G2oWriter.cpp).
 ///
 /// The odometry information is that of g2o's EdgeSE2 error, which sees the
 /// translation noise from the increment's end: (J Q J^T)^-1 with
@@ -28,8 +30,7 @@
 /// the measurement is converted, p = sensor (+) (r cos b, r sin b), and its
 /// covariance propagated to first order, J R J^T with J = dp/d(r, b), the
 /// information written being (J R J^T)^-1. GTSAM's readG2o does not read
-/// EDGE_SE2_XY at all (its 2-D parser knows EDGE_SE2, BR and LANDMARK, and
-/// skips any other tag without a word), and its LANDMARK form replaces a
+/// EDGE_SE2_XY at all (its 2-D parser knows EDGE_SE2, BR and LANDMARK), and its LANDMARK form replaces a
 /// non-isotropic covariance by unit sigmas; its BR form is read into a
 /// BearingRangeFactor<Pose2, Point2> with the given sigmas, the exact
 /// measurement model, which holds for a sensor at the robot's origin and a
