@@ -4,10 +4,11 @@
 
 #include <esif/eval/MonteCarloStatistics.h>
 
-#include <boost/math/distributions/chi_squared.hpp>
+#include <esif/association/Chi2.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -175,8 +176,11 @@ AneesBounds aneesBounds(int dof, std::size_t runs, double confidence)
 	if (dof < 1 || runs < 1) throw std::invalid_argument("aneesBounds: dof and runs must be >= 1");
 	if (!(confidence > 0 && confidence < 1)) throw std::invalid_argument("aneesBounds: confidence must be in (0, 1)");
 	const double n = static_cast<double>(runs);
-	const boost::math::chi_squared_distribution<double> chi2(dof * n);
-	return {boost::math::quantile(chi2, (1 - confidence) / 2) / n, boost::math::quantile(chi2, (1 + confidence) / 2) / n};
+	const double total_dof = dof * n;  // the sum of `runs` chi-square(dof) NEES values
+	if (total_dof > std::numeric_limits<int>::max())
+		throw std::invalid_argument("aneesBounds: dof x runs exceeds the largest chi-square dof supported");
+	const int k = static_cast<int>(total_dof);
+	return {chi2Quantile((1 - confidence) / 2, k) / n, chi2Quantile((1 + confidence) / 2, k) / n};
 }
 
 Quantiles quantilesOf(std::vector<double> values)

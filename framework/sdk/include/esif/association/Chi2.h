@@ -1,8 +1,9 @@
 #pragma once
 /// \file Chi2.h
-/// Exact chi-square distribution for integer degrees of freedom. MRPT's
-/// chi2inv() is the Wilson-Hilferty approximation (5.937 instead of 5.991 for
-/// the 95% quantile at 2 dof), too coarse for consistency bounds.
+/// The chi-square distribution for integer degrees of freedom, through
+/// Boost.Math (as the Monte Carlo bounds use it). MRPT's chi2inv() is the
+/// Wilson-Hilferty approximation (5.937 instead of 5.991 for the 95%
+/// quantile at 2 dof), too coarse for gates and consistency bounds.
 
 namespace esif
 {
