@@ -14,6 +14,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libmrpt-dev mrpt-apps mrpt-common   # MRPT 2.5: libraries, kf-slam app, demo datasets
   libeigen3-dev libsuitesparse-dev libceres-dev libgtest-dev libboost-dev zlib1g-dev libopencv-dev
+  nlohmann-json3-dev                  # stats.json
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -2,8 +2,12 @@
 #include <esif/core/Errors.h>
 #include <esif/formats/StatsJson.h>
 
-#include <cctype>
+#include <nlohmann/json.hpp>
+
+#include <climits>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -53,26 +57,6 @@ std::optional<std::string> Stats::text(const std::string& key) const
 	return std::nullopt;
 }
 
-namespace
-{
-std::string quoted(const std::string& s)
-{
-	std::string out = "\"";
-	for (const char c : s)
-	{
-		if (c == '"' || c == '\\')
-			out += std::string("\\") + c;
-		else if (c == '\n')
-			out += "\\n";
-		else if (static_cast<unsigned char>(c) < 0x20)
-			out += ' ';
-		else
-			out += c;
-	}
-	return out + "\"";
-}
-}  // namespace
-
 std::string statText(const StatValue& v)
 {
 	if (std::holds_alternative<std::nullptr_t>(v)) return "null";
@@ -81,24 +65,55 @@ std::string statText(const StatValue& v)
 	return std::get<std::string>(v);
 }
 
+namespace
+{
+/// stats.json is a few kilobytes; anything near this is not one.
+constexpr std::uintmax_t kMaxStatsBytes = 16u << 20;
+
+using Json = nlohmann::ordered_json;  // keys stay in the order they were set
+
+Json toJsonValue(const StatValue& v)
+{
+	if (const auto* d = std::get_if<double>(&v)) return *d;
+	if (const auto* i = std::get_if<long long>(&v)) return *i;
+	if (const auto* t = std::get_if<std::string>(&v)) return *t;
+	return nullptr;
+}
+
+StatValue fromJsonValue(const Json& v, const std::string& key, const std::string& origin)
+{
+	if (v.is_null()) return nullptr;
+	if (v.is_string()) return v.get<std::string>();
+	if (v.is_number_float()) return v.get<double>();
+	if (v.is_number_integer())
+	{
+		if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(LLONG_MAX))
+			throw InputError(origin + ": stats JSON key '" + key + "': integer out of range");
+		return v.get<long long>();
+	}
+	throw InputError(origin + ": stats JSON key '" + key + "': expected a number, a string or null, found " +
+					 v.type_name());
+}
+}  // namespace
+
 std::string Stats::toJson() const
 {
-	std::ostringstream out;
-	out << "{\n";
-	for (std::size_t k = 0; k < items_.size(); ++k)
-	{
-		const auto& [key, value] = items_[k];
-		out << "  " << quoted(key) << ": "
-			<< (std::holds_alternative<std::string>(value) ? quoted(std::get<std::string>(value)) : statText(value))
-			<< (k + 1 < items_.size() ? ",\n" : "\n");
-	}
-	out << "}\n";
-	return out.str();
+	Json object = Json::object();
+	for (const auto& [key, value] : items_) object[key] = toJsonValue(value);
+	// Paths and labels are bytes: invalid UTF-8 becomes U+FFFD rather than
+	// an exception halfway through a run's closing.
+	return object.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 Stats Stats::load(const std::string& path)
 {
-	std::ifstream in(path);
+	std::error_code ec;
+	const auto size = std::filesystem::file_size(path, ec);
+	if (ec) throw InputError(path + ": cannot open (" + ec.message() + ")");
+	if (size > kMaxStatsBytes)
+		throw InputError(path + ": " + std::to_string(size) + " bytes, more than a stats.json holds (" +
+						 std::to_string(kMaxStatsBytes) + ")");
+	std::ifstream in(path, std::ios::binary);
 	if (!in) throw InputError(path + ": cannot open");
 	std::stringstream ss;
 	ss << in.rdbuf();
@@ -107,57 +122,19 @@ Stats Stats::load(const std::string& path)
 
 Stats Stats::fromJson(const std::string& text, const std::string& origin)
 {
-	Stats out;
-	std::size_t i = 0;
-	const auto fail = [&](const std::string& what) {
-		throw InputError(origin + ": malformed stats JSON at offset " + std::to_string(i) + ": " + what);
-	};
-	const auto skip = [&] {
-		while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
-	};
-	const auto readString = [&] {
-		if (text[i] != '"') fail("expected a string");
-		std::string s;
-		for (++i; i < text.size() && text[i] != '"'; ++i)
-		{
-			if (text[i] == '\\' && i + 1 < text.size()) ++i, s += text[i] == 'n' ? '\n' : text[i];
-			else s += text[i];
-		}
-		if (i >= text.size()) fail("unterminated string");
-		++i;
-		return s;
-	};
-	skip();
-	if (i >= text.size() || text[i++] != '{') fail("expected '{'");
-	for (;;)
+	Json object;
+	try
 	{
-		skip();
-		if (i < text.size() && text[i] == '}') break;
-		const std::string key = readString();
-		skip();
-		if (i >= text.size() || text[i++] != ':') fail("expected ':'");
-		skip();
-		if (i >= text.size()) fail("missing value");
-		if (text[i] == '"')
-			out.set(key, StatValue(readString()));
-		else if (text.compare(i, 4, "null") == 0)
-			i += 4, out.set(key, StatValue(nullptr));
-		else
-		{
-			std::size_t end = i;
-			while (end < text.size() && (std::isdigit(static_cast<unsigned char>(text[end])) ||
-										 std::string("+-.eE").find(text[end]) != std::string::npos))
-				++end;
-			const std::string num = text.substr(i, end - i);
-			if (num.empty()) fail("expected a value");
-			const bool integral = num.find_first_of(".eE") == std::string::npos;
-			if (integral) out.set(key, StatValue(std::stoll(num)));
-			else out.set(key, StatValue(std::stod(num)));
-			i = end;
-		}
-		skip();
-		if (i < text.size() && text[i] == ',') ++i;
+		object = Json::parse(text);
 	}
+	catch (const Json::parse_error& e)
+	{
+		throw InputError(origin + ": malformed stats JSON at offset " + std::to_string(e.byte) + ": " +
+						 oneLineReason(e.what()));
+	}
+	if (!object.is_object()) throw InputError(origin + ": malformed stats JSON: expected one object");
+	Stats out;
+	for (const auto& [key, value] : object.items()) out.set(key, fromJsonValue(value, key, origin));
 	return out;
 }
 

@@ -240,7 +240,9 @@ TEST(DslamRobustness, LongGapLoopClosureKeepsTheMapConsistentWithIds)
 		EXPECT_GE(*shipped.accuracy.landmark_consistent_fraction, 0.9) << "noise seed " << noise_seed;
 		EXPECT_LE(*shipped.accuracy.landmark_nees_mean, 4.0) << "noise seed " << noise_seed;
 		if (noise_seed == 3)
+		{
 			EXPECT_THROW(run(log, path, kPreviousDefaults), NumericalError) << "the previous defaults no longer diverge";
+		}
 	}
 }
 

@@ -2,9 +2,8 @@
 /// \file StatsJson.h
 /// The flat key/value record of one run (stats.json): numbers, strings and
 /// nulls in a fixed key order. Flat on purpose: comparison.csv has the same
-/// keys as columns. A hand-written writer/reader is used because none of the
-/// project's dependencies (MRPT 2.5, Eigen, Ceres) offers a JSON API, and the
-/// format needed is a single flat object.
+/// keys as columns. Written and read with nlohmann/json (Debian's
+/// nlohmann-json3-dev), in the order the keys were set.
 
 #include <optional>
 #include <string>
@@ -29,7 +28,8 @@ class Stats
 	const std::vector<std::pair<std::string, StatValue>>& items() const { return items_; }
 
 	std::string toJson() const;
-	/// Parses what toJson() writes; throws InputError naming `origin` otherwise.
+	/// Parses one JSON object of numbers, strings and nulls (what toJson()
+	/// writes); throws InputError naming `origin` otherwise.
 	static Stats fromJson(const std::string& text, const std::string& origin);
 	/// Reads and parses a stats.json file; throws InputError naming `path`.
 	static Stats load(const std::string& path);
