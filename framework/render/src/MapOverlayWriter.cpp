@@ -1,32 +1,26 @@
 /// \file MapOverlayWriter.cpp
-/// maps_overlay.png (see MapOverlay.h).
+/// maps_overlay.png (see MapOverlay.h; cf. the book's side-by-side maps of
+/// EKF SLAM and the joined map, Fig. 4.10, 4.16).
 
 #include <esif/render/MapOverlay.h>
 
-#include "FigureCanvas.h"
+#include <esif/core/Errors.h>
+
 #include "MapGeometry.h"
-#include "MapPalette.h"
+#include "PlotScript.h"
 
 #include <algorithm>
-#include <cmath>
+#include <string>
+#include <vector>
 
 namespace esif
 {
 namespace
 {
-using namespace figure_canvas;
 namespace mg = map_geometry;
 
-/// Colours of the layers after the reference, in order (as the line charts').
-const TColor kLayerColors[] = {map_palette::kLandmarkColor, map_palette::kPathColor, map_palette::kTruthLandmarkColor,
-							   TColor(200, 130, 0), TColor(120, 50, 170), TColor(0, 160, 170)};
-const TColor kReferenceColor(0, 0, 0);
-
-TColor layerColor(std::size_t i)
-{
-	if (i == 0) return kReferenceColor;
-	return kLayerColors[(i - 1) % (sizeof(kLayerColors) / sizeof(kLayerColors[0]))];
-}
+/// Paths are simplified to this fraction of the view (invisible at 1200 px).
+constexpr double kPathTolerance = 1.0 / 4000.0;
 
 std::vector<Eigen::Vector2d> pathOf(const RunOutputs& run)
 {
@@ -36,135 +30,59 @@ std::vector<Eigen::Vector2d> pathOf(const RunOutputs& run)
 	return pts;
 }
 
-/// World to pixel with one scale on both axes, the world box centred in the plot rectangle.
-class Frame
+/// The reference's paths and landmarks, padded by a fifth: one diverged run
+/// cannot shrink the others to a dot (what falls outside is clipped).
+mg::Bounds frameOf(const RunOutputs& reference)
 {
-   public:
-	Frame(const mg::Bounds& world, int x0, int y0, int x1, int y1)
-		: world_(world), x0_(x0), y0_(y0), x1_(x1), y1_(y1)
-	{
-		scale_ = std::min((x1 - x0) / world.width(), (y1 - y0) / world.height());
-		cx_ = 0.5 * (world.x_min + world.x_max);
-		cy_ = 0.5 * (world.y_min + world.y_max);
-	}
-	double px(double x) const { return 0.5 * (x0_ + x1_) + (x - cx_) * scale_; }
-	double py(double y) const { return 0.5 * (y0_ + y1_) - (y - cy_) * scale_; }
-	bool inside(double px, double py) const { return px >= x0_ && px <= x1_ && py >= y0_ && py <= y1_; }
-	double scale() const { return scale_; }
-	int x0() const { return x0_; }
-	int y0() const { return y0_; }
-	int x1() const { return x1_; }
-	int y1() const { return y1_; }
-	/// The world coordinates at the plot's edges.
-	double worldX(double px) const { return cx_ + (px - 0.5 * (x0_ + x1_)) / scale_; }
-	double worldY(double py) const { return cy_ - (py - 0.5 * (y0_ + y1_)) / scale_; }
-
-   private:
-	mg::Bounds world_;
-	int x0_, y0_, x1_, y1_;
-	double scale_ = 1, cx_ = 0, cy_ = 0;
-};
-
-/// Grid lines every nice step with metre labels on the left and bottom edges.
-void drawGrid(mrpt::img::CImage& img, const Frame& f, const Font& font)
-{
-	const double step = mg::niceStep(std::max(f.worldX(f.x1()) - f.worldX(f.x0()), 1e-9), 8);
-	for (double x = std::ceil(f.worldX(f.x0()) / step) * step; x <= f.worldX(f.x1()); x += step)
-	{
-		const int px = static_cast<int>(std::lround(f.px(x)));
-		img.line(px, f.y0(), px, f.y1(), kGridColor, 1);
-		centredText(img, px, f.y1() + 6, tickLabel(x), font, kTextColor);
-	}
-	for (double y = std::ceil(f.worldY(f.y1()) / step) * step; y <= f.worldY(f.y0()); y += step)
-	{
-		const int py = static_cast<int>(std::lround(f.py(y)));
-		img.line(f.x0(), py, f.x1(), py, kGridColor, 1);
-		const std::string s = tickLabel(y);
-		text(img, f.x0() - 6 - textWidth(s, font), py - font.h / 2, s, font, kTextColor);
-	}
-	img.rectangle(f.x0(), f.y0(), f.x1(), f.y1(), kFrameColor, 1);
+	mg::Bounds b;
+	for (const Eigen::Vector2d& p : pathOf(reference)) b.add(p);
+	for (const LandmarkEstimate& lm : reference.landmarks) b.add(lm.mean);
+	return b.padded(1.0, 0.2);
 }
 
-/// A segment clipped to the plot by dropping it when either end is outside
-/// (paths are dense, so nothing visible is lost at this resolution).
-void drawPath(mrpt::img::CImage& img, const Frame& f, const std::vector<Eigen::Vector2d>& pts, const TColor& c,
-			  unsigned width)
-{
-	const auto keep = mg::simplifiedIndices(pts, 0.5 / f.scale(), 20000);
-	for (std::size_t k = 1; k < keep.size(); ++k)
-	{
-		const auto& a = pts[keep[k - 1]];
-		const auto& b = pts[keep[k]];
-		const double ax = f.px(a.x()), ay = f.py(a.y()), bx = f.px(b.x()), by = f.py(b.y());
-		if (!f.inside(ax, ay) || !f.inside(bx, by)) continue;
-		img.line(static_cast<int>(std::lround(ax)), static_cast<int>(std::lround(ay)),
-				 static_cast<int>(std::lround(bx)), static_cast<int>(std::lround(by)), c, width);
-	}
-}
+/// Layer i's colour: the reference black, then the twelve series colours.
+std::string layerColour(std::size_t i) { return i == 0 ? std::string("#000000") : plot::seriesColour(i - 1); }
 
-void drawLandmarks(mrpt::img::CImage& img, const Frame& f, const RunOutputs& run, bool reference,
-				   const TColor& c, int mark)
+/// The path and the landmark clauses of one layer.
+std::vector<std::string> layerClauses(plot::Figure& fig, const MapOverlayLayer& layer, std::size_t i, double tolerance)
 {
-	for (const auto& lm : run.landmarks)
-	{
-		if (!mg::isFinite(lm.mean)) continue;
-		const double x = f.px(lm.mean.x()), y = f.py(lm.mean.y());
-		if (!f.inside(x, y)) continue;
-		const int ix = static_cast<int>(std::lround(x)), iy = static_cast<int>(std::lround(y));
-		if (reference) img.drawCircle(ix, iy, mark + 1, c, 1);
-		else
-		{
-			img.line(ix - mark, iy, ix + mark, iy, c, 1);
-			img.line(ix, iy - mark, ix, iy + mark, c, 1);
-		}
-	}
-}
-
-/// Legend in the plot's top-left corner: a colour swatch and label per layer.
-void drawLegend(mrpt::img::CImage& img, const Frame& f, const std::vector<MapOverlayLayer>& layers, const Font& font)
-{
-	int w = 0;
-	for (const auto& l : layers) w = std::max(w, textWidth(l.label, font));
-	const int row = font.h + 4, x = f.x0() + 8, y = f.y0() + 8;
-	img.filledRectangle(x, y, x + w + 34, y + row * static_cast<int>(layers.size()) + 6, kBackground);
-	img.rectangle(x, y, x + w + 34, y + row * static_cast<int>(layers.size()) + 6, kFrameColor, 1);
-	for (std::size_t i = 0; i < layers.size(); ++i)
-	{
-		const int ly = y + 4 + static_cast<int>(i) * row;
-		img.line(x + 6, ly + font.h / 2, x + 24, ly + font.h / 2, layerColor(i), 3);
-		text(img, x + 30, ly, layers[i].label + (i == 0 ? " (reference)" : ""), font, kTextColor);
-	}
+	std::vector<std::string> clauses;
+	const std::string lc = "lc rgb '" + layerColour(i) + "'";
+	const std::vector<Eigen::Vector2d> path = pathOf(layer.outputs);
+	plot::DataBlock line, marks;
+	for (const std::size_t k : mg::simplifiedIndices(path, tolerance)) line.row({path[k].x(), path[k].y()});
+	for (const LandmarkEstimate& lm : layer.outputs.landmarks) marks.row({lm.mean.x(), lm.mean.y()});
+	const std::string title = "title " + plot::quoted(layer.label);
+	if (!line.empty())
+		clauses.push_back(fig.add(line) + " using 1:2 with lines lw " + (i == 0 ? "2.5 " : "1.5 ") + lc + " " + title);
+	if (!marks.empty())
+		clauses.push_back(fig.add(marks) + " using 1:2 with points " + (i == 0 ? "pt 6 ps 1.3 lw 1.5 " : "pt 1 ps 1.1 lw 1.5 ") +
+						  lc + " " + (line.empty() ? title : "notitle"));
+	return clauses;
 }
 }  // namespace
 
 void writeMapOverlayImage(
 	const std::vector<MapOverlayLayer>& layers, const std::string& title, const std::string& path, int width_px)
 {
-	validateSize("maps_overlay width", width_px);
+	plot::validateWidth(width_px, "maps_overlay width");
 	if (layers.empty()) throw ConfigError("maps_overlay: no run to draw");
-	const int height_px = width_px * 3 / 4;
-	const Font title_font = width_px >= 600 ? kFontLarge : kFontMedium;
-	const Font label_font = width_px >= 600 ? kFontSmall : kFontTiny;
-
-	mg::Bounds box;
-	for (const auto& p : pathOf(layers[0].outputs)) box.add(p);
-	for (const auto& lm : layers[0].outputs.landmarks) box.add(lm.mean);
-	const mg::Bounds world = box.padded(1.0, 0.2);
-
-	auto img = blankImage(width_px, height_px);
-	centredText(img, width_px / 2, 8, title, fittingFont(title, width_px - 20, {title_font, kFontSmall}), kTextColor);
-	const int left = 10 + 8 * label_font.w, bottom = height_px - 12 - label_font.h;
-	const Frame frame(world, left, 16 + title_font.h, width_px - 16, bottom);
-	drawGrid(img, frame, label_font);
-	const int mark = std::max(2, width_px / 400);
-	// Runs first, the reference last so that it stays visible on top.
-	for (std::size_t i = layers.size(); i-- > 0;)
-	{
-		drawPath(img, frame, pathOf(layers[i].outputs), layerColor(i), i == 0 ? 2u : 1u);
-		drawLandmarks(img, frame, layers[i].outputs, i == 0, layerColor(i), mark);
-	}
-	drawLegend(img, frame, layers, label_font);
-	savePngAtomically(img, path);
+	const mg::Bounds view = frameOf(layers.front().outputs);
+	const double tolerance = kPathTolerance * std::max(view.width(), view.height());
+	plot::Figure fig(width_px, width_px * 3 / 4);
+	fig.command(plot::chartDefaults());
+	fig.command("set border 15\nset xtics mirror\nset ytics mirror\nset size ratio -1\nset key outside right top");
+	fig.command("set xlabel 'x [m]'\nset ylabel 'y [m]'");
+	fig.command("set xrange [" + plot::number(view.x_min) + ":" + plot::number(view.x_max) + "]");
+	fig.command("set yrange [" + plot::number(view.y_min) + ":" + plot::number(view.y_max) + "]");
+	fig.command("set title " + plot::quoted(plot::withBookFigure(title, "Fig. 4.10, 4.16")));
+	std::vector<std::string> clauses;
+	for (std::size_t i = 0; i < layers.size(); ++i)
+		for (std::string& c : layerClauses(fig, layers[i], i, tolerance)) clauses.push_back(std::move(c));
+	std::string plot = "plot ";
+	for (std::size_t i = 0; i < clauses.size(); ++i) plot += (i ? ", \\\n  " : "") + clauses[i];
+	fig.command(clauses.empty() ? "plot 1e300 notitle" : plot);
+	plot::writeFigure(fig, path);
 }
 
 }  // namespace esif

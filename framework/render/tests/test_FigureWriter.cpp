@@ -1,8 +1,11 @@
 /// \file test_FigureWriter.cpp
-/// info_matrix.png and step_times.png are read back pixel by pixel: the
-/// pattern lies exactly on the non-zeros, large patterns do not vanish, the
-/// step-time plot is scaled to the bulk of the data, failures name the file
-/// and leave nothing behind, and `esif run` writes the figures it should.
+/// The figures gnuplot draws for esif, read back pixel by pixel from the PNG
+/// (the PDF twin is checked to be a PDF): the information pattern lies on
+/// the non-zeros, large patterns do not vanish, the step-time plot is scaled
+/// to the bulk of the data, bands are drawn, twelve series get twelve
+/// colours, text from a run cannot inject gnuplot commands, failures name
+/// the file and leave nothing behind, and `esif run` writes the figures it
+/// should.
 
 #include <EsifTestSupport.h>
 
@@ -10,12 +13,18 @@
 #include <esif/render/FigureWriter.h>
 #include <esif/render/MapOverlay.h>
 
+#include "PlotScript.h"
+
 #include <mrpt/img/CImage.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -26,9 +35,58 @@ namespace fs = std::filesystem;
 namespace
 {
 using esif::InformationPattern;
-using esif::MatrixPanel;
 using esif::test::TempDir;
 using Sparse = Eigen::SparseMatrix<double>;
+
+struct Rgb
+{
+	int r = 0, g = 0, b = 0;
+};
+
+Rgb rgbOf(const std::string& hex)
+{
+	Rgb c;
+	EXPECT_EQ(std::sscanf(hex.c_str(), "#%2x%2x%2x", &c.r, &c.g, &c.b), 3) << hex;
+	return c;
+}
+
+mrpt::img::CImage load(const std::string& path)
+{
+	mrpt::img::CImage img;
+	EXPECT_TRUE(img.loadFromFile(path)) << path;
+	return img;
+}
+
+bool is(const mrpt::img::CImage& img, int x, int y, const Rgb& c)
+{
+	const auto* px = img.ptr<uint8_t>(x, y);  // B, G, R
+	return px[2] == c.r && px[1] == c.g && px[0] == c.b;
+}
+
+/// Pixels of exactly colour `c` in the columns [x0, x1) and rows [y0, y1).
+struct Found
+{
+	int count = 0;
+	int x_min = 1 << 30, x_max = -1, y_min = 1 << 30, y_max = -1;
+};
+
+Found find(const mrpt::img::CImage& img, const Rgb& c, int x0 = 0, int x1 = -1, int y0 = 0, int y1 = -1)
+{
+	if (x1 < 0) x1 = static_cast<int>(img.getWidth());
+	if (y1 < 0) y1 = static_cast<int>(img.getHeight());
+	Found f;
+	for (int y = y0; y < y1; ++y)
+		for (int x = x0; x < x1; ++x)
+			if (is(img, x, y, c))
+			{
+				++f.count;
+				f.x_min = std::min(f.x_min, x), f.x_max = std::max(f.x_max, x);
+				f.y_min = std::min(f.y_min, y), f.y_max = std::max(f.y_max, y);
+			}
+	return f;
+}
+
+const Rgb kBlack{0, 0, 0};
 
 /// An n x n matrix with value 1 wherever keep(i, j).
 Sparse pattern(int n, const std::function<bool(int, int)>& keep)
@@ -42,71 +100,57 @@ Sparse pattern(int n, const std::function<bool(int, int)>& keep)
 	return m;
 }
 
-Sparse identity(int n)
-{
-	Sparse m(n, n);
-	m.setIdentity();
-	return m;
-}
+bool tridiagonal(int i, int j) { return std::abs(i - j) <= 1; }
+bool lowerBidiagonal(int i, int j) { return i == j || i == j + 1; }
 
-mrpt::img::CImage load(const std::string& path)
+/// Checks the centre pixel of each of the n x n cells of the black box
+/// found in [x0, x1): black exactly where nonzero(i, j). The box is the
+/// matrix when its corner entries are non-zero.
+int wrongCells(const mrpt::img::CImage& img, int x0, int x1, int n, const std::function<bool(int, int)>& nonzero)
 {
-	mrpt::img::CImage img;
-	EXPECT_TRUE(img.loadFromFile(path)) << path;
-	return img;
-}
-
-/// 0 = black, 1 = white, 2 = anything else.
-int shade(const mrpt::img::CImage& img, int x, int y)
-{
-	const auto* px = img.ptr<uint8_t>(x, y);  // B, G, R
-	if (px[0] == 0 && px[1] == 0 && px[2] == 0) return 0;
-	if (px[0] == 255 && px[1] == 255 && px[2] == 255) return 1;
-	return 2;
-}
-
-/// Counts panel pixels whose shade differs from black where `nonzero(i, j)`
-/// for the matrix entry (i, j) they show (per MatrixPanel), white elsewhere.
-int wrongPixels(const mrpt::img::CImage& img, const MatrixPanel& panel, int n, const std::function<bool(int, int)>& nonzero)
-{
+	const Found box = find(img, kBlack, x0, x1);
+	EXPECT_GT(box.count, 0);
+	const double w = (box.x_max - box.x_min + 1.0) / n, h = (box.y_max - box.y_min + 1.0) / n;
 	int wrong = 0;
-	for (int y = 0; y < panel.side_px; ++y)
-		for (int x = 0; x < panel.side_px; ++x)
+	for (int i = 0; i < n; ++i)
+		for (int j = 0; j < n; ++j)
 		{
-			const int i = static_cast<int>(static_cast<long long>(y) * n / panel.side_px);
-			const int j = static_cast<int>(static_cast<long long>(x) * n / panel.side_px);
-			wrong += shade(img, panel.x0 + x, panel.y0 + y) != (nonzero(i, j) ? 0 : 1);
+			const int x = box.x_min + static_cast<int>((j + 0.5) * w), y = box.y_min + static_cast<int>((i + 0.5) * h);
+			wrong += is(img, x, y, kBlack) != nonzero(i, j);
 		}
 	return wrong;
 }
-
-bool tridiagonal(int i, int j) { return std::abs(i - j) <= 1; }
-bool lowerBidiagonal(int i, int j) { return i == j || i == j + 1; }
 
 /// Folder entries (names), to check that a failed write left nothing.
 std::vector<std::string> entries(const std::string& dir)
 {
 	std::vector<std::string> names;
 	for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+	std::sort(names.begin(), names.end());
 	return names;
 }
 
-TEST(FigureWriter, SmallPatternIsBlackExactlyOnItsNonZeros)
+bool isPdf(const std::string& path)
+{
+	std::ifstream in(path, std::ios::binary);
+	std::string head(5, '\0');
+	in.read(head.data(), 5);
+	return in && head == "%PDF-";
+}
+
+TEST(FigureWriter, SmallPatternIsBlackExactlyOnItsNonZerosAndHasItsPdf)
 {
 	TempDir dir;
 	InformationPattern p;
 	p.information = pattern(10, tridiagonal);
-	p.information.coeffRef(0, 9) = 0.0;	 // a stored zero is not a non-zero
-	const auto panels = esif::informationPatternPanels(p, 400);
-	ASSERT_EQ(panels.size(), 1u);
-	EXPECT_EQ(panels[0].side_px % 10, 0) << "each entry should be an equal block";
-	EXPECT_GE(panels[0].side_px, 300);
-
+	p.information.coeffRef(2, 7) = 0.0;	 // a stored zero is not a non-zero
 	esif::writeInformationPatternImage(p, dir.file("info.png"), 400);
 	const auto img = load(dir.file("info.png"));
 	EXPECT_EQ(img.getWidth(), 400u);
 	EXPECT_EQ(img.getHeight(), 400u);
-	EXPECT_EQ(wrongPixels(img, panels[0], 10, tridiagonal), 0);
+	EXPECT_EQ(wrongCells(img, 0, 400, 10, tridiagonal), 0);
+	EXPECT_TRUE(isPdf(dir.file("info.pdf")));
+	EXPECT_EQ(entries(dir.path()), (std::vector<std::string>{"info.pdf", "info.png"}));
 }
 
 TEST(FigureWriter, FactorIsDrawnBesideTheInformationMatrix)
@@ -116,39 +160,24 @@ TEST(FigureWriter, FactorIsDrawnBesideTheInformationMatrix)
 	p.information = pattern(10, tridiagonal);
 	p.factor = pattern(10, lowerBidiagonal);
 	p.factor_order = "natural order";
-	const auto panels = esif::informationPatternPanels(p, 300);
-	ASSERT_EQ(panels.size(), 2u);
-	EXPECT_GE(panels[1].x0, 300) << "the factor panel is the right half";
-
 	esif::writeInformationPatternImage(p, dir.file("info.png"), 300);
 	const auto img = load(dir.file("info.png"));
 	EXPECT_EQ(img.getWidth(), 600u);
 	EXPECT_EQ(img.getHeight(), 300u);
-	EXPECT_EQ(wrongPixels(img, panels[0], 10, tridiagonal), 0);
-	EXPECT_EQ(wrongPixels(img, panels[1], 10, lowerBidiagonal), 0);
+	EXPECT_EQ(wrongCells(img, 0, 300, 10, tridiagonal), 0);
+	EXPECT_EQ(wrongCells(img, 300, 600, 10, lowerBidiagonal), 0);
 }
 
 TEST(FigureWriter, LargeDiagonalStillShowsAsAnUnbrokenDiagonal)
 {
 	TempDir dir;
 	InformationPattern p;
-	p.information = identity(5000);
-	const auto panels = esif::informationPatternPanels(p, 500);
-	ASSERT_EQ(panels.size(), 1u);
-	ASSERT_LT(panels[0].side_px, 5000);
-
+	p.information.resize(100000, 100000);
+	p.information.setIdentity();
 	esif::writeInformationPatternImage(p, dir.file("info.png"), 500);
 	const auto img = load(dir.file("info.png"));
-	const MatrixPanel& q = panels[0];
-	int diagonal_black = 0, off_diagonal_black = 0;
-	for (int y = 0; y < q.side_px; ++y)
-		for (int x = 0; x < q.side_px; ++x)
-		{
-			const bool black = shade(img, q.x0 + x, q.y0 + y) == 0;
-			(x == y ? diagonal_black : off_diagonal_black) += black;
-		}
-	EXPECT_EQ(diagonal_black, q.side_px);
-	EXPECT_EQ(off_diagonal_black, 0);
+	// Shown in 500 / 4 = 125 cells a side: every diagonal cell black, every other white.
+	EXPECT_EQ(wrongCells(img, 0, 500, 125, [](int i, int j) { return i == j; }), 0);
 }
 
 TEST(FigureWriter, SingleNonZeroInAHugeMatrixIsNotLost)
@@ -156,194 +185,223 @@ TEST(FigureWriter, SingleNonZeroInAHugeMatrixIsNotLost)
 	TempDir dir;
 	InformationPattern p;
 	p.information.resize(100000, 100000);
-	p.information.insert(77777, 12345) = 1e-300;
+	p.information.insert(0, 0) = 1.0;  // the corners frame the matrix
+	p.information.insert(99999, 99999) = 1.0;
+	p.information.insert(12345, 77777) = 1.0;
 	esif::writeInformationPatternImage(p, dir.file("info.png"), 400);
 	const auto img = load(dir.file("info.png"));
-	const MatrixPanel q = esif::informationPatternPanels(p, 400)[0];
-	const auto at = [&](long long i) { return static_cast<int>(i * q.side_px / 100000); };
-	EXPECT_EQ(shade(img, q.x0 + at(12345), q.y0 + at(77777)), 0);
-	int black = 0;
-	for (int y = 0; y < q.side_px; ++y)
-		for (int x = 0; x < q.side_px; ++x) black += shade(img, q.x0 + x, q.y0 + y) == 0;
-	EXPECT_EQ(black, 1);
+	// 400 / 4 = 100 cells a side.
+	const auto cell = [](long long k) { return static_cast<int>(k * 100 / 100000); };
+	EXPECT_EQ(wrongCells(img, 0, 400, 100, [&](int i, int j) {
+		return (i == 0 && j == 0) || (i == 99 && j == 99) || (i == cell(12345) && j == cell(77777));
+	}), 0);
 }
 
-TEST(FigureWriter, EmptyMatricesStillGiveAnImage)
+TEST(FigureWriter, EmptyMatricesAndNoStepsStillGiveAFigure)
 {
 	TempDir dir;
 	esif::writeInformationPatternImage(InformationPattern{}, dir.file("info.png"), 200);
 	EXPECT_EQ(load(dir.file("info.png")).getWidth(), 200u);
 	esif::writeStepTimesImage({}, {}, dir.file("steps.png"), 200);
 	EXPECT_EQ(load(dir.file("steps.png")).getWidth(), 200u);
+	esif::writeLineChartImage({"empty", "x", {esif::LinePanel{"y", {}}}}, dir.file("chart.png"), 300);
+	EXPECT_TRUE(isPdf(dir.file("chart.pdf")));
 }
 
-/// Colour classes of the step-time plot (palette: blue dots, red medians).
-bool isBlue(const mrpt::img::CImage& img, int x, int y)
-{
-	const auto* px = img.ptr<uint8_t>(x, y);
-	return px[0] > 180 && px[2] < 80 && px[1] < 120;
-}
-bool isRed(const mrpt::img::CImage& img, int x, int y)
-{
-	const auto* px = img.ptr<uint8_t>(x, y);
-	return px[2] > 180 && px[1] < 60 && px[0] < 60;
-}
+const Rgb kDotColour = rgbOf("#7f9fd8");  ///< step_times.png's dots
 
 TEST(FigureWriter, StepTimesImageHasTheRequestedWidthAndShowsDotsAndMedians)
 {
-	TempDir dir;
-	// Time grows linearly with the map: 10 us per landmark, plus jitter.
+	// Time grows with the landmarks: the median line climbs to the right.
 	std::vector<double> us;
 	std::vector<std::size_t> counts;
-	for (std::size_t k = 0; k < 3000; ++k)
+	for (int k = 0; k < 3000; ++k)
 	{
-		counts.push_back(k / 10);
-		us.push_back(10.0 * counts.back() + 50.0 * (k % 7));
+		counts.push_back(static_cast<std::size_t>(k / 10));
+		us.push_back(100.0 + 10.0 * (k / 10) + (k % 7) * 20.0);
 	}
+	TempDir dir;
 	esif::writeStepTimesImage(us, counts, dir.file("steps.png"), 640);
 	const auto img = load(dir.file("steps.png"));
 	ASSERT_EQ(img.getWidth(), 640u);
 	ASSERT_EQ(img.getHeight(), 480u);
-
-	// Red median line: higher (smaller y) on the right than on the left.
-	double left_y = 0, right_y = 0;
-	int left_n = 0, right_n = 0, blue = 0;
-	for (int y = 0; y < 480; ++y)
-		for (int x = 0; x < 640; ++x)
-		{
-			blue += isBlue(img, x, y);
-			if (!isRed(img, x, y)) continue;
-			if (x < 200) left_y += y, ++left_n;
-			if (x > 440) right_y += y, ++right_n;
-		}
-	EXPECT_GT(blue, 1000);
-	ASSERT_GT(left_n, 0);
-	ASSERT_GT(right_n, 0);
-	EXPECT_GT(left_y / left_n, right_y / right_n + 100) << "the median line should climb to the right";
+	EXPECT_GT(find(img, kDotColour).count, 500);
+	const Rgb median = rgbOf("#e6194b");
+	const Found left = find(img, median, 0, 200), right = find(img, median, 440, 640);
+	ASSERT_GT(left.count, 0);
+	ASSERT_GT(right.count, 0);
+	EXPECT_GT(left.y_min, right.y_max + 100) << "the median line should climb to the right";
 }
 
 TEST(FigureWriter, StepTimeOutliersAreClippedSoTheBulkFillsThePlot)
 {
+	// 5000 steps of 1-2 ms and three of 10 s: the axis ends at the 99.9th
+	// percentile, so the bulk spans most of the plot's height.
+	std::vector<double> us;
+	std::vector<std::size_t> counts;
+	for (int k = 0; k < 5000; ++k)
+	{
+		counts.push_back(static_cast<std::size_t>(k / 50));
+		us.push_back(1000.0 + (k % 11) * 100.0);
+	}
+	for (int k = 0; k < 3; ++k) us.push_back(1e7), counts.push_back(50);
 	TempDir dir;
-	// 1999 steps at 1-1.5 ms and one at 1 s: without clipping every dot
-	// would sit on the bottom axis.
-	std::vector<double> us(2000);
-	for (std::size_t k = 0; k < us.size(); ++k) us[k] = 1000.0 + 10.0 * (k % 50);
-	us[1234] = 1e6;
-	std::vector<std::size_t> counts(2000);
-	for (std::size_t k = 0; k < counts.size(); ++k) counts[k] = k / 20;
 	esif::writeStepTimesImage(us, counts, dir.file("steps.png"), 800);
-	const auto img = load(dir.file("steps.png"));
-	// The bulk sits near the top of the time axis, which ends just
-	// above it: nearly all blue pixels are in the upper half of the image.
-	int blue = 0, blue_top = 0;
-	const int h = static_cast<int>(img.getHeight());
-	for (int y = 0; y < h; ++y)
-		for (int x = 0; x < static_cast<int>(img.getWidth()); ++x)
-			if (isBlue(img, x, y)) ++blue, blue_top += y < h / 2;
-	ASSERT_GT(blue, 200);
-	EXPECT_GT(blue_top, blue * 9 / 10);
+	const Found dots = find(load(dir.file("steps.png")), kDotColour);
+	ASSERT_GT(dots.count, 200);
+	EXPECT_GT(dots.y_max - dots.y_min, 600 / 3) << "outliers squash the bulk";
 }
 
 TEST(FigureWriter, LocalMapTimesShowBothLinesInBothPanels)
 {
-	TempDir dir;
-	// Fusion time grows with the map index, association is half of it; the
-	// state dimension grows too, so the per-dimension panel stays flatter.
 	std::vector<esif::LocalMapFusionCost> costs;
-	for (std::size_t k = 1; k <= 200; ++k)
-		costs.push_back({k, 1e-4 * static_cast<double>(k), 0.5e-4 * static_cast<double>(k), 3 + 10 * k});
+	for (int k = 0; k < 60; ++k) costs.push_back({k, 0.001 * (k + 1), 0.0004 * (k + 1), 10 + 3 * k});
+	TempDir dir;
 	esif::writeLocalMapTimesImage(costs, dir.file("lm.png"), 800);
 	const auto img = load(dir.file("lm.png"));
 	ASSERT_EQ(img.getWidth(), 800u);
 	ASSERT_EQ(img.getHeight(), 600u);
-	// Red (with association) and blue (without) in the upper and the lower panel.
-	int red_top = 0, red_bottom = 0, blue_top = 0, blue_bottom = 0;
-	for (int y = 0; y < 600; ++y)
-		for (int x = 0; x < 800; ++x)
-		{
-			(y < 300 ? red_top : red_bottom) += isRed(img, x, y);
-			(y < 300 ? blue_top : blue_bottom) += isBlue(img, x, y);
-		}
-	EXPECT_GT(red_top, 300);
-	EXPECT_GT(red_bottom, 300);
-	EXPECT_GT(blue_top, 300);
-	EXPECT_GT(blue_bottom, 300);
+	for (int series = 0; series < 2; ++series)
+	{
+		const Rgb c = rgbOf(esif::plot::seriesColour(series));
+		EXPECT_GT(find(img, c, 0, 800, 0, 300).count, 100) << "series " << series << " in the top panel";
+		EXPECT_GT(find(img, c, 0, 800, 300, 600).count, 100) << "series " << series << " in the bottom panel";
+	}
 	EXPECT_THROW(esif::writeLocalMapTimesImage(costs, dir.file("bad.png"), 100), esif::ConfigError);
 	EXPECT_FALSE(fs::exists(dir.file("bad.png")));
 }
 
-TEST(FigureWriter, MapOverlayIsFramedOnTheReferenceWhateverAnotherRunDid)
+/// A 40 m square driven once, shifted up by offset_y, with 16 landmarks
+/// beside its bottom and top sides.
+esif::RunOutputs squareRun(double offset_y)
 {
-	// The reference: a 40 m square loop with 16 landmarks beside it (black);
-	// a run 1 m off it (red); a diverged run with one landmark 214 km away
-	// (blue). The picture must stay on the reference: its black marks spread
-	// over most of the plot, and both other runs show.
-	esif::RunOutputs ref;
+	esif::RunOutputs run;
 	for (int k = 0; k <= 160; ++k)
 	{
 		const double t = k / 40.0;	// side index and position along it
 		const int side = std::min(3, static_cast<int>(t));
 		const double u = 40.0 * (t - side);
 		const double xy[4][2] = {{u, 0}, {40, u}, {40 - u, 40}, {0, 40 - u}};
-		ref.trajectory.push_back({0.1 * k, {xy[side][0], xy[side][1], 0}});
+		run.trajectory.push_back({0.1 * k, {xy[side][0], offset_y + xy[side][1], 0}});
 	}
 	for (int i = 0; i < 16; ++i)
-		ref.landmarks.push_back({i, Eigen::Vector2d(2.5 * i + 1, i % 2 ? -3.0 : 43.0), Eigen::Matrix2d::Identity()});
-	esif::RunOutputs close = ref, diverged = ref;
-	for (auto& p : close.trajectory) p.pose.y += 1.0;
-	for (auto& lm : close.landmarks) lm.mean.y() += 1.0;
+		run.landmarks.push_back({i, Eigen::Vector2d(2.5 * i + 1, offset_y + (i % 2 ? -3.0 : 43.0)), Eigen::Matrix2d::Identity()});
+	return run;
+}
+
+TEST(FigureWriter, MapOverlayIsFramedOnTheReferenceWhateverAnotherRunDid)
+{
+	const esif::RunOutputs ref = squareRun(0);
+	esif::RunOutputs close = squareRun(1.0), diverged = ref;
 	diverged.landmarks.back().mean = Eigen::Vector2d(2.14e5, 0);
 	for (auto& p : diverged.trajectory) p.pose.x -= 1.0;
 	TempDir dir;
 	esif::writeMapOverlayImage({{"optimum", ref}, {"close", close}, {"diverged", diverged}}, "overlay",
-							   dir.file("o.png"), 800);
+		dir.file("o.png"), 800);
 	const auto img = load(dir.file("o.png"));
 	ASSERT_EQ(img.getWidth(), 800u);
 	ASSERT_EQ(img.getHeight(), 600u);
-	int x_min = 800, x_max = 0, red = 0, blue = 0;
-	for (int y = 0; y < 600; ++y)
-		for (int x = 0; x < 800; ++x)
-		{
-			red += isRed(img, x, y);
-			blue += isBlue(img, x, y);
-			if (shade(img, x, y) == 0) x_min = std::min(x_min, x), x_max = std::max(x_max, x);
-		}
-	EXPECT_GT(x_max - x_min, 400);
-	EXPECT_GT(red, 300);
-	EXPECT_GT(blue, 300);
+	EXPECT_GT(find(img, kBlack).x_max - find(img, kBlack).x_min, 300) << "the reference fills the frame";
+	EXPECT_GT(find(img, rgbOf(esif::plot::seriesColour(0))).count, 300);
+	EXPECT_GT(find(img, rgbOf(esif::plot::seriesColour(1))).count, 300);
+	EXPECT_TRUE(isPdf(dir.file("o.pdf")));
 	EXPECT_THROW(esif::writeMapOverlayImage({}, "t", dir.file("none.png"), 800), esif::ConfigError);
 	EXPECT_THROW(esif::writeMapOverlayImage({{"r", ref}}, "t", dir.file("small.png"), 100), esif::ConfigError);
 	EXPECT_FALSE(fs::exists(dir.file("none.png")));
 	EXPECT_FALSE(fs::exists(dir.file("small.png")));
 }
 
+TEST(FigureWriter, TwelveRunsOverlaidGetTwelveColours)
+{
+	std::vector<esif::MapOverlayLayer> layers{{"reference", squareRun(0)}};
+	for (int i = 0; i < 12; ++i) layers.push_back({"run " + std::to_string(i), squareRun(0.3 * (i + 1))});
+	TempDir dir;
+	esif::writeMapOverlayImage(layers, "twelve", dir.file("o.png"), 1200);
+	const auto img = load(dir.file("o.png"));
+	for (std::size_t i = 0; i < 12; ++i)
+		EXPECT_GT(find(img, rgbOf(esif::plot::seriesColour(i))).count, 20) << "run " << i << " is not drawn in its colour";
+}
+
+/// CIE76 distance in L*a*b* (D65) between two sRGB colours.
+double deltaE(const Rgb& a, const Rgb& b)
+{
+	const auto lab = [](const Rgb& c) {
+		const auto lin = [](int v) {
+			const double s = v / 255.0;
+			return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
+		};
+		const double r = lin(c.r), g = lin(c.g), bl = lin(c.b);
+		const double x = (0.4124 * r + 0.3576 * g + 0.1805 * bl) / 0.95047, y = 0.2126 * r + 0.7152 * g + 0.0722 * bl,
+					 z = (0.0193 * r + 0.1192 * g + 0.9505 * bl) / 1.08883;
+		const auto f = [](double t) { return t > 0.008856 ? std::cbrt(t) : 7.787 * t + 16.0 / 116; };
+		return std::array<double, 3>{116 * f(y) - 16, 500 * (f(x) - f(y)), 200 * (f(y) - f(z))};
+	};
+	const auto p = lab(a), q = lab(b);
+	return std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
+}
+
+TEST(FigureWriter, TheTwelveSeriesColoursAreFarApartAndVisibleOnWhite)
+{
+	// A CIE76 distance of 20 is a difference anyone sees side by side at a
+	// glance (2.3 is a just-noticeable one); 12 is the issue's requirement.
+	const auto& colours = esif::plot::seriesColours();
+	const Rgb white{255, 255, 255};
+	for (std::size_t i = 0; i < colours.size(); ++i)
+	{
+		EXPECT_GT(deltaE(rgbOf(colours[i]), white), 30) << colours[i] << " is too pale on white";
+		for (std::size_t j = i + 1; j < colours.size(); ++j)
+			EXPECT_GT(deltaE(rgbOf(colours[i]), rgbOf(colours[j])), 20) << colours[i] << " vs " << colours[j];
+	}
+}
+
 TEST(FigureWriter, LineChartBreaksALineWhereAPointIsNotFinite)
 {
 	TempDir dir;
-	// One panel, a red line at y = 0.5 over x in [0, 100] with a hole from
-	// 40 to 60: red pixels on both sides of the hole, none inside it.
-	// A blue line up to y = 2 puts the red one low in the plot, clear of the legend.
+	// One panel, a line at y = 0.5 over x in [0, 100] with a hole from 40 to
+	// 60; a second line up to y = 2 keeps the first one low, clear of the legend.
 	esif::LineSeries line{"std", {}}, other{"other", {{0, 2}, {100, 2}}};
 	for (int x = 0; x <= 100; ++x) line.points.emplace_back(x, x > 40 && x < 60 ? NAN : 0.5);
 	esif::writeLineChartImage({"chart", "step", {{"sigma [m]", {line, other}}}}, dir.file("chart.png"), 800);
 	const auto img = load(dir.file("chart.png"));
-	ASSERT_EQ(img.getWidth(), 800u);
-	std::vector<int> red_columns;
+	const Rgb c = rgbOf(esif::plot::seriesColour(0));
+	std::vector<int> columns;
 	for (int x = 0; x < 800; ++x)
-		for (int y = 100; y < 600; ++y)	 // below the legend
-			if (isRed(img, x, y))
-			{
-				red_columns.push_back(x);
-				break;
-			}
-	ASSERT_FALSE(red_columns.empty());
+		if (find(img, c, x, x + 1, 150, 600).count > 0) columns.push_back(x);
+	ASSERT_FALSE(columns.empty());
 	int widest_gap = 0;
-	for (std::size_t i = 1; i < red_columns.size(); ++i) widest_gap = std::max(widest_gap, red_columns[i] - red_columns[i - 1]);
-	// The plot is about 740 px wide for 100 units: a 20-unit hole is ~150 px.
-	EXPECT_GT(widest_gap, 100);
-	EXPECT_LT(widest_gap, 200);
-	EXPECT_GT(red_columns.back() - red_columns.front(), 600);
+	for (std::size_t i = 1; i < columns.size(); ++i) widest_gap = std::max(widest_gap, columns[i] - columns[i - 1]);
+	// The hole is 18 of the 100 units the line spans (41 to 59 are missing).
+	const double span = columns.back() - columns.front();
+	EXPECT_GT(span, 500);
+	EXPECT_NEAR(widest_gap / span, 0.18, 0.03);
+}
+
+TEST(FigureWriter, BandsAreDrawnUnderTheLinesOnLogAxesToo)
+{
+	// The pose-ANEES chart of a campaign: a log axis, grey 95% bounds.
+	esif::LinePanel panel{"ANEES", {{"ekf", {}}}, {{"95% bounds", {}, -1}}, true};
+	for (int k = 0; k <= 100; ++k)
+	{
+		panel.series[0].points.emplace_back(k, 1.0 + 0.2 * std::sin(k / 5.0));
+		panel.bands[0].points.push_back({double(k), 0.6, 1.6});
+	}
+	TempDir dir;
+	esif::writeLineChartImage({"anees", "step", {panel}, "Fig. 3.15"}, dir.file("anees.png"), 800);
+	const Found band = find(load(dir.file("anees.png")), rgbOf("#c8c8c8"));
+	EXPECT_GT(band.count, 20000) << "the band covers a good part of the plot";
+	EXPECT_GT(band.x_max - band.x_min, 500);
+}
+
+TEST(FigureWriter, TextFromARunCannotInjectGnuplotCommands)
+{
+	TempDir dir;
+	const std::string evil = dir.file("evil.txt");
+	// A quote ends a gnuplot string; a newline ends a command.
+	const std::string label = "a' ; set output '" + evil + "'\nset output '" + evil + "' #";
+	esif::LineSeries s{label, {{0, 1}, {1, 2}}};
+	esif::writeLineChartImage({label, label, {{label, {s}}}}, dir.file("chart.png"), 400);
+	EXPECT_FALSE(fs::exists(evil));
+	EXPECT_EQ(esif::plot::quoted("it's\n"), "'it''s '");
 }
 
 TEST(FigureWriter, InvalidArgumentsAreRefusedBeforeWriting)
@@ -355,39 +413,58 @@ TEST(FigureWriter, InvalidArgumentsAreRefusedBeforeWriting)
 	EXPECT_TRUE(entries(dir.path()).empty());
 }
 
+template <class Write>
+void expectInputErrorNaming(const std::string& path, Write write)
+{
+	try
+	{
+		write();
+		FAIL() << "expected InputError";
+	}
+	catch (const esif::InputError& e)
+	{
+		EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+	}
+}
+
 TEST(FigureWriter, UnwritablePathThrowsInputErrorNamingItAndLeavesNothing)
 {
 	TempDir dir;
 	InformationPattern p;
-	p.information = identity(4);
+	p.information = pattern(4, tridiagonal);
 	const std::string missing = dir.file("no/such/folder/info.png");
-	try
-	{
-		esif::writeInformationPatternImage(p, missing, 300);
-		FAIL() << "expected InputError";
-	}
-	catch (const esif::InputError& e)
-	{
-		EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
-	}
+	expectInputErrorNaming(missing, [&] { esif::writeInformationPatternImage(p, missing, 300); });
 	const std::string steps = dir.file("no/such/folder/steps.png");
-	try
-	{
-		esif::writeStepTimesImage({1.0}, {1}, steps, 300);
-		FAIL() << "expected InputError";
-	}
-	catch (const esif::InputError& e)
-	{
-		EXPECT_NE(std::string(e.what()).find(steps), std::string::npos) << e.what();
-	}
+	expectInputErrorNaming(steps, [&] { esif::writeStepTimesImage({1.0}, {1}, steps, 300); });
 	EXPECT_TRUE(entries(dir.path()).empty());
 
-	// A folder in the way of the final name: the PNG is encoded, the rename
-	// fails, and the temporary files are gone.
+	// A folder in the way of the PNG: gnuplot draws both, the PNG's rename
+	// fails, and neither the PDF nor a temporary file is left.
 	fs::create_directory(dir.file("taken.png"));
 	EXPECT_THROW(esif::writeInformationPatternImage(p, dir.file("taken.png"), 300), esif::InputError);
 	EXPECT_THROW(esif::writeStepTimesImage({1.0}, {1}, dir.file("taken.png"), 300), esif::InputError);
 	EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"taken.png"});
+}
+
+TEST(FigureWriter, MissingGnuplotIsOneErrorNamingTheFigureAndWhatToInstall)
+{
+	TempDir dir;
+	const std::string path = dir.file("steps.png");
+	const std::string saved = std::getenv("PATH") ? std::getenv("PATH") : "";
+	::setenv("PATH", dir.path().c_str(), 1);
+	try
+	{
+		esif::writeStepTimesImage({1.0}, {1}, path, 300);
+		ADD_FAILURE() << "expected InputError";
+	}
+	catch (const esif::InputError& e)
+	{
+		const std::string what = e.what();
+		EXPECT_NE(what.find(path), std::string::npos) << what;
+		EXPECT_NE(what.find("gnuplot-nox"), std::string::npos) << what;
+	}
+	::setenv("PATH", saved.c_str(), 1);
+	EXPECT_TRUE(entries(dir.path()).empty());
 }
 
 TEST(FigureWriter, EsifRunWritesStepTimesButNoInfoMatrixForTheEkf)
@@ -404,6 +481,8 @@ TEST(FigureWriter, EsifRunWritesStepTimesButNoInfoMatrixForTheEkf)
 
 	const auto img = load(out + "/step_times.png");
 	EXPECT_EQ(img.getWidth(), 1000u);  // [esif] image_size_px's default
+	EXPECT_TRUE(isPdf(out + "/step_times.pdf"));
+	EXPECT_TRUE(isPdf(out + "/map.pdf"));
 	EXPECT_FALSE(fs::exists(out + "/info_matrix.png")) << "the EKF has no information pattern";
 	for (const auto& name : entries(out)) EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
 }

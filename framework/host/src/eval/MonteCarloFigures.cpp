@@ -43,7 +43,7 @@ LineChart poseAneesChart(const std::vector<ConfigStatistics>& configs, const std
 			if (s.anees) line.points.emplace_back(double(s.step), *s.anees);
 		panel.series.push_back(line);
 	}
-	return {"pose ANEES over " + std::to_string(shaded.runs) + " runs: " + title, "step", {panel}};
+	return {"pose ANEES over " + std::to_string(shaded.runs) + " runs: " + title, "step", {panel}, "Fig. 3.15"};
 }
 
 LineChart rmseChart(const std::vector<ConfigStatistics>& configs, const std::string& title)
@@ -71,7 +71,7 @@ LineChart rmseChart(const std::vector<ConfigStatistics>& configs, const std::str
 		heading.series.push_back(head);
 		if (shade_spread) position.bands.push_back(spread);
 	}
-	return {"error over runs: " + title, "step", {position, heading}};
+	return {"error over runs: " + title, "step", {position, heading}, "Fig. 3.15"};
 }
 
 LineChart landmarkAneesChart(const std::vector<ConfigStatistics>& configs, const std::string& title)
@@ -94,7 +94,7 @@ LineChart landmarkAneesChart(const std::vector<ConfigStatistics>& configs, const
 	bounds.points.push_back({id_max, shaded.landmark_bounds.lo, shaded.landmark_bounds.hi});
 	panel.bands.push_back(bounds);
 	return {"final landmark ANEES per landmark over " + std::to_string(shaded.runs) + " runs: " + title,
-			"landmark ID (ground truth)", {panel}};
+			"landmark ID (ground truth)", {panel}, "Fig. 3.9"};
 }
 }  // namespace
 

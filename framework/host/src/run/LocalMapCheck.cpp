@@ -16,7 +16,8 @@ namespace esif
 {
 namespace
 {
-const std::vector<std::string> kCheckOutputFiles = {"local_maps_nees.csv", "fusion_nees.csv", "consistency.png"};
+const std::vector<std::string> kCheckOutputFiles = {"local_maps_nees.csv", "fusion_nees.csv", "consistency.png",
+	"consistency.pdf"};
 
 /// Another run as a reference: its landmarks by ID and its trajectory as the
 /// path, one row per step (a row per step is what places the maps on it).
@@ -101,7 +102,7 @@ void writeOutputs(const LocalMapCheckResult& r, const std::string& dir, int imag
 	const std::filesystem::path d(dir);
 	writeTextAtomically((d / "local_maps_nees.csv").string(), localMapNeesCsv(r.maps));
 	writeTextAtomically((d / "fusion_nees.csv").string(), fusionNeesCsv(r.fusions));
-	LineChart chart{"Local maps and their fusion against " + r.reference, "local map k", {}};
+	LineChart chart{"Local maps and their fusion against " + r.reference, "local map k", {}, "Fig. 3.9, 3.15"};
 	chart.panels.push_back(neesPanel("each local map", r.maps, [](const LocalMapConsistency& m) -> const StateNees& { return m.whole; }));
 	if (!r.fusions.empty())
 		chart.panels.push_back(neesPanel("state after fusing map k", r.fusions, [](const FusionConsistency& f) -> const StateNees& { return f.nees; }));

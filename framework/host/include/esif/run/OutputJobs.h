@@ -10,8 +10,8 @@
 ///
 /// Two lanes, not a pool: MRPT's serialisers (simple maps, scenes, landmark
 /// maps) keep lazily built global state, so they stay on one thread; a
-/// figure (drawn on an MRPT image, encoded by OpenCV) shares nothing with
-/// them once the canvas fonts are loaded (render/FigureCanvas.h).
+/// figure (a gnuplot process fed from its own script) shares nothing with
+/// them, and the figure lane mostly waits for gnuplot.
 
 #include <esif/run/PhaseTimes.h>
 

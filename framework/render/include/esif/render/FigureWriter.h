@@ -4,8 +4,14 @@
 /// info_matrix.png (the book's Fig. 3.12-3.13: where the information matrix
 /// and its Cholesky factor are non-zero) and step_times.png (Fig. 3.20:
 /// processing time of each step against the number of landmarks mapped),
-/// and for the map-joining filters localmap_times.png (Fig. 5.7-5.8: the
-/// time to fuse each local map). Each is written atomically.
+/// and for the map-joining filters localmap_times.png (Fig. 4.20, 5.11: the
+/// time to fuse each local map), plus the line charts of campaigns.
+///
+/// gnuplot draws them all (its cairo terminals; Debian's gnuplot-nox): every
+/// figure is written as the PNG named and, beside it, the same figure as a
+/// PDF for papers (the path with ".pdf"), both atomically. Each title names
+/// the book figure it corresponds to. A missing or failing gnuplot is an
+/// InputError naming the PNG.
 
 #include <esif/core/InformationPattern.h>
 #include <esif/plugin/LocalMapJoiner.h>
@@ -18,28 +24,11 @@
 
 namespace esif
 {
-/// Where writeInformationPatternImage() draws one n x n matrix: the square
-/// of side_px pixels with its top-left corner at (x0, y0). Entry (i, j)
-/// covers columns x0 + floor(j * side_px / n) to x0 + floor((j + 1) *
-/// side_px / n) - 1 (at least one) and likewise rows from i. When n <=
-/// the room available, side_px is a multiple of n, so every entry is an
-/// equal block; when n is larger, several entries share a pixel, which is
-/// black if any of them is non-zero.
-struct MatrixPanel
-{
-	int x0 = 0;
-	int y0 = 0;
-	int side_px = 0;
-};
-
-/// The panels of writeInformationPatternImage(p, path, size_px): the
-/// information matrix, then the factor unless it is empty (0 x 0).
-/// Throws ConfigError when size_px is outside [200, 16384].
-std::vector<MatrixPanel> informationPatternPanels(const InformationPattern& p, int size_px);
-
-/// Writes a PNG, size_px high and size_px wide per panel, with the non-zeros
-/// (entries != 0; NaN counts) of `p.information` and, beside it, of
-/// `p.factor` in black on white, each panel titled with its name, size and
+/// Writes a PNG (and its PDF), size_px high and size_px wide per panel, with
+/// the non-zeros (entries != 0; NaN counts) of `p.information` and, beside
+/// it, of `p.factor` in black on white (a matrix larger than size_px / 4 is
+/// shown in that many cells a side, black where any entry of the cell is
+/// non-zero), each panel titled with its name, size and
 /// non-zero count, e.g. "information matrix 1176x1176, nz = 44692" and
 /// "Cholesky factor (distance reordering), nz = 128043" (when factor_order
 /// itself names the factor, e.g. "incomplete Cholesky preconditioner,
@@ -84,10 +73,10 @@ struct ShadedBand
 	int colour_of = -1;
 };
 
-/// One panel: its y-axis label and its lines (coloured in order: red, blue,
-/// green, orange, purple), with optional shaded bands under them and a
-/// logarithmic y axis (decade ticks; the range spans the positive values of
-/// lines and bands).
+/// One panel: its y-axis label and its lines (coloured in order from
+/// twelve distinct colours), with optional shaded bands under them and a
+/// logarithmic y axis (the range spans the positive values of lines and
+/// bands).
 struct LinePanel
 {
 	std::string y_label;
@@ -102,6 +91,7 @@ struct LineChart
 	std::string title;
 	std::string x_label;
 	std::vector<LinePanel> panels;
+	std::string book_figure = {};  ///< e.g. "Fig. 3.15": added to the title
 };
 
 /// Writes `chart` as a PNG, width_px wide and 3/4 of that high, each panel
