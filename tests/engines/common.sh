@@ -7,7 +7,7 @@
 #
 # The caller sets ESIF (the esif binary) and SOURCE_DIR (the repository) and
 # calls engine_tmpdir first. Exit codes: 0 passed, 1 failed, 77 skipped
-# (ctest SKIP_RETURN_CODE); with ESIF_REQUIRE_ENGINES=1 a
+# (ctest SKIP_RETURN_CODE); with ESIF_REQUIRE_ENGINES=1 (set by .ci/run) a
 # skip is a failure, so CI cannot pass by skipping.
 
 # The campaign: configs/sim/small.ini (200 steps, 16 features) with the EKF
