@@ -16,6 +16,7 @@ packages=(
   libeigen3-dev libsuitesparse-dev libceres-dev libgtest-dev libboost-dev zlib1g-dev libopencv-dev
   nlohmann-json3-dev                  # stats.json
   gnuplot-nox                         # draws every figure (PNG and PDF)
+  parallel                            # GNU parallel, for the engine test of --emit-jobs lists (tests/engines)
 )
 missing=()
 for p in "${packages[@]}"; do
