@@ -14,6 +14,7 @@
 #include <esif/formats/RunOutputReader.h>
 #include <esif/formats/StatsJson.h>
 #include <esif/render/MapOverlay.h>
+#include <esif/report/ComparisonPage.h>
 #include <esif/run/RunOrder.h>
 #include <esif/safeio/AtomicFile.h>
 #include <esif/safeio/OutputApart.h>
@@ -423,7 +424,7 @@ int compareCommand(int argc, char** argv)
 
 	// The comparison's folder is all-or-nothing like a run's; the runs are
 	// written inside its partial folder.
-	const auto [exit_code, text] = writeRunFolder(out.getValue(), {"comparison.csv", "comparison.md"}, [&](const std::string& staging) {
+	const auto [exit_code, text] = writeRunFolder(out.getValue(), {"comparison.csv", "comparison.md", "comparison.html"}, [&](const std::string& staging) {
 		const auto run_dirs = runFolders(config_list, staging);
 		const std::string input = rawlog.isSet() ? rawlog.getValue() : local_maps.getValue();
 		const ChildSettings settings{
@@ -449,9 +450,11 @@ int compareCommand(int argc, char** argv)
 			if (!isFailedRun(run)) succeeded.push_back(run);
 		const std::string text = comparisonText(runs) + note + "\n" + bookTable51Text(succeeded);
 		writeTextAtomically((fs::path(staging) / "comparison.csv").string(), comparisonCsv(runs));
+		const std::string title = "esif compare on " + input;
 		writeTextAtomically((fs::path(staging) / "comparison.md").string(),
-							"# esif compare on " + input + "\n\n" + comparisonMarkdown(runs) +
-								(note.empty() ? "" : "\n" + note) + "\n" + bookTable51Markdown(succeeded));
+							"# " + title + "\n\n" + comparisonMarkdown(runs) + (note.empty() ? "" : "\n" + note) +
+								"\n" + bookTable51Markdown(succeeded));
+		writeComparisonPage((fs::path(staging) / "comparison.html").string(), {title, runs, run_dirs, note, staging});
 		return std::make_pair(comparisonExitCode(runs), text);
 	});
 	std::cout << text;  // once the folder is in place

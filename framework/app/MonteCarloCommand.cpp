@@ -77,7 +77,7 @@ void collectAndReport(const std::string& dir, const CampaignPlan& plan)
 	std::cout << "\nesif montecarlo: " << c.finished << " of " << c.total << " runs finished ("
 			  << c.gaps.suspect.size() << " suspect), " << c.gaps.failed.size() << " failed, "
 			  << c.gaps.pending.size() << " not finished; outputs in " << dir
-			  << " (summary.md, summary.csv, per_step.csv, landmarks.csv, anees_pose.png, rmse.png, "
+			  << " (summary.md, summary.html, summary.csv, per_step.csv, landmarks.csv, anees_pose.png, rmse.png, "
 				 "landmark_anees.png)\n";
 }
 
@@ -109,7 +109,7 @@ int monteCarloCommand(int argc, char** argv)
 		"Monte Carlo campaign: simulates --runs noise draws of a scenario (noise seeds --seed0, --seed0 + 1, ...: "
 		"new odometry and sensor noise on the same world and path) and runs every config on each, each run in "
 		"its own process, --jobs at a time; then writes ANEES with its 95% chi-square bounds, RMSE and time per "
-		"config (summary.md, summary.csv, per_step.csv, landmarks.csv, anees_pose.png, rmse.png, "
+		"config (summary.md, summary.html, summary.csv, per_step.csv, landmarks.csv, anees_pose.png, rmse.png, "
 		"landmark_anees.png) into --out. Re-running resumes (finished runs are kept, failed ones retried) and "
 		"may add configs or runs. A failed run is recorded in DIR/failures/ and listed; the exit code is then "
 		"that of the first failed run. --emit-jobs writes the runs as shell commands instead, for GNU "

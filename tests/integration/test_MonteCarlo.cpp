@@ -66,7 +66,7 @@ TEST(MonteCarlo, ASmallCampaignResumesAndEqualsItsJobListRunByXargs)
 	const std::string direct = tmp.file("direct");
 	const auto first = runEsif(campaignArgs(direct) + " --jobs 2");
 	ASSERT_EQ(first.exit_code, 0) << first.out;
-	for (const char* f : {"campaign.ini", "summary.csv", "summary.md", "per_step.csv", "landmarks.csv",
+	for (const char* f : {"campaign.ini", "summary.csv", "summary.md", "summary.html", "per_step.csv", "landmarks.csv",
 						  "anees_pose.png", "rmse.png", "landmark_anees.png", "anees_pose.pdf", "rmse.pdf",
 						  "landmark_anees.pdf"})
 		EXPECT_TRUE(fs::is_regular_file(direct + "/" + f)) << f;

@@ -309,7 +309,7 @@ TEST(MonteCarloCollect, AggregatesAFixedSetOfRunFoldersAsCheckedByHand)
 	// The outputs are written and list the failed run.
 	const std::string md = esif::writeCampaignOutputs(dir, esif::CampaignPlan::load(dir), c);
 	EXPECT_NE(md.find("ekf/seed_0003: failed (exit 3)"), std::string::npos);
-	for (const char* f : {"summary.csv", "summary.md", "per_step.csv", "landmarks.csv", "anees_pose.png", "rmse.png",
+	for (const char* f : {"summary.csv", "summary.md", "summary.html", "per_step.csv", "landmarks.csv", "anees_pose.png", "rmse.png",
 						  "landmark_anees.png"})
 		EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/" + f)) << f;
 	const std::string csv = esif::test::readText(dir + "/summary.csv");

@@ -74,8 +74,9 @@ std::string cellOf(const Column& column, const std::vector<Stats>& runs, const c
 	return withThousands(std::llround(*v));
 }
 
-/// The table as rows of cells; row 0 is the header.
-std::vector<std::vector<std::string>> grid(const std::vector<Stats>& runs)
+}  // namespace
+
+std::vector<std::vector<std::string>> bookTable51Grid(const std::vector<Stats>& runs)
 {
 	const auto columns = columnsOf(runs);
 	std::vector<std::vector<std::string>> rows(1, {""});
@@ -88,7 +89,6 @@ std::vector<std::vector<std::string>> grid(const std::vector<Stats>& runs)
 	}
 	return rows;
 }
-}  // namespace
 
 const std::string& bookTable51Title()
 {
@@ -98,7 +98,7 @@ const std::string& bookTable51Title()
 
 std::string bookTable51Text(const std::vector<Stats>& runs)
 {
-	const auto rows = grid(runs);
+	const auto rows = bookTable51Grid(runs);
 	std::vector<std::size_t> width(rows[0].size(), 0);
 	for (const auto& row : rows)
 		for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
@@ -116,7 +116,7 @@ std::string bookTable51Text(const std::vector<Stats>& runs)
 
 std::string bookTable51Markdown(const std::vector<Stats>& runs)
 {
-	const auto rows = grid(runs);
+	const auto rows = bookTable51Grid(runs);
 	std::ostringstream out;
 	out << "## " << bookTable51Title() << "\n\n|";
 	for (const auto& h : rows[0]) out << (h.empty() ? "" : " " + h) << " |";

@@ -154,45 +154,57 @@ int comparisonExitCode(const std::vector<Stats>& runs)
 	return 0;
 }
 
+ComparisonGrid comparisonGrid(const std::vector<Stats>& runs)
+{
+	ComparisonGrid g;
+	for (const auto& r : runs) g.labels.push_back(label(r));
+	g.keys = tableKeys(runs);
+	for (const auto& k : g.keys)
+	{
+		std::vector<std::string> row;
+		for (const auto& r : runs) row.push_back(cell(r, k));
+		g.cells.push_back(std::move(row));
+	}
+	return g;
+}
+
 std::string comparisonText(const std::vector<Stats>& runs)
 {
-	const auto keys = tableKeys(runs);
-	std::size_t key_w = 0;
-	for (const auto& k : keys) key_w = std::max(key_w, k.size());
+	const ComparisonGrid g = comparisonGrid(runs);
+	std::size_t key_w = std::string("run").size();
+	for (const auto& k : g.keys) key_w = std::max(key_w, k.size());
 	std::vector<std::size_t> col_w;
-	for (const auto& r : runs)
+	for (std::size_t i = 0; i < runs.size(); ++i)
 	{
-		std::size_t w = label(r).size();
-		for (const auto& k : keys) w = std::max(w, cell(r, k).size());
+		std::size_t w = g.labels[i].size();
+		for (const auto& row : g.cells) w = std::max(w, row[i].size());
 		col_w.push_back(w);
 	}
 	std::ostringstream out;
-	const auto row = [&](const std::string& head, auto value_of) {
+	const auto line = [&](const std::string& head, const std::vector<std::string>& values) {
 		out << head << std::string(key_w - head.size() + 2, ' ');
-		for (std::size_t i = 0; i < runs.size(); ++i)
-		{
-			const std::string v = value_of(runs[i]);
-			out << std::string(col_w[i] - v.size(), ' ') << v << "  ";
-		}
+		for (std::size_t i = 0; i < values.size(); ++i)
+			out << std::string(col_w[i] - values[i].size(), ' ') << values[i] << "  ";
 		out << "\n";
 	};
-	row("run", [](const Stats& s) { return label(s); });
-	for (const auto& k : keys) row(k, [&](const Stats& s) { return cell(s, k); });
+	line("run", g.labels);
+	for (std::size_t k = 0; k < g.keys.size(); ++k) line(g.keys[k], g.cells[k]);
 	return out.str();
 }
 
 std::string comparisonMarkdown(const std::vector<Stats>& runs)
 {
+	const ComparisonGrid g = comparisonGrid(runs);
 	std::ostringstream out;
 	out << "| metric |";
-	for (const auto& r : runs) out << " " << label(r) << " |";
+	for (const auto& l : g.labels) out << " " << l << " |";
 	out << "\n|---|";
 	for (std::size_t i = 0; i < runs.size(); ++i) out << "---:|";
 	out << "\n";
-	for (const auto& k : tableKeys(runs))
+	for (std::size_t k = 0; k < g.keys.size(); ++k)
 	{
-		out << "| " << k << " |";
-		for (const auto& r : runs) out << " " << cell(r, k) << " |";
+		out << "| " << g.keys[k] << " |";
+		for (const auto& c : g.cells[k]) out << " " << c << " |";
 		out << "\n";
 	}
 	return out.str();

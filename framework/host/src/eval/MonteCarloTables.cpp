@@ -1,6 +1,7 @@
 /// \file MonteCarloTables.cpp
 /// summary.csv, summary.md, per_step.csv, landmarks.csv; see MonteCarloTables.h.
 
+#include <esif/eval/ColumnMeanings.h>
 #include <esif/eval/MonteCarloTables.h>
 
 #include <cmath>
@@ -74,45 +75,48 @@ std::string monteCarloSummaryCsv(const std::vector<ConfigStatistics>& configs, s
 	return out;
 }
 
+const std::string& monteCarloCampaignNote()
+{
+	static const std::string note = "Runs are independent noise draws of the same scenario (same world and path).";
+	return note;
+}
+
+std::vector<std::vector<std::string>> monteCarloSummaryCells(const std::vector<ConfigStatistics>& configs)
+{
+	std::vector<std::vector<std::string>> rows;
+	for (const auto& c : configs)
+		rows.push_back(
+			{c.name, std::to_string(c.runs), rounded(c.pose_anees_mean), band(c.pose_bounds),
+			 percent(c.pose_steps_inside_fraction),
+			 rounded(c.pose_position_anees_mean) + " / " + rounded(c.pose_heading_anees_mean),
+			 rounded(c.landmark_anees), band(c.landmark_bounds), percent(c.landmarks_inside_fraction),
+			 rounded(c.state_anees_per_dof), c.state_runs ? band(c.state_bounds) : std::string("-"),
+			 percent(c.state_runs_inside_fraction),
+			 rounded(c.trajectory_rmse_m.mean) + " ± " + rounded(c.trajectory_rmse_m.stddev, 2),
+			 rounded(c.landmark_rmse_m.mean) + " ± " + rounded(c.landmark_rmse_m.stddev, 2),
+			 rounded(c.wall_s.median) + " [" + rounded(c.wall_s.p25) + ", " + rounded(c.wall_s.p75) + "]",
+			 std::to_string(c.da_wrong_total) + " in " + std::to_string(c.runs_with_da_wrong) + " runs"});
+	return rows;
+}
+
 std::string monteCarloSummaryMarkdown(
 	const std::string& title, const std::vector<ConfigStatistics>& configs, const CampaignGaps& gaps)
 {
-	std::string out = "# " + title + "\n\n";
-	out += "| config | N | pose ANEES (mean over steps) | 95% bounds (3N dof) | steps inside | "
-		   "position / heading ANEES | landmark ANEES | 95% bounds (2N dof) | landmarks inside | "
-		   "whole-state ANEES per dof | 95% bounds | runs inside | "
-		   "trajectory RMSE [m] | landmark RMSE [m] | time per run [s] | wrong associations |\n";
-	out += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-	for (const auto& c : configs)
+	std::string out = "# " + title + "\n\n|";
+	const auto headings = columnHeadings(monteCarloSummaryColumns());
+	for (const auto& h : headings) out += " " + h + " |";
+	out += "\n|";
+	for (std::size_t i = 0; i < headings.size(); ++i) out += "---|";
+	out += "\n";
+	for (const auto& row : monteCarloSummaryCells(configs))
 	{
-		out += "| " + c.name + " | " + std::to_string(c.runs) + " | " + rounded(c.pose_anees_mean) + " | " +
-			   band(c.pose_bounds) + " | " + percent(c.pose_steps_inside_fraction) + " | " +
-			   rounded(c.pose_position_anees_mean) + " / " + rounded(c.pose_heading_anees_mean) + " | " +
-			   rounded(c.landmark_anees) + " | " + band(c.landmark_bounds) + " | " +
-			   percent(c.landmarks_inside_fraction) + " | " + rounded(c.state_anees_per_dof) + " | " +
-			   (c.state_runs ? band(c.state_bounds) : std::string("-")) + " | " + percent(c.state_runs_inside_fraction) +
-			   " | " + rounded(c.trajectory_rmse_m.mean) + " ± " +
-			   rounded(c.trajectory_rmse_m.stddev, 2) + " | " + rounded(c.landmark_rmse_m.mean) + " ± " +
-			   rounded(c.landmark_rmse_m.stddev, 2) + " | " + rounded(c.wall_s.median) + " [" +
-			   rounded(c.wall_s.p25) + ", " + rounded(c.wall_s.p75) + "] | " + std::to_string(c.da_wrong_total) +
-			   " in " + std::to_string(c.runs_with_da_wrong) + " runs |\n";
+		out += "|";
+		for (const auto& cell : row) out += " " + cell + " |";
+		out += "\n";
 	}
-	out += "\nPose ANEES: at each step the mean over runs of the pose NEES (3 dof), averaged over the steps; "
-		   "\"steps inside\": the share of steps whose ANEES lies inside its two-sided 95% chi-square bounds "
-		   "[chi2inv(0.025, 3N), chi2inv(0.975, 3N)] / N. \"Position / heading\": the same mean over steps "
-		   "of the NEES of the pose's position (2 dof, ideal 2) and of its heading (1 dof, ideal 1) alone, "
-		   "which tells which part of the pose is over- or under-confident (per step with bounds in "
-		   "per_step.csv). Landmark ANEES: the mean NEES (2 dof) of the final "
-		   "landmarks over all runs and landmarks, held against the bounds of one landmark over N runs (the "
-		   "landmarks of a run share the robot's error, so they are not independent draws); \"landmarks "
-		   "inside\": the share of landmarks whose own ANEES over the runs that mapped them is inside its "
-		   "bounds. Whole-state ANEES (back-ends with an information matrix): the book's chi-square test of "
-		   "the whole final state (features and the poses it holds) with its full information matrix, "
-		   "sum of NEES over the runs divided by the sum of their degrees of freedom D, ideal 1, bounds "
-		   "[chi2inv(0.025, D), chi2inv(0.975, D)] / D; \"runs inside\": the share of runs whose own NEES is "
-		   "inside its 95% interval. RMSE: per run, of the trajectory's positions over its steps and of its final landmarks; "
-		   "mean ± standard deviation over runs. Time: the filter's wall time per run, median [quartiles]. "
-		   "Runs are independent noise draws of the same scenario (same world and path).\n";
+	out += "\n";
+	for (const auto& m : monteCarloSummaryColumns()) out += "- " + columnList(m) + ": " + m.meaning + "\n";
+	out += "\n" + monteCarloCampaignNote() + "\n";
 	if (!gaps.failed.empty() || !gaps.pending.empty())
 	{
 		out += "\n## Runs not aggregated\n\n";

@@ -7,6 +7,7 @@
 #include "eval/MonteCarloFigures.h"
 #include <esif/eval/SuspectResult.h>
 #include <esif/formats/StatsJson.h>
+#include <esif/report/MonteCarloPage.h>
 #include <esif/run/MonteCarloCollect.h>
 #include <esif/safeio/AtomicFile.h>
 
@@ -88,6 +89,7 @@ std::string writeCampaignOutputs(const std::string& dir, const CampaignPlan& pla
 	writeTextAtomically((d / "per_step.csv").string(), monteCarloPerStepCsv(c.configs));
 	writeTextAtomically((d / "landmarks.csv").string(), monteCarloLandmarksCsv(c.configs));
 	writeMonteCarloFigures(c.configs, title, dir, kFigureWidthPx);
+	writeMonteCarloPage("esif montecarlo: " + title, c.configs, c.gaps, dir);  // after the figures it inlines
 	return markdown;
 }
 

@@ -18,6 +18,10 @@ namespace esif
 /// The table's title line (without newline).
 const std::string& bookTable51Title();
 
+/// The table as rows of cells: row 0 the column headings (its first cell
+/// empty), then one row per book row, its heading first.
+std::vector<std::vector<std::string>> bookTable51Grid(const std::vector<Stats>& runs);
+
 /// Aligned text for the terminal: the title, a header row and the four rows.
 std::string bookTable51Text(const std::vector<Stats>& runs);
 

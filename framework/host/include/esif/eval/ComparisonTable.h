@@ -46,6 +46,17 @@ std::string failureNote(const std::vector<Stats>& runs);
 /// not count: the run they depend on failed before them.
 int comparisonExitCode(const std::vector<Stats>& runs);
 
+/// The table the terminal, comparison.md and comparison.html show: one
+/// column per run (labels), one row per key (tableKeys), cells[row][run]
+/// with numbers to 4 significant digits and "-" where a run has no value.
+struct ComparisonGrid
+{
+	std::vector<std::string> labels;
+	std::vector<std::string> keys;
+	std::vector<std::vector<std::string>> cells;
+};
+ComparisonGrid comparisonGrid(const std::vector<Stats>& runs);
+
 std::string comparisonText(const std::vector<Stats>& runs);
 std::string comparisonMarkdown(const std::vector<Stats>& runs);
 std::string comparisonCsv(const std::vector<Stats>& runs);

@@ -23,8 +23,17 @@ struct CampaignGaps
 };
 
 std::string monteCarloSummaryCsv(const std::vector<ConfigStatistics>& configs, std::size_t planned);
+/// summary.md's table: one row per config, one cell per column of
+/// monteCarloSummaryColumns() (ColumnMeanings.h), numbers rounded.
+std::vector<std::vector<std::string>> monteCarloSummaryCells(const std::vector<ConfigStatistics>& configs);
+
+/// The title, the table, each column explained (monteCarloSummaryColumns),
+/// then the runs not aggregated and the suspect ones.
 std::string monteCarloSummaryMarkdown(
 	const std::string& title, const std::vector<ConfigStatistics>& configs, const CampaignGaps& gaps);
+/// "Runs are independent noise draws ...": the line under summary.md's legend.
+const std::string& monteCarloCampaignNote();
+
 std::string monteCarloPerStepCsv(const std::vector<ConfigStatistics>& configs);
 std::string monteCarloLandmarksCsv(const std::vector<ConfigStatistics>& configs);
 

@@ -8,7 +8,7 @@
 ///   sim/seed_<S>/sim.rawlog            one simulation per noise seed S (+ ground truth)
 ///   runs/<config>/seed_<S>/            one `esif run` folder per config and seed
 ///   failures/<config>/seed_<S>.txt     why a run failed (exit code, first error line, stderr)
-///   summary.csv, summary.md, per_step.csv, landmarks.csv, *.png: the aggregate
+///   summary.csv, summary.md, summary.html, per_step.csv, landmarks.csv, *.png: the aggregate
 /// A finished run is a run folder with stats.json (run folders are
 /// all-or-nothing, RunFolder.h), a simulation a sim/seed_<S> folder (put in
 /// place by one rename): re-running a campaign skips both.

@@ -30,7 +30,8 @@ CampaignCollection collectCampaign(const std::string& dir, const CampaignPlan& p
 CampaignRunErrors readCampaignRun(const std::string& run_folder, std::size_t seed_index);
 
 /// summary.csv, summary.md, per_step.csv, landmarks.csv and the figures
-/// (MonteCarloFigures.h) into `dir`, each atomically; returns summary.md's text.
+/// (MonteCarloFigures.h), then summary.html (MonteCarloPage.h), into `dir`,
+/// each atomically; returns summary.md's text.
 std::string writeCampaignOutputs(const std::string& dir, const CampaignPlan& plan, const CampaignCollection& c);
 
 }  // namespace esif
