@@ -15,7 +15,7 @@ packages=(
   libmrpt-dev mrpt-apps mrpt-common   # MRPT 2.5: libraries, kf-slam app, demo datasets
   libeigen3-dev libsuitesparse-dev libceres-dev libgtest-dev libboost-dev zlib1g-dev libopencv-dev
   nlohmann-json3-dev                  # stats.json
-  gnuplot-nox                         # draws every figure (PNG and PDF)
+  gnuplot-nox                         # draws every figure (PNG and SVG)
   parallel                            # GNU parallel, for the engine test of --emit-jobs lists (tests/engines)
 )
 missing=()

@@ -169,8 +169,8 @@ TEST_F(LocalMapsCli, RunOnSim5GivesFiniteRmseAndEveryOutput)
 	ASSERT_EQ(r.exit_code, 0) << r.out;
 	const std::string out = dir_->file("sim5_run");
 	for (const char* f : {"landmarks.gz", "landmarks.txt", "trajectory.tum", "map.simplemap", "map.png",
-						  "map.pdf", "scene.3Dscene", "stats.json", "params.ini", "associations.txt",
-						  "localmap_times.png", "localmap_times.pdf"})
+						  "map.svg", "scene.3Dscene", "stats.json", "params.ini", "associations.txt",
+						  "localmap_times.png", "localmap_times.svg"})
 		EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
 	EXPECT_FALSE(fs::exists(out + "/step_times.png"));	// no steps to time
 

@@ -67,8 +67,8 @@ TEST(MonteCarlo, ASmallCampaignResumesAndEqualsItsJobListRunByXargs)
 	const auto first = runEsif(campaignArgs(direct) + " --jobs 2");
 	ASSERT_EQ(first.exit_code, 0) << first.out;
 	for (const char* f : {"campaign.ini", "summary.csv", "summary.md", "summary.html", "per_step.csv", "landmarks.csv",
-						  "anees_pose.png", "rmse.png", "landmark_anees.png", "anees_pose.pdf", "rmse.pdf",
-						  "landmark_anees.pdf"})
+						  "anees_pose.png", "rmse.png", "landmark_anees.png", "anees_pose.svg", "rmse.svg",
+						  "landmark_anees.svg"})
 		EXPECT_TRUE(fs::is_regular_file(direct + "/" + f)) << f;
 	const auto row = summaryRow(direct);
 	EXPECT_EQ(row.at("config"), "ekf");

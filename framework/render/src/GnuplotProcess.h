@@ -1,8 +1,8 @@
 #pragma once
 /// \file GnuplotProcess.h
 /// Runs gnuplot on a script: the one place esif's figures leave the process.
-/// gnuplot (Debian's gnuplot-nox) draws every figure with its cairo
-/// terminals, so the PNG and the PDF of a figure come from one renderer.
+/// gnuplot (Debian's gnuplot-nox) draws every figure: the PNG with its cairo
+/// terminal, the SVG with its own writer, from one script.
 
 #include <string>
 #include <vector>

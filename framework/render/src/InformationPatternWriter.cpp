@@ -16,11 +16,11 @@ namespace
 {
 using Sparse = Eigen::SparseMatrix<double>;
 
-/// A matrix is shown in at most size_px / kPixelsPerCell cells a side, so
-/// every cell is a few pixels of the PNG whatever the matrix size (no entry
-/// vanishes in resampling) and the PDF holds one small image per matrix,
-/// not one mark per non-zero.
-constexpr int kPixelsPerCell = 4;
+/// A matrix is shown in at most size_px / kPixelsPerCell cells a side: every
+/// cell is then at least 4 pixels of the plot (its centre pixel is all its
+/// own, whatever the antialiasing), no entry vanishes, and a figure holds at
+/// most a few ten thousand boxes however large the matrix.
+constexpr int kPixelsPerCell = 6;
 
 long long cellsFor(long long n, int size_px) { return std::min<long long>(n, size_px / kPixelsPerCell); }
 
@@ -50,10 +50,10 @@ std::string factorTitle(const InformationPattern& p)
 	return "Cholesky factor" + (p.factor_order.empty() ? "" : " (" + p.factor_order + ")") + nz;
 }
 
-/// The occupancy of `m` in cells x cells: 1 where any entry of the cell is
-/// non-zero, as gnuplot's "matrix" rows (row i of the block = matrix rows
-/// of cell row i).
-plot::DataBlock occupancy(const Sparse& m, long long cells)
+/// The cells (row, column) of `m` in cells x cells that hold a non-zero
+/// entry, one row each. Only those are drawn (as filled boxes): gnuplot's
+/// "matrix with image" of every cell costs half a second for two panels.
+plot::DataBlock occupiedCells(const Sparse& m, long long cells)
 {
 	const long long n = squareSize(m);
 	std::vector<char> full(static_cast<std::size_t>(cells * cells), 0);
@@ -62,13 +62,9 @@ plot::DataBlock occupancy(const Sparse& m, long long cells)
 			if (it.value() != 0.0)
 				full[static_cast<std::size_t>(it.row() * cells / n * cells + it.col() * cells / n)] = 1;
 	plot::DataBlock block;
-	std::string row;
 	for (long long i = 0; i < cells; ++i)
-	{
-		row.clear();
-		for (long long j = 0; j < cells; ++j) row += full[static_cast<std::size_t>(i * cells + j)] ? "1 " : "0 ";
-		block.rawRow(row);
-	}
+		for (long long j = 0; j < cells; ++j)
+			if (full[static_cast<std::size_t>(i * cells + j)]) block.row({double(i), double(j)});
 	return block;
 }
 
@@ -85,8 +81,17 @@ void addMatrixPanel(plot::Figure& fig, const Sparse& m, const std::string& title
 	const long long cells = cellsFor(n, size_px);
 	const double scale = static_cast<double>(n) / static_cast<double>(cells);
 	fig.command("set xrange [0:" + std::to_string(n) + "]\nset yrange [" + std::to_string(n) + ":0]");
-	fig.command("plot " + fig.add(occupancy(m, cells)) + " matrix using (($1+0.5)*" + plot::number(scale) +
-				"):(($2+0.5)*" + plot::number(scale) + "):3 with image notitle");
+	const plot::DataBlock occupied = occupiedCells(m, cells);
+	if (occupied.empty())
+	{
+		fig.command("plot 1e300 notitle");
+		return;
+	}
+	// Cell (i, j) covers columns [j, j + 1) * scale and rows [i, i + 1) * scale.
+	const std::string s = plot::number(scale);
+	fig.command("plot " + fig.add(occupied) + " using (($2+0.5)*" + s + "):(($1+0.5)*" + s + "):($2*" + s +
+				"):(($2+1)*" + s + "):($1*" + s + "):(($1+1)*" + s +
+				") with boxxy fs solid 1.0 noborder lc rgb 'black' notitle");
 }
 }  // namespace
 
@@ -97,7 +102,6 @@ void writeInformationPatternImage(const InformationPattern& p, const std::string
 	plot::Figure fig(size_px * (with_factor ? 2 : 1), size_px);
 	fig.command(plot::textDefaults());
 	fig.command("set border 15 lc rgb '#808080'");
-	fig.command("set palette defined (0 'white', 1 'black')\nunset colorbox\nset cbrange [0:1]");
 	fig.command("set size ratio -1\nset tics out nomirror\nset xtics format '%.0f'\nset ytics format '%.0f'");
 	fig.command(plot::multiplotTitle(plot::withBookFigure("non-zeros", "Fig. 3.12-3.13, 4.13, 5.10"),
 		with_factor ? "1,2" : "1,1"));

@@ -1,5 +1,5 @@
 /// \file MapImageWriter.cpp
-/// map.png (and map.pdf): a top-down picture of the run, the first thing
+/// map.png (and map.svg): a top-down picture of the run, the first thing
 /// users look at. Over a metric grid with equal scales it shows the
 /// estimated path and landmarks (with uncertainty ellipses and IDs), the
 /// final robot pose and, when known, the ground truth, with a legend and the
@@ -33,8 +33,11 @@ const mrpt::img::TColor kRobotEllipseColor(120, 140, 230);
 /// Landmark IDs are written next to the marks up to this many landmarks;
 /// beyond that they only clutter the picture.
 constexpr std::size_t kMaxLandmarkIds = 150;
+/// Segments of an ellipse: smooth at the few pixels an ellipse spans, and
+/// half the vertices of 48 for gnuplot to draw on every landmark.
+constexpr int kEllipseSegments = 24;
 /// Paths are simplified to this fraction of the view (a third of a pixel at
-/// 1000 px): invisible, and 18000-step paths stay light in the PDF.
+/// 1000 px): invisible, and 18000-step paths stay light in the SVG.
 constexpr double kPathTolerance = 1.0 / 3000.0;
 
 /// One layer of the picture: its data and its plot clause.
@@ -57,7 +60,7 @@ plot::DataBlock polyline(const std::vector<Eigen::Vector2d>& pts, double toleran
 void addEllipse(plot::DataBlock& block, const Eigen::Vector2d& mean, const Eigen::Matrix2d& cov, double sigmas)
 {
 	if (!block.empty()) block.gap();
-	for (const Eigen::Vector2d& p : mg::ellipsePolygon(mean, cov, sigmas, 48)) block.row({p.x(), p.y()});
+	for (const Eigen::Vector2d& p : mg::ellipsePolygon(mean, cov, sigmas, kEllipseSegments)) block.row({p.x(), p.y()});
 }
 
 bool robotIsFinite(const RunRecord& run)

@@ -20,10 +20,6 @@ namespace
 /// Text size and line width scale with the figure: tuned at 1000 px wide.
 double scaleOf(int width_px) { return std::clamp(width_px / 1000.0, 0.4, 4.0); }
 
-/// PNG pixels per inch of the PDF twin: a 1000 px figure is 10 in wide, and
-/// 1 px of the PNG is 0.72 pt of the PDF.
-constexpr double kPixelsPerInch = 100.0;
-constexpr double kPointsPerPixel = 72.0 / kPixelsPerInch;
 
 std::string pngTerminal(int w, int h)
 {
@@ -34,12 +30,15 @@ std::string pngTerminal(int w, int h)
 	return buf;
 }
 
-std::string pdfTerminal(int w, int h)
+/// gnuplot's own SVG writer: the same size in px, a white background (a
+/// transparent one shows as black in some viewers).
+std::string svgTerminal(int w, int h)
 {
 	const double s = scaleOf(w);
-	char buf[160];
-	std::snprintf(buf, sizeof buf, "set terminal pdfcairo size %.2fin,%.2fin noenhanced font 'Sans,%.1f' linewidth %.2f",
-		w / kPixelsPerInch, h / kPixelsPerInch, 13.0 * s * kPointsPerPixel, s * kPointsPerPixel * 2.0);
+	char buf[200];
+	std::snprintf(buf, sizeof buf,
+		"set terminal svg size %d,%d noenhanced font 'Sans,%.1f' linewidth %.2f background '#ffffff'", w, h,
+		13.0 * s, s);
 	return buf;
 }
 }  // namespace
@@ -96,13 +95,6 @@ void DataBlock::row(std::initializer_list<double> values)
 	++rows_;
 }
 
-void DataBlock::rawRow(const std::string& numbers)
-{
-	text_ += numbers;
-	text_ += '\n';
-	++rows_;
-}
-
 void DataBlock::gap() { text_ += '\n'; }
 
 Figure::Figure(int width_px, int height_px) : width_px_(width_px), height_px_(height_px) {}
@@ -116,24 +108,24 @@ std::string Figure::add(const DataBlock& block)
 
 void Figure::command(const std::string& commands) { commands_ += commands + "\n"; }
 
-std::string Figure::script(const std::string& png_path, const std::string& pdf_path) const
+std::string Figure::script(const std::string& png_path, const std::string& svg_path) const
 {
 	std::string s = data_;
 	s += pngTerminal(width_px_, height_px_) + "\nset output " + quoted(png_path) + "\n";
 	s += commands_ + "unset multiplot\nunset output\nreset\n";
-	s += pdfTerminal(width_px_, height_px_) + "\nset output " + quoted(pdf_path) + "\n";
+	s += svgTerminal(width_px_, height_px_) + "\nset output " + quoted(svg_path) + "\n";
 	s += commands_ + "unset multiplot\nunset output\n";
 	return s;
 }
 
 std::string vectorPathOf(const std::string& png_path)
 {
-	return std::filesystem::path(png_path).replace_extension(".pdf").string();
+	return std::filesystem::path(png_path).replace_extension(".svg").string();
 }
 
 namespace
 {
-/// A PNG ends with its IEND chunk, a PDF with %%EOF (and a line end): a
+/// A PNG ends with its IEND chunk, an SVG with </svg> (and a line end): a
 /// renderer that stopped half-way is caught here, not by the reader.
 bool complete(const std::string& bytes, const std::string& trailer, std::size_t slack)
 {
@@ -144,16 +136,16 @@ bool complete(const std::string& bytes, const std::string& trailer, std::size_t 
 
 void writeFigure(const Figure& figure, const std::string& png_path)
 {
-	const std::string pdf_path = vectorPathOf(png_path);
+	const std::string svg_path = vectorPathOf(png_path);
 	const std::vector<std::string> files =
 		runGnuplot(figure.script(gnuplotOutput(0), gnuplotOutput(1)), 2, png_path);
 	if (!complete(files[0], std::string("IEND\xae\x42\x60\x82", 8), 0))
 		throw InputError(png_path + ": gnuplot wrote an incomplete PNG");
-	if (!complete(files[1], "%%EOF", 2)) throw InputError(pdf_path + ": gnuplot wrote an incomplete PDF");
+	if (!complete(files[1], "</svg>", 2)) throw InputError(svg_path + ": gnuplot wrote an incomplete SVG");
 	writeBytesAtomically(png_path, files[0]);
 	try
 	{
-		writeBytesAtomically(pdf_path, files[1]);
+		writeBytesAtomically(svg_path, files[1]);
 	}
 	catch (...)
 	{

@@ -2,7 +2,7 @@
 /// \file PlotScript.h
 /// The small layer between esif's figures and gnuplot: a figure is gnuplot
 /// commands over inline data blocks, drawn once to PNG (pngcairo) and once
-/// to PDF (pdfcairo) by one gnuplot process, each file written atomically.
+/// to SVG (gnuplot's svg) by one gnuplot process, each file written atomically.
 /// Axes, ticks, legends, log scales, bands and fonts are gnuplot's.
 
 #include <array>
@@ -42,8 +42,6 @@ class DataBlock
 {
    public:
 	void row(std::initializer_list<double> values);
-	/// A row already formatted (numbers separated by spaces).
-	void rawRow(const std::string& numbers);
 	/// A blank line: the lines drawn through the block break here.
 	void gap();
 	bool empty() const { return rows_ == 0; }
@@ -71,8 +69,8 @@ class Figure
 	int heightPx() const { return height_px_; }
 
 	/// The whole gnuplot script: the data blocks once, then the commands
-	/// drawn to `png_path` and again to `pdf_path`.
-	std::string script(const std::string& png_path, const std::string& pdf_path) const;
+	/// drawn to `png_path` and again to `svg_path`.
+	std::string script(const std::string& png_path, const std::string& svg_path) const;
 
    private:
 	int width_px_;
@@ -82,7 +80,7 @@ class Figure
 	std::size_t blocks_ = 0;
 };
 
-/// The vector twin of a figure's PNG: the same path with ".pdf".
+/// The vector twin of a figure's PNG: the same path with ".svg".
 std::string vectorPathOf(const std::string& png_path);
 
 /// Draws `figure` into `png_path` and vectorPathOf(png_path), each written

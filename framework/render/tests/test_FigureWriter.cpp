@@ -1,6 +1,6 @@
 /// \file test_FigureWriter.cpp
 /// The figures gnuplot draws for esif, read back pixel by pixel from the PNG
-/// (the PDF twin is checked to be a PDF): the information pattern lies on
+/// (the SVG twin is checked to be an SVG): the information pattern lies on
 /// the non-zeros, large patterns do not vanish, the step-time plot is scaled
 /// to the bulk of the data, bands are drawn, twelve series get twelve
 /// colours, text from a run cannot inject gnuplot commands, failures name
@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -130,15 +131,16 @@ std::vector<std::string> entries(const std::string& dir)
 	return names;
 }
 
-bool isPdf(const std::string& path)
+/// gnuplot's SVG: an XML document whose root is <svg> and that is complete.
+bool isSvg(const std::string& path)
 {
 	std::ifstream in(path, std::ios::binary);
-	std::string head(5, '\0');
-	in.read(head.data(), 5);
-	return in && head == "%PDF-";
+	const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+	return text.rfind("<?xml", 0) == 0 && text.find("<svg") != std::string::npos &&
+		   text.find("</svg>") != std::string::npos;
 }
 
-TEST(FigureWriter, SmallPatternIsBlackExactlyOnItsNonZerosAndHasItsPdf)
+TEST(FigureWriter, SmallPatternIsBlackExactlyOnItsNonZerosAndHasItsSvg)
 {
 	TempDir dir;
 	InformationPattern p;
@@ -149,8 +151,8 @@ TEST(FigureWriter, SmallPatternIsBlackExactlyOnItsNonZerosAndHasItsPdf)
 	EXPECT_EQ(img.getWidth(), 400u);
 	EXPECT_EQ(img.getHeight(), 400u);
 	EXPECT_EQ(wrongCells(img, 0, 400, 10, tridiagonal), 0);
-	EXPECT_TRUE(isPdf(dir.file("info.pdf")));
-	EXPECT_EQ(entries(dir.path()), (std::vector<std::string>{"info.pdf", "info.png"}));
+	EXPECT_TRUE(isSvg(dir.file("info.svg")));
+	EXPECT_EQ(entries(dir.path()), (std::vector<std::string>{"info.png", "info.svg"}));
 }
 
 TEST(FigureWriter, FactorIsDrawnBesideTheInformationMatrix)
@@ -176,8 +178,8 @@ TEST(FigureWriter, LargeDiagonalStillShowsAsAnUnbrokenDiagonal)
 	p.information.setIdentity();
 	esif::writeInformationPatternImage(p, dir.file("info.png"), 500);
 	const auto img = load(dir.file("info.png"));
-	// Shown in 500 / 4 = 125 cells a side: every diagonal cell black, every other white.
-	EXPECT_EQ(wrongCells(img, 0, 500, 125, [](int i, int j) { return i == j; }), 0);
+	// Shown in 500 / 6 = 83 cells a side: every diagonal cell black, every other white.
+	EXPECT_EQ(wrongCells(img, 0, 500, 83, [](int i, int j) { return i == j; }), 0);
 }
 
 TEST(FigureWriter, SingleNonZeroInAHugeMatrixIsNotLost)
@@ -190,10 +192,10 @@ TEST(FigureWriter, SingleNonZeroInAHugeMatrixIsNotLost)
 	p.information.insert(12345, 77777) = 1.0;
 	esif::writeInformationPatternImage(p, dir.file("info.png"), 400);
 	const auto img = load(dir.file("info.png"));
-	// 400 / 4 = 100 cells a side.
-	const auto cell = [](long long k) { return static_cast<int>(k * 100 / 100000); };
-	EXPECT_EQ(wrongCells(img, 0, 400, 100, [&](int i, int j) {
-		return (i == 0 && j == 0) || (i == 99 && j == 99) || (i == cell(12345) && j == cell(77777));
+	// 400 / 6 = 66 cells a side.
+	const auto cell = [](long long k) { return static_cast<int>(k * 66 / 100000); };
+	EXPECT_EQ(wrongCells(img, 0, 400, 66, [&](int i, int j) {
+		return (i == 0 && j == 0) || (i == 65 && j == 65) || (i == cell(12345) && j == cell(77777));
 	}), 0);
 }
 
@@ -205,7 +207,7 @@ TEST(FigureWriter, EmptyMatricesAndNoStepsStillGiveAFigure)
 	esif::writeStepTimesImage({}, {}, dir.file("steps.png"), 200);
 	EXPECT_EQ(load(dir.file("steps.png")).getWidth(), 200u);
 	esif::writeLineChartImage({"empty", "x", {esif::LinePanel{"y", {}}}}, dir.file("chart.png"), 300);
-	EXPECT_TRUE(isPdf(dir.file("chart.pdf")));
+	EXPECT_TRUE(isSvg(dir.file("chart.svg")));
 }
 
 const Rgb kDotColour = rgbOf("#7f9fd8");  ///< step_times.png's dots
@@ -304,7 +306,7 @@ TEST(FigureWriter, MapOverlayIsFramedOnTheReferenceWhateverAnotherRunDid)
 	EXPECT_GT(find(img, kBlack).x_max - find(img, kBlack).x_min, 300) << "the reference fills the frame";
 	EXPECT_GT(find(img, rgbOf(esif::plot::seriesColour(0))).count, 300);
 	EXPECT_GT(find(img, rgbOf(esif::plot::seriesColour(1))).count, 300);
-	EXPECT_TRUE(isPdf(dir.file("o.pdf")));
+	EXPECT_TRUE(isSvg(dir.file("o.svg")));
 	EXPECT_THROW(esif::writeMapOverlayImage({}, "t", dir.file("none.png"), 800), esif::ConfigError);
 	EXPECT_THROW(esif::writeMapOverlayImage({{"r", ref}}, "t", dir.file("small.png"), 100), esif::ConfigError);
 	EXPECT_FALSE(fs::exists(dir.file("none.png")));
@@ -439,7 +441,7 @@ TEST(FigureWriter, UnwritablePathThrowsInputErrorNamingItAndLeavesNothing)
 	EXPECT_TRUE(entries(dir.path()).empty());
 
 	// A folder in the way of the PNG: gnuplot draws both, the PNG's rename
-	// fails, and neither the PDF nor a temporary file is left.
+	// fails, and neither the SVG nor a temporary file is left.
 	fs::create_directory(dir.file("taken.png"));
 	EXPECT_THROW(esif::writeInformationPatternImage(p, dir.file("taken.png"), 300), esif::InputError);
 	EXPECT_THROW(esif::writeStepTimesImage({1.0}, {1}, dir.file("taken.png"), 300), esif::InputError);
@@ -481,8 +483,8 @@ TEST(FigureWriter, EsifRunWritesStepTimesButNoInfoMatrixForTheEkf)
 
 	const auto img = load(out + "/step_times.png");
 	EXPECT_EQ(img.getWidth(), 1000u);  // [esif] image_size_px's default
-	EXPECT_TRUE(isPdf(out + "/step_times.pdf"));
-	EXPECT_TRUE(isPdf(out + "/map.pdf"));
+	EXPECT_TRUE(isSvg(out + "/step_times.svg"));
+	EXPECT_TRUE(isSvg(out + "/map.svg"));
 	EXPECT_FALSE(fs::exists(out + "/info_matrix.png")) << "the EKF has no information pattern";
 	for (const auto& name : entries(out)) EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
 }

@@ -43,7 +43,7 @@ namespace fs = std::filesystem;
 namespace
 {
 const std::set<std::string> kOutputs = {"map.simplemap", "landmarks.gz", "landmarks.txt",
-										"trajectory.tum", "scene.3Dscene", "map.png", "map.pdf"};
+										"trajectory.tum", "scene.3Dscene", "map.png", "map.svg"};
 
 /// A fresh, empty folder removed at the end of the test.
 class TempDir

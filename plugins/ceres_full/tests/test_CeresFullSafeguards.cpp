@@ -160,7 +160,7 @@ TEST(CeresFullSafeguards, APoseOnALandmarkIsFlaggedAndTheRunStillWritesEveryOutp
 	EXPECT_NE(r.command.out.find("without covariances"), std::string::npos) << r.command.out;
 	// Every output of a normal run is there, and the NEES metrics are absent,
 	// not computed from zero covariances.
-	// (Except the information matrix's picture and its PDF: J has no finite value there.)
+	// (Except the information matrix's picture and its SVG: J has no finite value there.)
 	for (const auto& entry : std::filesystem::directory_iterator(dir.file("good")))
 	{
 		if (entry.path().stem() != "info_matrix")

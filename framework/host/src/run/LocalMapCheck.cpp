@@ -17,7 +17,7 @@ namespace esif
 namespace
 {
 const std::vector<std::string> kCheckOutputFiles = {"local_maps_nees.csv", "fusion_nees.csv", "consistency.png",
-	"consistency.pdf"};
+	"consistency.svg"};
 
 /// Another run as a reference: its landmarks by ID and its trajectory as the
 /// path, one row per step (a row per step is what places the maps on it).

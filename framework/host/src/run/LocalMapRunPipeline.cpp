@@ -18,8 +18,8 @@ namespace
 {
 /// What every local-map run writes, checked before the folder is put in place.
 const std::vector<std::string> kLocalMapRunOutputFiles = {
-	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "map.pdf",
-	"landmarks.gz", "localmap_times.png", "localmap_times.pdf", "params.ini", kAssociationFileName, "stats.json"};
+	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "map.svg",
+	"landmarks.gz", "localmap_times.png", "localmap_times.svg", "params.ini", kAssociationFileName, "stats.json"};
 
 /// What the run was given, read before any output is written.
 struct LocalMapInput

@@ -5,7 +5,6 @@
 
 #include <chrono>
 #include <exception>
-#include <optional>
 #include <system_error>
 #include <thread>
 
@@ -33,34 +32,36 @@ void OutputJobs::run(PhaseTimes* times)
 	jobs_.clear();
 	std::vector<double> seconds(jobs.size(), 0.0);
 	std::vector<std::exception_ptr> failures(jobs.size());
-	// Runs the jobs of one lane (figures or the rest) in the order added.
-	const auto lane = [&](bool figures) {
-		for (std::size_t i = 0; i < jobs.size(); ++i)
+	const auto runJob = [&](std::size_t i) {
+		const auto t0 = std::chrono::steady_clock::now();
+		try
 		{
-			if (jobs[i].figure != figures) continue;
-			const auto t0 = std::chrono::steady_clock::now();
-			try
-			{
-				jobs[i].write();
-			}
-			catch (...)
-			{
-				failures[i] = std::current_exception();
-			}
-			seconds[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+			jobs[i].write();
 		}
+		catch (...)
+		{
+			failures[i] = std::current_exception();
+		}
+		seconds[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	};
-	std::optional<std::thread> beside;
-	try
+	std::vector<std::thread> beside;
+	std::vector<std::size_t> left;	// figures no thread could be started for
+	for (std::size_t i = 0; i < jobs.size(); ++i)
 	{
-		beside.emplace(lane, true);
+		if (!jobs[i].figure) continue;
+		try
+		{
+			beside.emplace_back(runJob, i);
+		}
+		catch (const std::system_error&)
+		{
+			left.push_back(i);
+		}
 	}
-	catch (const std::system_error&)
-	{
-		lane(true);	 // no thread to spare: the calling thread draws them too
-	}
-	lane(false);
-	if (beside) beside->join();
+	for (std::size_t i = 0; i < jobs.size(); ++i)
+		if (!jobs[i].figure) runJob(i);
+	for (const std::size_t i : left) runJob(i);
+	for (std::thread& t : beside) t.join();
 	if (times)
 		for (std::size_t i = 0; i < jobs.size(); ++i) times->add(jobs[i].phase, seconds[i]);
 	for (const auto& failure : failures)

@@ -25,8 +25,8 @@ namespace
 {
 /// What every run writes, checked before the folder is put in place.
 const std::vector<std::string> kRunOutputFiles = {
-	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "map.pdf",
-	"landmarks.gz", "step_times.png", "step_times.pdf", "params.ini", kAssociationFileName, "stats.json"};
+	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "map.svg",
+	"landmarks.gz", "step_times.png", "step_times.svg", "params.ini", kAssociationFileName, "stats.json"};
 
 /// A simulated rawlog with misread IDs or clutter has its measurements'
 /// true landmarks beside it (MeasurementTruth.h): data association is then

@@ -1,17 +1,17 @@
 #pragma once
 /// \file OutputJobs.h
-/// A run's output files are independent of each other: encoding map.png
-/// does not need map.simplemap's gzip. OutputJobs writes the figures on a
-/// second thread while the calling thread writes the rest, each timed under
-/// its own phase, and keeps what a sequential writer promised: the phases
-/// appear in stats.json in the order the jobs were added, and when some
-/// fail, every other job still finishes before the first failure (in that
-/// order) is thrown.
+/// A run's output files are independent of each other: drawing map.png
+/// does not need map.simplemap's gzip. OutputJobs writes each figure on a
+/// thread of its own while the calling thread writes the rest, each timed
+/// under its own phase, and keeps what a sequential writer promised: the
+/// phases appear in stats.json in the order the jobs were added, and when
+/// some fail, every other job still finishes before the first failure (in
+/// that order) is thrown.
 ///
-/// Two lanes, not a pool: MRPT's serialisers (simple maps, scenes, landmark
-/// maps) keep lazily built global state, so they stay on one thread; a
-/// figure (a gnuplot process fed from its own script) shares nothing with
-/// them, and the figure lane mostly waits for gnuplot.
+/// MRPT's serialisers (simple maps, scenes, landmark maps) keep lazily built
+/// global state, so they stay on the calling thread; a figure is a gnuplot
+/// process fed from its own script (render/src/PlotScript.h), so its thread
+/// mostly waits, and the figures of a run are drawn at the same time.
 
 #include <esif/run/PhaseTimes.h>
 
@@ -27,14 +27,15 @@ class OutputJobs
 	/// Adds `write`, timed as `phase` (e.g. "map_simplemap"), to the calling
 	/// thread's lane.
 	void add(std::string phase, std::function<void()> write);
-	/// Adds a figure: drawn and encoded beside the calling thread's lane.
+	/// Adds a figure: drawn on a thread of its own beside the calling thread.
 	void addFigure(std::string phase, std::function<void()> write);
 	/// Adds `other`'s jobs after these.
 	void append(OutputJobs&& other);
 
-	/// Runs every job added (figures on a second thread when one can be
-	/// started), records each one's time in `times` when given, and forgets
-	/// the jobs. Rethrows the first failure in the order added.
+	/// Runs every job added (each figure on its own thread when one can be
+	/// started, else on the calling thread after the rest), records each
+	/// one's time in `times` when given, and forgets the jobs. Rethrows the
+	/// first failure in the order added.
 	void run(PhaseTimes* times);
 
    private:

@@ -8,8 +8,8 @@
 /// time to fuse each local map), plus the line charts of campaigns.
 ///
 /// gnuplot draws them all (its cairo terminals; Debian's gnuplot-nox): every
-/// figure is written as the PNG named and, beside it, the same figure as a
-/// PDF for papers (the path with ".pdf"), both atomically. Each title names
+/// figure is written as the PNG named and, beside it, the same figure as an
+/// SVG for papers and the web (the path with ".svg"), both atomically. Each title names
 /// the book figure it corresponds to. A missing or failing gnuplot is an
 /// InputError naming the PNG.
 
@@ -24,9 +24,9 @@
 
 namespace esif
 {
-/// Writes a PNG (and its PDF), size_px high and size_px wide per panel, with
+/// Writes a PNG (and its SVG), size_px high and size_px wide per panel, with
 /// the non-zeros (entries != 0; NaN counts) of `p.information` and, beside
-/// it, of `p.factor` in black on white (a matrix larger than size_px / 4 is
+/// it, of `p.factor` in black on white (a matrix larger than size_px / 6 is
 /// shown in that many cells a side, black where any entry of the cell is
 /// non-zero), each panel titled with its name, size and
 /// non-zero count, e.g. "information matrix 1176x1176, nz = 44692" and
