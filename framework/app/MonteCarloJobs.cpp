@@ -90,7 +90,7 @@ JobOutcome runCampaignJob(const std::string& dir, const CampaignPlan& plan, cons
 	const std::string out = campaign_layout::runFolder(dir, plan.names[job.config], job.noise_seed);
 	ensureDirectory(fs::path(out).parent_path().string());
 	const ChildResult run = runEsifChild(
-		{"esif", "run", "--quiet", "--config", plan.configs[job.config], "--rawlog",
+		{"esif", "run", "--quiet", "--no-figures", "--config", plan.configs[job.config], "--rawlog",
 		 campaign_layout::simRawlog(dir, job.noise_seed), "--out", out},
 		ChildOutput::Kept, "montecarlo");
 	return recordOutcome(dir, plan, job, run);

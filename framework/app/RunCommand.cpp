@@ -85,8 +85,15 @@ int runCommand(int argc, char** argv)
 		"shares the run's error, so only a NEES above the interval is a finding",
 		false, "", "DIR", cmd);
 	TCLAP::SwitchArg quiet("q", "quiet", "no progress bar and no summary", cmd);
+	TCLAP::SwitchArg no_figures(
+		"", "no-figures",
+		"write the data files only: no map.png, step_times.png, ... nor their .svg (what esif montecarlo runs; "
+		"rawlog runs)",
+		cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 	checkInputOptions(rawlog, local_maps, {&ground_truth, &associations_from, &reference_run}, reference_result);
+	if (local_maps.isSet() && no_figures.getValue())
+		throw ConfigError("esif run: --no-figures applies to --rawlog input, not to --local-maps");
 
 	PluginLoader loader(plugin_dir.isSet() ? std::vector<std::string>{plugin_dir.getValue()} : std::vector<std::string>{});
 	if (local_maps.isSet())
@@ -109,6 +116,7 @@ int runCommand(int argc, char** argv)
 	request.progress_bar = !quiet.getValue();
 	if (associations_from.isSet()) request.associations_from = associations_from.getValue();
 	if (reference_run.isSet()) request.reference_run = reference_run.getValue();
+	request.figures = !no_figures.getValue();
 	const Stats stats = runPipeline(request, loader);
 	if (!quiet.getValue()) printSummary(stats, request.rawlog_path, request.out_dir, false);
 	return 0;

@@ -88,6 +88,10 @@ TEST(MonteCarlo, ASmallCampaignResumesAndEqualsItsJobListRunByXargs)
 	EXPECT_EQ(row.at("da_wrong_total"), "0");
 	EXPECT_NE(first.out.find("8 of 8 runs finished"), std::string::npos) << first.out;
 
+	// The runs write their data only: the campaign draws its own figures.
+	EXPECT_FALSE(fs::exists(direct + "/runs/ekf/seed_0003/map.png"));
+	EXPECT_FALSE(fs::exists(direct + "/runs/ekf/seed_0003/step_times.svg"));
+
 	// Resumption: finished runs are kept as they are, a missing one is redone.
 	const std::string stats = direct + "/runs/ekf/seed_0003/stats.json";
 	const auto before = fs::last_write_time(stats);

@@ -490,3 +490,32 @@ TEST(FigureWriter, EsifRunWritesStepTimesButNoInfoMatrixForTheEkf)
 }
 
 }  // namespace
+
+namespace
+{
+TEST(FigureWriter, EsifRunWithNoFiguresWritesTheDataFilesOnly)
+{
+	TempDir dir;
+	const std::string rawlog = dir.file("small.rawlog");
+	ASSERT_EQ(esif::test::simulateSmall(rawlog).exit_code, 0);
+	const std::string out = dir.file("out");
+	const std::string config = esif::test::sourcePath("configs/dslam.ini");
+	const auto run =
+		esif::test::runEsif("run -q --no-figures --config '" + config + "' --rawlog '" + rawlog + "' --out '" + out + "'");
+	ASSERT_EQ(run.exit_code, 0) << run.out;
+	for (const auto& name : entries(out))
+	{
+		const std::string ext = fs::path(name).extension().string();
+		EXPECT_TRUE(ext != ".png" && ext != ".svg") << name << " drawn despite --no-figures";
+	}
+	for (const char* data : {"stats.json", "landmarks.txt", "trajectory.tum", "map.simplemap", "landmarks.gz"})
+		EXPECT_TRUE(fs::is_regular_file(out + "/" + data)) << data;
+
+	// Local-map runs have no such option: one error, nothing written.
+	const auto refused = esif::test::runEsif("run -q --no-figures --config '" + config + "' --local-maps '" +
+											 dir.path() + "' --out '" + dir.file("lm") + "'");
+	EXPECT_NE(refused.exit_code, 0);
+	EXPECT_NE(refused.out.find("--no-figures applies to --rawlog input"), std::string::npos) << refused.out;
+	EXPECT_FALSE(fs::exists(dir.file("lm")));
+}
+}  // namespace

@@ -26,6 +26,14 @@ void OutputJobs::append(OutputJobs&& other)
 	other.jobs_.clear();
 }
 
+void OutputJobs::dropFigures()
+{
+	std::vector<Job> kept;
+	for (auto& job : jobs_)
+		if (!job.figure) kept.push_back(std::move(job));
+	jobs_ = std::move(kept);
+}
+
 void OutputJobs::run(PhaseTimes* times)
 {
 	const std::vector<Job> jobs = std::move(jobs_);

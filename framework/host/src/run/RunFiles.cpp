@@ -35,6 +35,7 @@ void writeRunFiles(
 		writeAssociationFile((d / kAssociationFileName).string(), in.reports, host.plugin, in.input_path);
 	});
 	jobs.append(std::move(extra));
+	if (!in.figures) jobs.dropFigures();
 	jobs.run(&times);
 }
 

@@ -31,6 +31,7 @@ struct RunFilesInput
 	const std::vector<StepReport>& reports;	 ///< one per step or per local map
 	const std::vector<LocalMapFusionCost>& fusion_costs;  ///< empty but for map joining
 	std::string input_path;	 ///< the rawlog or local-map folder, named in associations.txt
+	bool figures = true;  ///< false: no PNG or SVG is drawn (`esif run --no-figures`)
 };
 
 /// Writes the map outputs (MapOutputs.h), info_matrix.png (information-form

@@ -28,6 +28,18 @@ const std::vector<std::string> kRunOutputFiles = {
 	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "map.svg",
 	"landmarks.gz", "step_times.png", "step_times.svg", "params.ini", kAssociationFileName, "stats.json"};
 
+/// `files` but the figures (PNG and SVG).
+std::vector<std::string> withoutFigures(const std::vector<std::string>& files)
+{
+	std::vector<std::string> kept;
+	for (const std::string& f : files)
+	{
+		const std::string ext = std::filesystem::path(f).extension().string();
+		if (ext != ".png" && ext != ".svg") kept.push_back(f);
+	}
+	return kept;
+}
+
 /// A simulated rawlog with misread IDs or clutter has its measurements'
 /// true landmarks beside it (MeasurementTruth.h): data association is then
 /// scored against those, not against the rawlog's own (partly wrong) IDs.
@@ -113,8 +125,9 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 			(std::filesystem::path(request.out_dir) / "step_times.png").string(), host.image_size_px);
 	});
 	writeRunFiles(
-		request.out_dir, host, *plugin, {result.record, result.reports, result.fusion_costs, request.rawlog_path},
-		times, std::move(step_times));
+		request.out_dir, host, *plugin,
+		{result.record, result.reports, result.fusion_costs, request.rawlog_path, request.figures}, times,
+		std::move(step_times));
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	Stats stats = collectStats(host, request, log, result, *plugin, accuracy, total_wall_s);
 	// After total_wall_s: the whole-state test is a figure about the result,
@@ -145,8 +158,8 @@ Stats runPipeline(const RunRequest& request, PluginLoader& loader)
 	auto inputs = rawlogRunInputs(
 		request.config_path, request.rawlog_path, request.ground_truth_prefix, request.associations_from);
 	inputs.push_back({"the reference run", request.reference_run.value_or("")});
-	return runInStagedFolder(
-		request, inputs, kRunOutputFiles, [&](const RunRequest& staged) { return runInto(staged, loader); });
+	return runInStagedFolder(request, inputs, request.figures ? kRunOutputFiles : withoutFigures(kRunOutputFiles),
+		[&](const RunRequest& staged) { return runInto(staged, loader); });
 }
 
 }  // namespace esif

@@ -31,6 +31,8 @@ class OutputJobs
 	void addFigure(std::string phase, std::function<void()> write);
 	/// Adds `other`'s jobs after these.
 	void append(OutputJobs&& other);
+	/// Forgets the figures added so far (`esif run --no-figures`).
+	void dropFigures();
 
 	/// Runs every job added (each figure on its own thread when one can be
 	/// started, else on the calling thread after the rest), records each

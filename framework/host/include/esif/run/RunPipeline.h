@@ -25,6 +25,9 @@ struct RunRequest
 	/// is computed against instead of the ground truth (`esif run
 	/// --reference-run`); its trajectory.tum must hold one final pose per step.
 	std::optional<std::string> reference_run;
+	/// false: the data files only, no figure (`esif run --no-figures`; what
+	/// `esif montecarlo` runs, whose summary draws the campaign's figures).
+	bool figures = true;
 };
 
 /// Runs the whole pipeline and writes every output into request.out_dir:
