@@ -33,16 +33,9 @@ std::string chromium()
 {
 	for (const char* name : {"chromium", "chromium-browser"})
 	{
-		FILE* pipe = ::popen(("command -v " + std::string(name) + " 2>/dev/null").c_str(), "r");
-		char buf[512] = {0};
-		const bool found = pipe && std::fgets(buf, sizeof(buf), pipe);
-		if (pipe) ::pclose(pipe);
-		if (found)
-		{
-			std::string path(buf);
-			path.erase(path.find_last_not_of("\r\n") + 1);
-			return path;
-		}
+		const auto found = esif::test::runShell("command -v " + std::string(name));
+		if (found.exit_code == 0 && !found.out.empty())
+			return found.out.substr(0, found.out.find_first_of("\r\n"));
 	}
 	return "";
 }
@@ -56,13 +49,8 @@ std::string runChromium(const std::string& browser, const TempDir& tmp, const st
 							"--user-data-dir=" +
 							quoted(tmp.file("chromium-profile")) + " " + args + " " + quoted("file://" + page) +
 							" 2>/dev/null";
-	std::string out;
-	FILE* pipe = ::popen(cmd.c_str(), "r");
-	if (!pipe) return out;
-	char buf[4096];
-	while (std::fgets(buf, sizeof(buf), pipe)) out += buf;
-	::pclose(pipe);
-	return out;
+	// In a subshell: its stderr (Chromium's chatter) stays out of the output.
+	return esif::test::runShell("(" + cmd + ")").out;
 }
 
 /// A copy of `page` with a script appended that, once everything loaded,

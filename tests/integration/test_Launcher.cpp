@@ -22,19 +22,6 @@ using namespace esif::test;
 
 namespace
 {
-/// Runs `command` through the shell; stdout and stderr merged.
-CommandResult runShell(const std::string& command)
-{
-	CommandResult r;
-	FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-	if (!pipe) return r;
-	char buf[4096];
-	while (std::fgets(buf, sizeof(buf), pipe)) r.out += buf;
-	const int status = ::pclose(pipe);
-	r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-	return r;
-}
-
 const fs::path kBuild = fs::path(ESIF_BINARY).parent_path().parent_path();
 
 /// A copy of the build's launcher, host libraries, plugins and cache, with

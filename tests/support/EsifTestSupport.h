@@ -74,12 +74,11 @@ struct CommandResult
 	std::string out;  ///< stdout and stderr, merged
 };
 
-/// Runs `esif ARGS` through the shell (ARGS already quoted as needed).
-inline CommandResult runEsif(const std::string& args)
+/// Runs `command` through the shell; its stdout and stderr merged.
+inline CommandResult runShell(const std::string& command)
 {
 	CommandResult r;
-	const std::string cmd = std::string(ESIF_BINARY) + " " + args + " 2>&1";
-	FILE* pipe = ::popen(cmd.c_str(), "r");
+	FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
 	if (!pipe) return r;
 	char buf[4096];
 	while (std::fgets(buf, sizeof(buf), pipe)) r.out += buf;
@@ -87,6 +86,9 @@ inline CommandResult runEsif(const std::string& args)
 	r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 	return r;
 }
+
+/// Runs `esif ARGS` through the shell (ARGS already quoted as needed).
+inline CommandResult runEsif(const std::string& args) { return runShell(std::string(ESIF_BINARY) + " " + args); }
 
 /// `word` single-quoted for runEsif's shell (paths of temporary folders hold no quote).
 inline std::string quoted(const std::string& word) { return "'" + word + "'"; }

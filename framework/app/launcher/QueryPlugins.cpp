@@ -7,9 +7,9 @@
 #include "../Commands.h"
 #include "PluginCache.h"
 
-#include <cstdio>
+#include <esif/safeio/AtomicFile.h>
+
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 
 int main(int argc, char** argv)
@@ -31,25 +31,8 @@ int main(int argc, char** argv)
 			std::cerr << "esif_query_plugins: the libraries in " << lib << " changed while they were listed\n";
 			return 1;
 		}
-		const std::string cache = esif::launcher::cacheFileIn(lib);
-		const std::string partial = cache + ".partial";
-		{
-			std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-			out << esif::launcher::cacheText(lib, before, listing);
-			out.close();
-			if (!out)
-			{
-				std::cerr << "esif_query_plugins: " << partial << ": cannot write\n";
-				std::remove(partial.c_str());
-				return 1;
-			}
-		}
-		if (std::rename(partial.c_str(), cache.c_str()) != 0)
-		{
-			std::cerr << "esif_query_plugins: " << cache << ": cannot move into place\n";
-			std::remove(partial.c_str());
-			return 1;
-		}
+		// Checked, synced and renamed into place like every esif output.
+		esif::writeTextAtomically(esif::launcher::cacheFileIn(lib), esif::launcher::cacheText(lib, before, listing));
 		return 0;
 	}
 	catch (const std::exception& e)

@@ -257,7 +257,7 @@ TEST(FigureWriter, StepTimeOutliersAreClippedSoTheBulkFillsThePlot)
 TEST(FigureWriter, LocalMapTimesShowBothLinesInBothPanels)
 {
 	std::vector<esif::LocalMapFusionCost> costs;
-	for (int k = 0; k < 60; ++k) costs.push_back({k, 0.001 * (k + 1), 0.0004 * (k + 1), 10 + 3 * k});
+	for (int k = 0; k < 60; ++k) costs.push_back({std::size_t(k), 0.001 * (k + 1), 0.0004 * (k + 1), std::size_t(10 + 3 * k)});
 	TempDir dir;
 	esif::writeLocalMapTimesImage(costs, dir.file("lm.png"), 800);
 	const auto img = load(dir.file("lm.png"));

@@ -3,6 +3,8 @@
 
 #include <esif/safeio/ChildProcess.h>
 
+#include "ChildWait.h"
+
 #include <esif/core/Errors.h>
 #include <esif/safeio/RunServer.h>
 #include <esif/safeio/TerminationCleanup.h>
@@ -86,14 +88,7 @@ pid_t forkExec(const std::vector<std::string>& args, int stderr_fd, bool discard
 	_exit(127);
 }
 
-int waitChild(pid_t pid)
-{
-	int status = 0;
-	while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-	{
-	}
-	return status;
-}
+int waitChild(pid_t pid) { return safeio_detail::waitForChild(pid); }
 }  // namespace
 
 ChildResult runEsifChild(const std::vector<std::string>& args, ChildOutput output, const std::string& who)

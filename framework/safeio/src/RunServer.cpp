@@ -11,6 +11,8 @@
 
 #include <esif/safeio/RunServer.h>
 
+#include "ChildWait.h"
+
 #include <esif/safeio/TerminationCleanup.h>
 
 #include <array>
@@ -101,11 +103,7 @@ bool readAll(int fd, void* data, std::size_t size)
 	::close(stderr_fd);
 	const std::int32_t pid = run;
 	if (!sendAll(reply_fd, &pid, sizeof(pid)) || run < 0) ::_exit(0);
-	int status = 0;
-	while (::waitpid(run, &status, 0) < 0 && errno == EINTR)
-	{
-	}
-	const std::int32_t wire_status = status;
+	const std::int32_t wire_status = safeio_detail::waitForChild(run);
 	sendAll(reply_fd, &wire_status, sizeof(wire_status));
 	::_exit(0);
 }
@@ -203,10 +201,7 @@ RunServer::~RunServer()
 	termination::removeServer(pid_);
 	::close(serverSocket());
 	serverSocket() = -1;
-	int status = 0;
-	while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR)
-	{
-	}
+	safeio_detail::waitForChild(pid_);
 }
 
 bool runServerStarted() { return serverSocket() >= 0; }

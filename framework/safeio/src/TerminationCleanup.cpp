@@ -3,6 +3,8 @@
 
 #include <esif/safeio/TerminationCleanup.h>
 
+#include "ChildWait.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <csignal>
@@ -69,11 +71,7 @@ void stopChildren(const std::vector<pid_t>& children, int sig)
 	for (const pid_t child : children)
 	{
 		int status = 0;
-		pid_t waited;
-		while ((waited = ::waitpid(child, &status, 0)) < 0 && errno == EINTR)
-		{
-		}
-		if (waited < 0 && errno == ECHILD) waitForOtherProcess(child);
+		if (safeio_detail::waitForChild(child, status) < 0 && errno == ECHILD) waitForOtherProcess(child);
 	}
 }
 
@@ -83,10 +81,7 @@ void stopServers(const std::vector<std::pair<pid_t, int>>& servers)
 	for (const auto& [pid, fd] : servers)
 	{
 		::close(fd);
-		int status = 0;
-		while (::waitpid(pid, &status, 0) < 0 && errno == EINTR)
-		{
-		}
+		safeio_detail::waitForChild(pid);
 	}
 }
 
