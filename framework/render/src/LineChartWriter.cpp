@@ -23,18 +23,8 @@ bool drawable(double x, double y, bool log_y) { return std::isfinite(x) && std::
 plot::DataBlock seriesBlock(const LineSeries& s, bool log_y)
 {
 	plot::DataBlock block;
-	bool broken = false;
 	for (const auto& [x, y] : s.points)
-	{
-		if (!drawable(x, y, log_y))
-		{
-			broken = true;
-			continue;
-		}
-		if (broken && !block.empty()) block.gap();
-		broken = false;
-		block.row({x, y});
-	}
+		drawable(x, y, log_y) ? block.row({x, y}) : block.breakLine();
 	return block;
 }
 
@@ -42,18 +32,8 @@ plot::DataBlock seriesBlock(const LineSeries& s, bool log_y)
 plot::DataBlock bandBlock(const ShadedBand& b, bool log_y)
 {
 	plot::DataBlock block;
-	bool broken = false;
 	for (const auto& [x, lo, hi] : b.points)
-	{
-		if (!drawable(x, lo, log_y) || !drawable(x, hi, log_y))
-		{
-			broken = true;
-			continue;
-		}
-		if (broken && !block.empty()) block.gap();
-		broken = false;
-		block.row({x, lo, hi});
-	}
+		drawable(x, lo, log_y) && drawable(x, hi, log_y) ? block.row({x, lo, hi}) : block.breakLine();
 	return block;
 }
 

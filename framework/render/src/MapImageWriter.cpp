@@ -59,7 +59,7 @@ plot::DataBlock polyline(const std::vector<Eigen::Vector2d>& pts, double toleran
 /// Closed ellipses, one after another, separated by gaps.
 void addEllipse(plot::DataBlock& block, const Eigen::Vector2d& mean, const Eigen::Matrix2d& cov, double sigmas)
 {
-	if (!block.empty()) block.gap();
+	block.breakLine();
 	for (const Eigen::Vector2d& p : mg::ellipsePolygon(mean, cov, sigmas, kEllipseSegments)) block.row({p.x(), p.y()});
 }
 

@@ -84,6 +84,8 @@ std::string number(double v)
 
 void DataBlock::row(std::initializer_list<double> values)
 {
+	if (broken_) text_ += '\n';
+	broken_ = false;
 	bool first = true;
 	for (const double v : values)
 	{
@@ -94,8 +96,6 @@ void DataBlock::row(std::initializer_list<double> values)
 	text_ += '\n';
 	++rows_;
 }
-
-void DataBlock::gap() { text_ += '\n'; }
 
 Figure::Figure(int width_px, int height_px) : width_px_(width_px), height_px_(height_px) {}
 

@@ -42,8 +42,9 @@ class DataBlock
 {
    public:
 	void row(std::initializer_list<double> values);
-	/// A blank line: the lines drawn through the block break here.
-	void gap();
+	/// The line drawn through the block breaks before the next row (a blank
+	/// line); nothing when no row came yet or the line is already broken.
+	void breakLine() { broken_ = rows_ > 0; }
 	bool empty() const { return rows_ == 0; }
 	std::size_t rows() const { return rows_; }
 	const std::string& text() const { return text_; }
@@ -51,6 +52,7 @@ class DataBlock
    private:
 	std::string text_;
 	std::size_t rows_ = 0;
+	bool broken_ = false;
 };
 
 /// One figure: its size, its data blocks and the commands that draw it.
