@@ -82,16 +82,13 @@ void addMatrixPanel(plot::Figure& fig, const Sparse& m, const std::string& title
 	const double scale = static_cast<double>(n) / static_cast<double>(cells);
 	fig.command("set xrange [0:" + std::to_string(n) + "]\nset yrange [" + std::to_string(n) + ":0]");
 	const plot::DataBlock occupied = occupiedCells(m, cells);
-	if (occupied.empty())
-	{
-		fig.command("plot 1e300 notitle");
-		return;
-	}
 	// Cell (i, j) covers columns [j, j + 1) * scale and rows [i, i + 1) * scale.
 	const std::string s = plot::number(scale);
-	fig.command("plot " + fig.add(occupied) + " using (($2+0.5)*" + s + "):(($1+0.5)*" + s + "):($2*" + s +
-				"):(($2+1)*" + s + "):($1*" + s + "):(($1+1)*" + s +
-				") with boxxy fs solid 1.0 noborder lc rgb 'black' notitle");
+	std::vector<std::string> clauses;
+	if (!occupied.empty())
+		clauses.push_back(fig.add(occupied) + " using (($2+0.5)*" + s + "):(($1+0.5)*" + s + "):($2*" + s + "):(($2+1)*" +
+						  s + "):($1*" + s + "):(($1+1)*" + s + ") with boxxy fs solid 1.0 noborder lc rgb 'black' notitle");
+	fig.command(plot::plotCommand(clauses));
 }
 }  // namespace
 

@@ -78,9 +78,7 @@ void addPanel(plot::Figure& fig, const LinePanel& panel, const std::string& x_la
 		return;
 	}
 	fig.command("set xrange [0:*]\nset yrange [*:*]");
-	std::string plot = "plot ";
-	for (std::size_t i = 0; i < clauses.size(); ++i) plot += (i ? ", \\\n  " : "") + clauses[i];
-	fig.command(plot);
+	fig.command(plot::plotCommand(clauses));
 }
 }  // namespace
 

@@ -9,6 +9,7 @@
 
 #include "MapGeometry.h"
 #include "MapPalette.h"
+#include "MapPlot.h"
 #include "PlotScript.h"
 
 #include <algorithm>
@@ -49,13 +50,6 @@ struct Layer
 
 std::string colour(const mrpt::img::TColor& c) { return "lc rgb '" + hex(c) + "'"; }
 
-plot::DataBlock polyline(const std::vector<Eigen::Vector2d>& pts, double tolerance)
-{
-	plot::DataBlock block;
-	for (const std::size_t i : mg::simplifiedIndices(pts, tolerance)) block.row({pts[i].x(), pts[i].y()});
-	return block;
-}
-
 /// Closed ellipses, one after another, separated by gaps.
 void addEllipse(plot::DataBlock& block, const Eigen::Vector2d& mean, const Eigen::Matrix2d& cov, double sigmas)
 {
@@ -79,7 +73,7 @@ std::vector<Layer> mapLayers(const RunRecord& run, double sigmas, double view_sp
 	const double tolerance = kPathTolerance * view_span;
 	if (run.truth)
 	{
-		add(polyline(mg::truthPathXY(run), tolerance), "using 1:2 with lines lw 3 " + colour(kTruthPathColor) + " title 'true path'");
+		add(map_plot::polyline(mg::truthPathXY(run), tolerance), "using 1:2 with lines lw 3 " + colour(kTruthPathColor) + " title 'true path'");
 		plot::DataBlock marks;
 		for (const auto& [id, p] : run.truth->landmarks) marks.row({p.x(), p.y()});
 		add(std::move(marks), "using 1:2 with points pt 1 ps 1.6 lw 1.5 " + colour(kTruthLandmarkColor) + " title 'true landmark'");
@@ -97,7 +91,7 @@ std::vector<Layer> mapLayers(const RunRecord& run, double sigmas, double view_sp
 	std::snprintf(ellipse_title, sizeof ellipse_title, "%g-sigma ellipse", sigmas);
 	add(std::move(ellipses), "using 1:2 with lines lw 1 " + colour(kEllipseColor) + " title " + plot::quoted(ellipse_title));
 	const std::vector<Eigen::Vector2d> path = mg::trajectoryXY(run);
-	add(polyline(path, tolerance), "using 1:2 with lines lw 2 " + colour(kPathColor) + " title 'estimated path'");
+	add(map_plot::polyline(path, tolerance), "using 1:2 with lines lw 2 " + colour(kPathColor) + " title 'estimated path'");
 	if (!path.empty() && mg::isFinite(path.front()))
 	{
 		plot::DataBlock start;
@@ -135,19 +129,16 @@ plot::Figure mapFigure(const RunRecord& run, const MapWriterOptions& options)
 	const double span = std::max(view.width(), view.height());
 	plot::Figure fig(options.image_size_px, options.image_size_px);
 	fig.command(plot::chartDefaults());
-	fig.command("set border 15\nset xtics mirror\nset ytics mirror\nset size ratio -1");
+	fig.command(map_plot::equalScaleAxes(view));
 	// The legend in its own band under the x label (gnuplot's "below" key
 	// can run into the label once the equal scales shrink the plot).
 	fig.command("set bmargin 8\nset key at screen 0.5,0.01 center bottom horizontal maxrows 2");
-	fig.command("set xlabel 'x [m]'\nset ylabel 'y [m]'");
-	fig.command("set xrange [" + plot::number(view.x_min) + ":" + plot::number(view.x_max) + "]");
-	fig.command("set yrange [" + plot::number(view.y_min) + ":" + plot::number(view.y_max) + "]");
 	fig.command("set title " + plot::twoLines(plot::withBookFigure(run.plugin.empty() ? "esif" : run.plugin, "Fig. 3.14, 4.10"),
 								   subtitle(run)));
-	std::string plot = "plot ";
+	std::vector<std::string> clauses;
 	for (const Layer& layer : mapLayers(run, options.ellipse_sigmas, span))
-		plot += (plot.size() > 5 ? ", \\\n  " : "") + fig.add(layer.data) + " " + layer.style;
-	fig.command(plot.size() > 5 ? plot : "plot 1e300 notitle");
+		clauses.push_back(fig.add(layer.data) + " " + layer.style);
+	fig.command(plot::plotCommand(clauses));
 	return fig;
 }
 }  // namespace

@@ -7,6 +7,7 @@
 #include <esif/core/Errors.h>
 
 #include "MapGeometry.h"
+#include "MapPlot.h"
 #include "PlotScript.h"
 
 #include <algorithm>
@@ -49,8 +50,8 @@ std::vector<std::string> layerClauses(plot::Figure& fig, const MapOverlayLayer& 
 	std::vector<std::string> clauses;
 	const std::string lc = "lc rgb '" + layerColour(i) + "'";
 	const std::vector<Eigen::Vector2d> path = pathOf(layer.outputs);
-	plot::DataBlock line, marks;
-	for (const std::size_t k : mg::simplifiedIndices(path, tolerance)) line.row({path[k].x(), path[k].y()});
+	const plot::DataBlock line = map_plot::polyline(path, tolerance);
+	plot::DataBlock marks;
 	for (const LandmarkEstimate& lm : layer.outputs.landmarks) marks.row({lm.mean.x(), lm.mean.y()});
 	const std::string title = "title " + plot::quoted(layer.label);
 	if (!line.empty())
@@ -71,17 +72,13 @@ void writeMapOverlayImage(
 	const double tolerance = kPathTolerance * std::max(view.width(), view.height());
 	plot::Figure fig(width_px, width_px * 3 / 4);
 	fig.command(plot::chartDefaults());
-	fig.command("set border 15\nset xtics mirror\nset ytics mirror\nset size ratio -1\nset key outside right top");
-	fig.command("set xlabel 'x [m]'\nset ylabel 'y [m]'");
-	fig.command("set xrange [" + plot::number(view.x_min) + ":" + plot::number(view.x_max) + "]");
-	fig.command("set yrange [" + plot::number(view.y_min) + ":" + plot::number(view.y_max) + "]");
+	fig.command(map_plot::equalScaleAxes(view));
+	fig.command("set key outside right top");
 	fig.command("set title " + plot::quoted(plot::withBookFigure(title, "Fig. 4.10, 4.16")));
 	std::vector<std::string> clauses;
 	for (std::size_t i = 0; i < layers.size(); ++i)
 		for (std::string& c : layerClauses(fig, layers[i], i, tolerance)) clauses.push_back(std::move(c));
-	std::string plot = "plot ";
-	for (std::size_t i = 0; i < clauses.size(); ++i) plot += (i ? ", \\\n  " : "") + clauses[i];
-	fig.command(clauses.empty() ? "plot 1e300 notitle" : plot);
+	fig.command(plot::plotCommand(clauses));
 	plot::writeFigure(fig, path);
 }
 

@@ -118,6 +118,14 @@ std::string Figure::script(const std::string& png_path, const std::string& svg_p
 	return s;
 }
 
+std::string plotCommand(const std::vector<std::string>& clauses)
+{
+	if (clauses.empty()) return "plot 1e300 notitle";
+	std::string plot = "plot ";
+	for (std::size_t i = 0; i < clauses.size(); ++i) plot += (i ? ", \\\n  " : "") + clauses[i];
+	return plot;
+}
+
 std::string vectorPathOf(const std::string& png_path)
 {
 	return std::filesystem::path(png_path).replace_extension(".svg").string();

@@ -82,6 +82,10 @@ class Figure
 	std::size_t blocks_ = 0;
 };
 
+/// "plot <clause>, <clause>, ..."; with no clause a plot that draws nothing
+/// (the axes and titles set so far stay).
+std::string plotCommand(const std::vector<std::string>& clauses);
+
 /// The vector twin of a figure's PNG: the same path with ".svg".
 std::string vectorPathOf(const std::string& png_path);
 

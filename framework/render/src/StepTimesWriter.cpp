@@ -108,8 +108,8 @@ plot::Figure stepTimesFigure(const std::vector<StepPoint>& pts, int width_px)
 	for (const StepPoint& m : binMedians(pts, width)) medians.row({m.landmarks, m.ms});
 	fig.command("set xrange [0:" + plot::number(std::max(1.0, x_max * 1.02)) + "]");
 	fig.command("set yrange [0:" + plot::number(clip_ms > 0 ? clip_ms * 1.02 : 1.0) + "]");
-	fig.command("plot " + fig.add(dots) + " using 1:2 with points pt 5 ps 0.3 lc rgb '#7f9fd8' title 'one step', \\\n  " +
-				fig.add(medians) + " using 1:2 with lines lw 2.5 lc rgb '#e6194b' title 'median'");
+	fig.command(plot::plotCommand({fig.add(dots) + " using 1:2 with points pt 5 ps 0.3 lc rgb '#7f9fd8' title 'one step'",
+		fig.add(medians) + " using 1:2 with lines lw 2.5 lc rgb '#e6194b' title 'median'"}));
 	return fig;
 }
 }  // namespace
