@@ -3,11 +3,14 @@
 
 #include <esif/report/Html.h>
 
+#include <mrpt/system/string_utils.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -141,17 +144,10 @@ std::string withCode(std::string_view text)
 
 std::string base64(std::string_view bytes)
 {
-	static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+	// MRPT's encoder wraps its output in lines; a data: URI wants none.
 	std::string out;
-	out.reserve((bytes.size() + 2) / 3 * 4);
-	for (std::size_t i = 0; i < bytes.size(); i += 3)
-	{
-		const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
-		std::uint32_t v = 0;
-		for (std::size_t k = 0; k < 3; ++k)
-			v = (v << 8) | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
-		for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(v >> (18 - 6 * k)) & 63] : '=';
-	}
+	mrpt::system::encodeBase64(std::vector<std::uint8_t>(bytes.begin(), bytes.end()), out);
+	out.erase(std::remove(out.begin(), out.end(), '\n'), out.end());
 	return out;
 }
 
