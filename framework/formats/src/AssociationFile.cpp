@@ -47,14 +47,6 @@ std::optional<Int> parseWhole(const std::string& tok)
 	return v;
 }
 
-std::vector<std::string> tokensOf(const std::string& line)
-{
-	std::vector<std::string> out;
-	std::istringstream ss(line);
-	for (std::string tok; ss >> tok;) out.push_back(tok);
-	return out;
-}
-
 /// The N of a `# steps N` comment, which must be the rawlog's step count;
 /// nullopt for any other comment.
 std::optional<std::size_t> stepCountOf(
@@ -135,7 +127,7 @@ RecordedAssociations readAssociationFile(const std::string& path, std::size_t ra
 	std::size_t previous_step = 0;
 	for (std::string line; in.next(line);)
 	{
-		const auto toks = tokensOf(line);
+		const auto toks = whitespaceTokens(line);
 		if (toks.empty()) continue;
 		if (toks[0][0] == '#')
 		{

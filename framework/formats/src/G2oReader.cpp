@@ -13,7 +13,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <sstream>
 #include <vector>
 
 namespace esif
@@ -88,14 +87,6 @@ struct Line
 			fail(tokens[0] + ": information matrix is not positive definite");
 	}
 };
-
-std::vector<std::string> tokensOf(const std::string& text)
-{
-	std::vector<std::string> out;
-	std::istringstream ss(text);
-	for (std::string t; ss >> t;) out.push_back(t);
-	return out;
-}
 
 /// An edge's vertex references, checked once every vertex is known (g2o
 /// files may define vertices after the edges that use them).
@@ -200,7 +191,7 @@ G2oGraph readG2oFile(const std::string& path)
 	Reader reader(path);
 	for (std::string text; in.next(text);)
 	{
-		Line l{path, in.lineNumber(), tokensOf(text)};
+		Line l{path, in.lineNumber(), whitespaceTokens(text)};
 		if (l.tokens.empty() || l.tokens[0][0] == '#') continue;
 		reader.readLine(l);
 	}

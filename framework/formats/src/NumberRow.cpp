@@ -4,19 +4,18 @@
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 #include <esif/core/InputBounds.h>
+#include <esif/core/TextInput.h>
 #include "NumberRow.h"
 
 #include <cmath>
 #include <cstdlib>
-#include <sstream>
 
 namespace esif
 {
 NumberRow::NumberRow(const std::string& line, const std::vector<const char*>& names, std::string where)
 	: names_(names), where_(std::move(where))
 {
-	std::istringstream ss(line);
-	for (std::string t; ss >> t;) tokens_.push_back(t);
+	tokens_ = whitespaceTokens(line);
 	if (tokens_.size() != names.size())
 	{
 		std::string list;

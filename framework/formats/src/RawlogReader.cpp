@@ -1,5 +1,6 @@
 #include <esif/core/Errors.h>
 #include <esif/core/TextInput.h>
+#include <esif/formats/NumberText.h>
 #include <esif/formats/RawlogReader.h>
 #include <esif/models/Se2.h>
 
@@ -23,7 +24,6 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <sstream>
 #include <type_traits>
 
 namespace esif
@@ -38,13 +38,6 @@ constexpr double kMaxRangeM = 1e4;
 /// No odometry increment between two steps moves further [m].
 constexpr double kMaxIncrementM = 1e4;
 
-std::string numberText(double v)
-{
-	std::ostringstream s;
-	s << v;
-	return s.str();
-}
-
 /// Throws InputError naming `what` unless `cov` is a finite symmetric
 /// positive-semidefinite 3x3 covariance (round-off tolerated).
 void checkOdometryCovariance(const Eigen::Matrix3d& cov, const std::string& what)
@@ -56,7 +49,7 @@ void checkOdometryCovariance(const Eigen::Matrix3d& cov, const std::string& what
 	const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly).eigenvalues()(0);
 	if (smallest < -1e-9 * scale)
 		throw InputError(what + ": odometry covariance is not positive semidefinite (eigenvalue " +
-						 numberText(smallest) + ")");
+						 number_text::text(smallest) + ")");
 }
 
 /// Throws InputError naming `what` unless the pose is finite and moves at
@@ -66,8 +59,8 @@ void checkOdometryPose(const mrpt::math::TPose2D& p, const std::string& what, co
 	if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.phi))
 		throw InputError(what + ": " + kind + " is not finite");
 	if (std::abs(p.x) > max_xy || std::abs(p.y) > max_xy)
-		throw InputError(what + ": " + kind + " (" + numberText(p.x) + ", " + numberText(p.y) + ") is beyond " +
-						 numberText(max_xy) + " m");
+		throw InputError(what + ": " + kind + " (" + number_text::text(p.x) + ", " + number_text::text(p.y) + ") is beyond " +
+						 number_text::text(max_xy) + " m");
 }
 
 /// MRPT reads the validCovariances flag as a raw byte into a bool: any value
@@ -139,8 +132,8 @@ class StepBuilder
 			const auto& m = obs.sensedData[i];
 			const std::string what = where + ", measurement " + std::to_string(i);
 			if (!std::isfinite(m.range) || m.range < 0 || m.range > kMaxRangeM)
-				throw InputError(what + ": range = " + numberText(m.range) + ": must be finite, >= 0 and <= " +
-								 numberText(kMaxRangeM) + " m");
+				throw InputError(what + ": range = " + number_text::text(m.range) + ": must be finite, >= 0 and <= " +
+								 number_text::text(kMaxRangeM) + " m");
 			if (!std::isfinite(m.yaw)) throw InputError(what + ": bearing is not finite");
 			RangeBearing rb;
 			rb.range_m = m.range;

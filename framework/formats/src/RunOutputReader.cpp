@@ -5,6 +5,7 @@
 
 #include <esif/core/Errors.h>
 #include <esif/core/TextInput.h>
+#include <esif/formats/NumberText.h>
 #include <esif/formats/RunOutputReader.h>
 #include <esif/models/Se2.h>
 
@@ -15,7 +16,6 @@
 #include <filesystem>
 #include <map>
 #include <optional>
-#include <sstream>
 
 namespace esif
 {
@@ -24,14 +24,8 @@ namespace
 /// Whitespace-separated tokens of a line; empty for blank and '#' comment lines.
 std::vector<std::string> tokens(const std::string& line)
 {
-	std::vector<std::string> out;
-	std::istringstream ss(line);
-	std::string tok;
-	while (ss >> tok)
-	{
-		if (out.empty() && tok[0] == '#') return {};
-		out.push_back(tok);
-	}
+	auto out = whitespaceTokens(line);
+	if (!out.empty() && out[0][0] == '#') return {};
 	return out;
 }
 
@@ -42,13 +36,6 @@ std::optional<double> parseNumber(const std::string& tok)
 	const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v);
 	if (r.ec != std::errc() || r.ptr != tok.data() + tok.size()) return std::nullopt;
 	return v;
-}
-
-std::string numberText(double v)
-{
-	char buf[32];
-	const auto r = std::to_chars(buf, buf + sizeof(buf), v);
-	return std::string(buf, r.ptr);
 }
 
 /// "file:line: problem", the one-line error of a bad row.
@@ -101,7 +88,7 @@ std::vector<TimedPose2D> readTrajectoryTum(const std::string& path)
 		if (!out.empty() && !(v[0] > out.back().time_s))
 			failAt(
 				path, lineno,
-				"timestamp " + toks[0] + " is not after the previous one (" + numberText(out.back().time_s) +
+				"timestamp " + toks[0] + " is not after the previous one (" + number_text::text(out.back().time_s) +
 					"): times must increase");
 		TimedPose2D p;
 		p.time_s = v[0];

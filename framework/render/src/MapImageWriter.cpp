@@ -29,7 +29,7 @@ namespace mg = map_geometry;
 const mrpt::img::TColor kEllipseColor(235, 130, 130);
 const mrpt::img::TColor kLandmarkIdColor(150, 60, 60);
 const mrpt::img::TColor kRobotColor(10, 30, 120);
-const mrpt::img::TColor kRobotEllipseColor(120, 140, 230);
+const mrpt::img::TColor kMapRobotEllipseColor(120, 140, 230);
 
 /// Landmark IDs are written next to the marks up to this many landmarks;
 /// beyond that they only clutter the picture.
@@ -39,7 +39,7 @@ constexpr std::size_t kMaxLandmarkIds = 150;
 constexpr int kEllipseSegments = 24;
 /// Paths are simplified to this fraction of the view (a third of a pixel at
 /// 1000 px): invisible, and 18000-step paths stay light in the SVG.
-constexpr double kPathTolerance = 1.0 / 3000.0;
+constexpr double kMapPathTolerance = 1.0 / 3000.0;
 
 /// One layer of the picture: its data and its plot clause.
 struct Layer
@@ -70,7 +70,7 @@ std::vector<Layer> mapLayers(const RunRecord& run, double sigmas, double view_sp
 	const auto add = [&](plot::DataBlock data, const std::string& style) {
 		if (!data.empty()) layers.push_back({std::move(data), style});
 	};
-	const double tolerance = kPathTolerance * view_span;
+	const double tolerance = kMapPathTolerance * view_span;
 	if (run.truth)
 	{
 		add(map_plot::polyline(mg::truthPathXY(run), tolerance), "using 1:2 with lines lw 3 " + colour(kTruthPathColor) + " title 'true path'");
@@ -107,7 +107,7 @@ std::vector<Layer> mapLayers(const RunRecord& run, double sigmas, double view_sp
 		const Eigen::Vector2d xy(robot.mean.x, robot.mean.y);
 		plot::DataBlock robot_ellipse, arrow;
 		addEllipse(robot_ellipse, xy, robot.cov.topLeftCorner<2, 2>(), sigmas);
-		add(std::move(robot_ellipse), "using 1:2 with lines lw 1.5 " + colour(kRobotEllipseColor) + " notitle");
+		add(std::move(robot_ellipse), "using 1:2 with lines lw 1.5 " + colour(kMapRobotEllipseColor) + " notitle");
 		const double len = 0.04 * view_span;
 		arrow.row({xy.x(), xy.y(), len * std::cos(robot.mean.phi), len * std::sin(robot.mean.phi)});
 		add(std::move(arrow), "using 1:2:3:4 with vectors filled head size screen 0.015,25 lw 3 " + colour(kRobotColor) +

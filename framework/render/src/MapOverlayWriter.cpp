@@ -21,7 +21,7 @@ namespace
 namespace mg = map_geometry;
 
 /// Paths are simplified to this fraction of the view (invisible at 1200 px).
-constexpr double kPathTolerance = 1.0 / 4000.0;
+constexpr double kOverlayPathTolerance = 1.0 / 4000.0;
 
 std::vector<Eigen::Vector2d> pathOf(const RunOutputs& run)
 {
@@ -69,7 +69,7 @@ void writeMapOverlayImage(
 	plot::validateWidth(width_px, "maps_overlay width");
 	if (layers.empty()) throw ConfigError("maps_overlay: no run to draw");
 	const mg::Bounds view = frameOf(layers.front().outputs);
-	const double tolerance = kPathTolerance * std::max(view.width(), view.height());
+	const double tolerance = kOverlayPathTolerance * std::max(view.width(), view.height());
 	plot::Figure fig(width_px, width_px * 3 / 4);
 	fig.command(plot::chartDefaults());
 	fig.command(map_plot::equalScaleAxes(view));

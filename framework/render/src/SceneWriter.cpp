@@ -41,7 +41,7 @@ constexpr double kZEstimate = 0.02;
 constexpr double kZRobot = 0.03;
 
 const TColor kGridColor(200, 200, 200);
-const TColor kRobotEllipseColor(30, 80, 220);
+const TColor kSceneRobotEllipseColor(30, 80, 220);
 
 /// ID labels for up to this many landmarks: beyond that they clutter the view
 /// and weigh more than the rest of the scene.
@@ -177,7 +177,7 @@ void writeScene(const RunRecord& run, const std::string& path, const MapWriterOp
 		scene.insert(corner);
 		if (auto robot_ellipse = ellipse(
 				Eigen::Vector2d(robot.mean.x, robot.mean.y), robot.cov.topLeftCorner<2, 2>(), sigmas, kZRobot,
-				kRobotEllipseColor))
+				kSceneRobotEllipseColor))
 		{
 			robot_ellipse->setName("robot_ellipse");
 			scene.insert(robot_ellipse);

@@ -1,10 +1,10 @@
 #include "Jcbb.h"
+#include "MrptMatrix.h"
 
 #include <esif/association/Chi2.h>
 #include <esif/association/DataAssociation.h>
 #include <esif/models/Se2.h>
 
-#include <mrpt/math/CMatrixDynamic.h>
 #include <mrpt/slam/data_association.h>
 
 #include <Eigen/Dense>
@@ -53,13 +53,6 @@ ShiftedBearings shiftedAwayFromCut(const AssociationInput& in)
 	for (Eigen::Index i = 0; i < b.z.rows(); ++i) b.z(i, 1) = wrapAngle(b.z(i, 1) + offset);
 	for (Eigen::Index j = 0; j < b.y.rows(); ++j) b.y(j, 1) = wrapAngle(b.y(j, 1) + offset);
 	return b;
-}
-
-mrpt::math::CMatrixDouble toMrpt(const Eigen::MatrixXd& m)
-{
-	mrpt::math::CMatrixDouble out(m.rows(), m.cols());
-	out.asEigen() = m;
-	return out;
 }
 
 /// Squared Mahalanobis distance of every (observation, prediction) pair, with

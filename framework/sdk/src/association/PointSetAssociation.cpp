@@ -1,7 +1,7 @@
 #include <esif/association/Chi2.h>
 #include <esif/association/PointSetAssociation.h>
+#include "MrptMatrix.h"
 
-#include <mrpt/math/CMatrixDynamic.h>
 #include <mrpt/slam/data_association.h>
 
 #include <Eigen/Cholesky>
@@ -13,13 +13,6 @@ namespace esif
 {
 namespace
 {
-mrpt::math::CMatrixDouble toMrpt(const Eigen::MatrixXd& m)
-{
-	mrpt::math::CMatrixDouble out(m.rows(), m.cols());
-	out.asEigen() = m;
-	return out;
-}
-
 void checkSizes(const PointSets& s)
 {
 	const auto M = s.observed.rows(), N = s.candidates.rows();

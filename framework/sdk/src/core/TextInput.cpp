@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <sstream>
 #include <sys/stat.h>
 
 namespace esif
@@ -118,6 +119,14 @@ std::string readTextFile(const std::string& path, const std::string& what)
 	std::string text, line;
 	while (reader.next(line)) text.append(line).push_back('\n');
 	return text;
+}
+
+std::vector<std::string> whitespaceTokens(const std::string& line)
+{
+	std::vector<std::string> out;
+	std::istringstream ss(line);
+	for (std::string tok; ss >> tok;) out.push_back(tok);
+	return out;
 }
 
 }  // namespace esif

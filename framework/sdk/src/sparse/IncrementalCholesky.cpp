@@ -11,7 +11,7 @@ namespace esif
 {
 namespace
 {
-const std::string kWhat = "sparse recovery (incremental Cholesky)";
+const std::string kCholeskyWhat = "sparse recovery (incremental Cholesky)";
 
 /// Placeholders reserved beyond the current dimension at each fresh
 /// factorisation: enough for many steps of new features, few enough that
@@ -37,7 +37,7 @@ void IncrementalCholesky::noteUpdate(const InformationForm& info, const UpdateTe
 
 void IncrementalCholesky::refresh(const InformationForm& info, const Eigen::Vector2d& reference)
 {
-	if (info.scalarDim() == 0) throw NumericalError(kWhat + ": the information form has no variables");
+	if (info.scalarDim() == 0) throw NumericalError(kCholeskyWhat + ": the information form has no variables");
 	if (!L_ || updates_.overflowed() || info.scalarDim() > capacity_)
 		factorAfresh(info, reference);
 	else if (!updates_.empty() || info.scalarDim() > factored_dim_)
@@ -58,18 +58,18 @@ void IncrementalCholesky::factorAfresh(const InformationForm& info, const Eigen:
 	common_.useGivenOrderingForModification();
 	std::vector<int> perm = wanted.order;
 	L_ = ownFactor(cholmod_analyze_p(A.get(), perm.data(), nullptr, 0, common_.get()), common_);
-	if (!L_) common_.check(kWhat + ": analysis");
+	if (!L_) common_.check(kCholeskyWhat + ": analysis");
 	cholmod_factorize(A.get(), L_.get(), common_.get());
-	common_.check(kWhat + ": factorisation");
+	common_.check(kCholeskyWhat + ": factorisation");
 
 	const auto* p = static_cast<const int*>(L_->Perm);
 	if (!std::equal(wanted.order.begin(), wanted.order.end(), p))
-		throw std::logic_error(kWhat + ": CHOLMOD did not keep the given ordering");
+		throw std::logic_error(kCholeskyWhat + ": CHOLMOD did not keep the given ordering");
 	ordering_ = wanted;
 	factored_dim_ = n;
 	try
 	{
-		checkFactor(info, 0, kWhat);
+		checkFactor(info, 0, kCholeskyWhat);
 	}
 	catch (...)
 	{
@@ -88,7 +88,7 @@ void IncrementalCholesky::refactorTrailingPart(const InformationForm& info)
 	{
 		applyPendingUpdates();
 		addNewVariables(info);
-		checkFactor(info, updates_.start(), kWhat);
+		checkFactor(info, updates_.start(), kCholeskyWhat);
 	}
 	catch (...)
 	{
@@ -114,7 +114,7 @@ void IncrementalCholesky::applyPendingUpdates()
 	}
 	auto C = ownSparse(cholmod_allocate_sparse(capacity_, columns, nnz, true, true, 0, CHOLMOD_REAL, common_.get()),
 					   common_);
-	if (!C) common_.check(kWhat + ": allocating the update");
+	if (!C) common_.check(kCholeskyWhat + ": allocating the update");
 	auto* cp = static_cast<int*>(C->p);
 	auto* ci = static_cast<int*>(C->i);
 	auto* cx = static_cast<double*>(C->x);
@@ -144,7 +144,7 @@ void IncrementalCholesky::applyPendingUpdates()
 	cp[columns] = k;
 	if (k == 0) return;
 	cholmod_updown_solve(true, C.get(), L_.get(), y_.get(), delta_b_.get(), common_.get());
-	common_.check(kWhat + ": update of the trailing factor");
+	common_.check(kCholeskyWhat + ": update of the trailing factor");
 }
 
 void IncrementalCholesky::addNewVariables(const InformationForm& info)
@@ -161,7 +161,7 @@ void IncrementalCholesky::addNewVariables(const InformationForm& info)
 		std::sort(column.begin(), column.end());
 		auto R = ownSparse(
 			cholmod_allocate_sparse(capacity_, 1, column.size(), true, true, 0, CHOLMOD_REAL, common_.get()), common_);
-		if (!R) common_.check(kWhat + ": allocating a new row");
+		if (!R) common_.check(kCholeskyWhat + ": allocating a new row");
 		static_cast<int*>(R->p)[0] = 0;
 		static_cast<int*>(R->p)[1] = static_cast<int>(column.size());
 		for (std::size_t k = 0; k < column.size(); ++k)
@@ -171,7 +171,7 @@ void IncrementalCholesky::addNewVariables(const InformationForm& info)
 		}
 		double bk[2] = {info.vector()[g], 0.0};
 		cholmod_rowadd_solve(position(g), R.get(), bk, L_.get(), y_.get(), delta_b_.get(), common_.get());
-		common_.check(kWhat + ": adding " + info.describeScalar(g));
+		common_.check(kCholeskyWhat + ": adding " + info.describeScalar(g));
 	}
 }
 
@@ -180,8 +180,8 @@ void IncrementalCholesky::forwardSolve(const InformationForm& info)
 	auto b = zeroDense(capacity_, 1, common_);
 	std::copy(info.vector().data(), info.vector().data() + info.scalarDim(), static_cast<double*>(b->x));
 	CholmodDensePtr pb;
-	cholmodSolve(CHOLMOD_P, L_.get(), b.get(), pb, ws_, common_, kWhat + ": permuting i");
-	cholmodSolve(CHOLMOD_L, L_.get(), pb.get(), y_, ws_, common_, kWhat + ": forward substitution");
+	cholmodSolve(CHOLMOD_P, L_.get(), b.get(), pb, ws_, common_, kCholeskyWhat + ": permuting i");
+	cholmodSolve(CHOLMOD_L, L_.get(), pb.get(), y_, ws_, common_, kCholeskyWhat + ": forward substitution");
 }
 
 void IncrementalCholesky::checkFactor(const InformationForm& info, int first_position, const std::string& what)
@@ -192,8 +192,8 @@ void IncrementalCholesky::checkFactor(const InformationForm& info, int first_pos
 void IncrementalCholesky::solveState(const InformationForm& info, Eigen::VectorXd& x)
 {
 	// Eq. (3.37): back substitution D L^T z = y, then x = P^T z.
-	cholmodSolve(CHOLMOD_DLt, L_.get(), y_.get(), z_, ws_, common_, kWhat + ": back substitution");
-	cholmodSolve(CHOLMOD_Pt, L_.get(), z_.get(), x_, ws_, common_, kWhat + ": permuting the state");
+	cholmodSolve(CHOLMOD_DLt, L_.get(), y_.get(), z_, ws_, common_, kCholeskyWhat + ": back substitution");
+	cholmodSolve(CHOLMOD_Pt, L_.get(), z_.get(), x_, ws_, common_, kCholeskyWhat + ": permuting the state");
 	x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(x_->x), info.scalarDim());
 }
 
@@ -204,7 +204,7 @@ Eigen::MatrixXd IncrementalCholesky::solveColumns(const InformationForm& info, c
 	auto B = zeroDense(capacity_, k, common_);
 	for (int j = 0; j < k; ++j) static_cast<double*>(B->x)[static_cast<std::size_t>(j) * capacity_ + scalars[j]] = 1.0;
 	CholmodDensePtr X;
-	cholmodSolve(CHOLMOD_A, L_.get(), B.get(), X, ws_, common_, kWhat + ": covariance columns");
+	cholmodSolve(CHOLMOD_A, L_.get(), B.get(), X, ws_, common_, kCholeskyWhat + ": covariance columns");
 	const Eigen::Map<const Eigen::MatrixXd> all(static_cast<const double*>(X->x), capacity_, k);
 	return all.topRows(info.scalarDim());
 }

@@ -9,7 +9,7 @@ namespace esif
 {
 namespace
 {
-const std::string kWhat = "sparse recovery (PCG preconditioner)";
+const std::string kPreconditionerWhat = "sparse recovery (PCG preconditioner)";
 
 }  // namespace
 
@@ -26,7 +26,7 @@ void IncrementalPreconditioner::noteUpdate(const InformationForm& info, const Up
 
 void IncrementalPreconditioner::refresh(const InformationForm& info, const Eigen::Vector2d& reference)
 {
-	if (info.scalarDim() == 0) throw NumericalError(kWhat + ": the information form has no variables");
+	if (info.scalarDim() == 0) throw NumericalError(kPreconditionerWhat + ": the information form has no variables");
 	if (updates_.overflowed())
 		factorAfresh(info, reference);
 	else if (!updates_.empty() || info.scalarDim() > factored_dim_)
@@ -38,9 +38,9 @@ LowerCsc IncrementalPreconditioner::factorChecked(const LowerCsc& A, int first_p
 	auto ic = incompleteCholesky(A, params_.ic_drop_tolerance, params_.min_pivot_ratio);
 	std::vector<double> pivots(first_position, 1.0);  // leading pivots are not re-examined
 	pivots.insert(pivots.end(), ic.pivots.begin(), ic.pivots.end());
-	checkPivots(pivots, first_position, ordering_.order, params_.min_pivot_ratio, info, kWhat);
+	checkPivots(pivots, first_position, ordering_.order, params_.min_pivot_ratio, info, kPreconditionerWhat);
 	if (!ic.ok)
-		throw NumericalError(kWhat + ": incomplete Cholesky broke down; lower ic_drop_tolerance (" +
+		throw NumericalError(kPreconditionerWhat + ": incomplete Cholesky broke down; lower ic_drop_tolerance (" +
 							 std::to_string(params_.ic_drop_tolerance) + ")");
 	return std::move(ic.L);
 }

@@ -1,6 +1,7 @@
 #pragma once
 /// \file NumberText.h
-/// Private helper of the text map writers (landmarks.txt, trajectory.tum).
+/// Numbers as text, round-trip exact: the text map writers (landmarks.txt,
+/// trajectory.tum) and the readers' error messages.
 
 #include <charconv>
 #include <string>
@@ -15,6 +16,14 @@ inline void append(std::string& out, double v)
 	char buf[32];
 	const auto r = std::to_chars(buf, buf + sizeof(buf), v);
 	out.append(buf, r.ptr);
+}
+
+/// The same text as a string (error messages name values this way too).
+inline std::string text(double v)
+{
+	std::string out;
+	append(out, v);
+	return out;
 }
 
 }  // namespace esif::number_text

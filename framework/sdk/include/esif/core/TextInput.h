@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace esif
 {
@@ -28,6 +29,9 @@ bool pathPresent(const std::string& path);
 /// (links followed): not found, a folder, a device or FIFO, a dangling link
 /// or a loop of links each have their own message. Returns its size.
 std::uintmax_t requireRegularFile(const std::string& path, const std::string& what);
+
+/// The blank-separated tokens of `line` (spaces, tabs, a trailing '\r').
+std::vector<std::string> whitespaceTokens(const std::string& line);
 
 /// A text file read line by line under the rules above. Lines are returned
 /// without their '\n' (a '\r' before it stays: callers that split on blanks
