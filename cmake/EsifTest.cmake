@@ -22,7 +22,7 @@ function(esif_add_test name)
     ESIF_BINARY="$<TARGET_FILE:esif>"
     ESIF_PLUGIN_DIR="${ESIF_PLUGIN_OUTPUT_DIR}"
     ESIF_MRPT_DATASETS="${ESIF_MRPT_DATASETS}")
-  set_target_properties(${name} PROPERTIES BUILD_RPATH "${CMAKE_BINARY_DIR}/lib")
+  set_target_properties(${name} PROPERTIES BUILD_RPATH "${CMAKE_BINARY_DIR}/lib" UNITY_BUILD OFF)
   add_dependencies(${name} esif esif_all_plugins)
   gtest_discover_tests(${name}
     WORKING_DIRECTORY ${CMAKE_BINARY_DIR}
