@@ -6,8 +6,9 @@
 #
 #   bash bench/end_to_end.sh [RUNS] [--campaign] [--update-docs]
 #
-# Rows: `esif --help` and `esif plugins` (start-up alone), the EKF on
-# rawlogs/grid196.rawlog, SLSJF smoothing every 50 maps on Victoria Park
+# Rows: `esif --help` and `esif plugins` (start-up alone), `esif run --help`
+# (start-up with the host and MRPT loaded), the EKF on rawlogs/grid196.rawlog
+# with and without its figures, SLSJF smoothing every 50 maps on Victoria Park
 # (configs/vicpark/slsjf_smoothed.ini; skipped without the dataset) and SLSJF
 # on the simulated grid1225_large (configs/slsjf.ini). --campaign adds
 # `esif montecarlo` on grid196 with the EKF, D-SLAM, SLSJF and D-SLAM map
@@ -96,7 +97,13 @@ table() {
   echo "|---|---:|---:|---:|---:|"
   measure '`esif --help`' --help
   measure '`esif plugins`' plugins
+  # Any other command loads the host and, through it, MRPT; Debian's MRPT 2.5
+  # links OpenCV and GDAL, so this is the floor under every run.
+  local libs
+  libs=$(ldd "$bin_dir/../lib/libesif_app.so" | wc -l)
+  measure "\`esif run --help\` (loads the host and MRPT: $libs shared libraries)" run --help
   measure 'EKF, `rawlogs/grid196.rawlog` (3,000 steps)' run --config configs/ekf.ini --rawlog rawlogs/grid196.rawlog --out "$work/ekf_grid196"
+  measure 'EKF, `rawlogs/grid196.rawlog`, `--no-figures`' run --no-figures --config configs/ekf.ini --rawlog rawlogs/grid196.rawlog --out "$work/ekf_grid196_no_figures"
   if vp=$(vicpark_rawlog 2>/dev/null); then
     measure 'SLSJF smoothing every 50 maps, Victoria Park (6,969 steps)' run --config configs/vicpark/slsjf_smoothed.ini --rawlog "$vp" --out "$work/slsjf_vicpark"
   else

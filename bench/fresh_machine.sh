@@ -71,7 +71,7 @@ built = build[-1] if build else installed
 installs = next((text for _, text in rows if text.startswith("esif setup: installing")), "")
 packages = len(installs.split()) - 3 if installs else 0
 print(f"| `bash scripts/{name}` | {'ok' if status == '0' else 'exit ' + status} | {end / 60:.1f} min | "
-      f"{installed / 60:.1f} min ({packages} packages) | {(built - installed) / 60:.1f} min | {(end - built) / 60:.1f} min |")
+      f"{installed / 60:.1f} min ({packages} packages and their dependencies) | {(built - installed) / 60:.1f} min | {(end - built) / 60:.1f} min |")
 PY
 }
 
@@ -86,7 +86,9 @@ output=$(
   echo "|---|---|---:|---:|---:|---:|"
   echo "$rows"
   echo
-  echo "One run each on $(nproc) cores in a fresh \`debootstrap --variant=minbase bookworm\` root: no packages (not even a compiler), no ccache, no build folder. \`test.sh\` runs after \`demo.sh\`, the quick start's order, so it builds only the tests. Logs: \`${bench_out#"$root"/}/fresh_*.log\`."
+  tests_note=""
+  [ "$with_tests" -eq 0 ] || tests_note=" \`test.sh\` runs after \`demo.sh\`, the quick start's order, so it builds only the tests."
+  echo "One run each on $(nproc) cores in a fresh \`debootstrap --variant=minbase bookworm\` root: no packages (not even a compiler), no ccache, no build folder.$tests_note Logs: \`${bench_out#"$root"/}/fresh_*.log\`."
 )
 echo "$output"
 if [ "$update_docs" -eq 1 ]; then
