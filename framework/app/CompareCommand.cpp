@@ -1,5 +1,6 @@
 #include <esif/safeio/ChildProcess.h>
 #include "ConfigCheck.h"
+#include "PluginPreload.h"
 #include "CommandLine.h"
 #include "Commands.h"
 
@@ -380,7 +381,9 @@ int compareCommand(int argc, char** argv)
 		false, "", "LABEL|DIR", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 	// Each config's run is a fork of the run server (RunServer.h), started
-	// before this process opens a file or starts a thread.
+	// before this process opens a file or starts a thread, with the plugins
+	// already loaded (PluginPreload.h).
+	preloadPlugins(plugin_dir.isSet() ? std::optional<std::string>(plugin_dir.getValue()) : std::nullopt);
 	const RunServer server(runMain);
 	if (rawlog.isSet() == local_maps.isSet())
 		throw ConfigError("esif compare: give exactly one of --rawlog FILE and --local-maps DIR (see --help)");

@@ -7,6 +7,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 #include "ConfigCheck.h"
+#include "PluginPreload.h"
 #include "MonteCarloJobs.h"
 
 #include <esif/config/ConfigFile.h>
@@ -131,9 +132,14 @@ int monteCarloCommand(int argc, char** argv)
 		"CONFIG/seed_S", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
 	// Runs are forks of the run server (RunServer.h), started before this
-	// process opens a file or starts a thread.
+	// process opens a file or starts a thread, with the plugins already
+	// loaded (PluginPreload.h).
 	std::optional<RunServer> server;
-	if (!collect.isSet() && !emit_jobs.isSet()) server.emplace(runMain);
+	if (!collect.isSet() && !emit_jobs.isSet())
+	{
+		preloadPlugins();
+		server.emplace(runMain);
+	}
 
 	const bool planning = scenario.isSet() || configs.isSet() || runs.isSet() || seed0.isSet();
 	if (collect.isSet())
