@@ -383,7 +383,7 @@ int compareCommand(int argc, char** argv)
 	// Each config's run is a fork of the run server (RunServer.h), started
 	// before this process opens a file or starts a thread, with the plugins
 	// already loaded (PluginPreload.h).
-	preloadPlugins(plugin_dir.isSet() ? std::optional<std::string>(plugin_dir.getValue()) : std::nullopt);
+	preloadPlugins(valueIfSet(plugin_dir));
 	const RunServer server(runMain);
 	if (rawlog.isSet() == local_maps.isSet())
 		throw ConfigError("esif compare: give exactly one of --rawlog FILE and --local-maps DIR (see --help)");
@@ -391,8 +391,7 @@ int compareCommand(int argc, char** argv)
 		throw ConfigError("esif compare: --ground-truth applies to --rawlog input, not to --local-maps");
 	if (rawlog.isSet() && reference_result.isSet())
 		throw ConfigError("esif compare: --reference-result applies to --local-maps input, not to --rawlog");
-	const std::optional<std::string> plugin_folder =
-		plugin_dir.isSet() ? std::optional<std::string>(plugin_dir.getValue()) : std::nullopt;
+	const std::optional<std::string> plugin_folder = valueIfSet(plugin_dir);
 
 	const auto config_list = splitCommas(configs.getValue());
 	if (config_list.empty()) throw ConfigError("esif compare: --configs: no config file given");
@@ -432,8 +431,7 @@ int compareCommand(int argc, char** argv)
 		const std::string input = rawlog.isSet() ? rawlog.getValue() : local_maps.getValue();
 		const ChildSettings settings{
 			rawlog.isSet() ? "--rawlog" : "--local-maps", input,
-			ground_truth.isSet() ? std::optional<std::string>(ground_truth.getValue()) : std::nullopt,
-			reference_result.isSet() ? std::optional<std::string>(reference_result.getValue()) : std::nullopt,
+			valueIfSet(ground_truth), valueIfSet(reference_result),
 			plugin_folder, {staging, withoutTrailingSeparator(out.getValue())}};
 		std::vector<Stats> runs = runAll(config_list, checked, planned, sources, order, run_dirs, settings);
 		markSucceededRuns(runs);

@@ -24,7 +24,7 @@ std::vector<CheckedConfig> checkConfigs(const std::vector<std::string>& configs,
 {
 	for (const auto& c : configs)
 		if (!std::filesystem::is_regular_file(c)) throw ConfigError(c + ": config file not found");
-	PluginLoader loader(plugin_dir ? std::vector<std::string>{*plugin_dir} : std::vector<std::string>{});
+	auto loader = PluginLoader::withExtraFolder(plugin_dir);
 	loader.loadAll();
 	std::vector<CheckedConfig> checked;
 	for (const auto& c : configs)

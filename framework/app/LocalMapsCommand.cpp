@@ -55,8 +55,7 @@ struct RawlogMapArgs
 
 	PluginLoader loader()
 	{
-		return PluginLoader(plugin_dir.isSet() ? std::vector<std::string>{plugin_dir.getValue()}
-											   : std::vector<std::string>{});
+		return PluginLoader::withExtraFolder(valueIfSet(plugin_dir));
 	}
 };
 

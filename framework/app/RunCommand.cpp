@@ -95,7 +95,7 @@ int runCommand(int argc, char** argv)
 	if (local_maps.isSet() && no_figures.getValue())
 		throw ConfigError("esif run: --no-figures applies to --rawlog input, not to --local-maps");
 
-	PluginLoader loader(plugin_dir.isSet() ? std::vector<std::string>{plugin_dir.getValue()} : std::vector<std::string>{});
+	auto loader = PluginLoader::withExtraFolder(valueIfSet(plugin_dir));
 	if (local_maps.isSet())
 	{
 		LocalMapRunRequest request;

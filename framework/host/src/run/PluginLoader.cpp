@@ -79,6 +79,11 @@ PluginLoader::PluginLoader(std::vector<std::string> dirs) : dirs_(std::move(dirs
 	if (!beside.empty()) dirs_.push_back(beside);
 }
 
+PluginLoader PluginLoader::withExtraFolder(const std::optional<std::string>& extra_dir)
+{
+	return PluginLoader(extra_dir ? std::vector<std::string>{*extra_dir} : std::vector<std::string>{});
+}
+
 void PluginLoader::loadAll(std::ostream& warnings)
 {
 	std::set<std::string> loaded_names;

@@ -6,6 +6,7 @@
 #include <esif/plugin/FilterPlugin.h>
 
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ class PluginLoader
 	/// Plugin folders: `dirs` first, then $ESIF_PLUGIN_PATH (colon separated),
 	/// then the folder beside the host binary (../lib/esif).
 	explicit PluginLoader(std::vector<std::string> dirs = {});
+	/// The default folders, after `extra_dir` (a command's --plugin-dir) if given.
+	static PluginLoader withExtraFolder(const std::optional<std::string>& extra_dir);
 
 	/// Loads every libesif_plugin_*.so once. A file that fails to load (not a
 	/// library, missing symbols, another architecture) is skipped with a
