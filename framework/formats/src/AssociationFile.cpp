@@ -10,7 +10,6 @@
 #include <esif/formats/AssociationFile.h>
 #include <esif/safeio/AtomicFile.h>
 
-#include <charconv>
 #include <optional>
 #include <sstream>
 
@@ -37,23 +36,13 @@ std::optional<Association::Kind> kindOf(const std::string& text)
 	return std::nullopt;
 }
 
-/// The whole token as an integer; nullopt otherwise.
-template <class Int>
-std::optional<Int> parseWhole(const std::string& tok)
-{
-	Int v{};
-	const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v);
-	if (r.ec != std::errc() || r.ptr != tok.data() + tok.size()) return std::nullopt;
-	return v;
-}
-
 /// The N of a `# steps N` comment, which must be the rawlog's step count;
 /// nullopt for any other comment.
 std::optional<std::size_t> stepCountOf(
 	const std::vector<std::string>& toks, const TextLineReader& in, std::size_t rawlog_steps)
 {
 	if (toks.size() < 2 || toks[0] != "#" || toks[1] != "steps") return std::nullopt;
-	const auto n = toks.size() == 3 ? parseWhole<std::size_t>(toks[2]) : std::nullopt;
+	const auto n = toks.size() == 3 ? wholeToken<std::size_t>(toks[2]) : std::nullopt;
 	if (!n) in.fail("expected '# steps N' with N a whole number");
 	if (*n != rawlog_steps)
 		in.fail("recorded for " + toks[2] + " steps, the rawlog has " + std::to_string(rawlog_steps));
@@ -69,10 +58,10 @@ void readRow(
 	static const std::string kColumns = "'step measurement kind landmark_id'";
 	if (toks.size() != 4)
 		in.fail("expected " + kColumns + ", found " + std::to_string(toks.size()) + " values");
-	const auto step = parseWhole<std::size_t>(toks[0]);
-	const auto index = parseWhole<std::size_t>(toks[1]);
+	const auto step = wholeToken<std::size_t>(toks[0]);
+	const auto index = wholeToken<std::size_t>(toks[1]);
 	const auto kind = kindOf(toks[2]);
-	const auto id = parseWhole<LandmarkId>(toks[3]);
+	const auto id = wholeToken<LandmarkId>(toks[3]);
 	if (!step || !index || !id)
 		in.fail("step, measurement and landmark_id must be whole numbers (expected " + kColumns + ")");
 	if (!kind) in.fail("kind '" + toks[2] + "' is not new, matched or rejected");

@@ -11,7 +11,6 @@
 
 #include <Eigen/Cholesky>
 
-#include <charconv>
 #include <cmath>
 #include <vector>
 
@@ -40,22 +39,17 @@ struct Line
 
 	long long id(std::size_t k) const
 	{
-		long long v = 0;
-		const std::string& t = tokens[k];
-		const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
-		if (r.ec != std::errc() || r.ptr != t.data() + t.size() || v < 0)
-			fail("vertex ID '" + t + "' is not a non-negative integer");
-		return v;
+		const auto v = wholeToken<long long>(tokens[k]);
+		if (!v || *v < 0) fail("vertex ID '" + tokens[k] + "' is not a non-negative integer");
+		return *v;
 	}
 
 	double number(std::size_t k) const
 	{
-		double v = 0;
-		const std::string& t = tokens[k];
-		const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
-		if (r.ec != std::errc() || r.ptr != t.data() + t.size()) fail("'" + t + "' is not a number");
-		if (!std::isfinite(v)) fail("'" + t + "' is not finite");
-		return v;
+		const auto v = wholeToken<double>(tokens[k]);
+		if (!v) fail("'" + tokens[k] + "' is not a number");
+		if (!std::isfinite(*v)) fail("'" + tokens[k] + "' is not finite");
+		return *v;
 	}
 
 	/// A coordinate [m] within +-kMaxCoordinate_m.

@@ -11,7 +11,6 @@
 
 #include <Eigen/Geometry>
 
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -27,15 +26,6 @@ std::vector<std::string> tokens(const std::string& line)
 	auto out = whitespaceTokens(line);
 	if (!out.empty() && out[0][0] == '#') return {};
 	return out;
-}
-
-/// The whole token as a double ("nan" and "inf" included); nullopt otherwise.
-std::optional<double> parseNumber(const std::string& tok)
-{
-	double v = 0;
-	const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v);
-	if (r.ec != std::errc() || r.ptr != tok.data() + tok.size()) return std::nullopt;
-	return v;
 }
 
 /// "file:line: problem", the one-line error of a bad row.
@@ -54,7 +44,7 @@ std::vector<double> numbersOf(
 	std::vector<double> v;
 	for (std::size_t k = first; k < toks.size(); ++k)
 	{
-		const auto x = parseNumber(toks[k]);
+		const auto x = wholeToken<double>(toks[k]);
 		if (!x) failAt(path, lineno, "'" + toks[k] + "' is not a number (expected " + columns + ")");
 		v.push_back(*x);
 	}
@@ -112,9 +102,9 @@ std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path)
 		const auto v = numbersOf(toks, 1, 5, path, lineno, kColumns);
 		LandmarkEstimate lm;
 		const std::string& id = toks[0];
-		const auto r = std::from_chars(id.data(), id.data() + id.size(), lm.id);
-		if (r.ec != std::errc() || r.ptr != id.data() + id.size())
-			failAt(path, lineno, "landmark ID '" + id + "' is not an integer (expected " + kColumns + ")");
+		const auto parsed_id = wholeToken<LandmarkId>(id);
+		if (!parsed_id) failAt(path, lineno, "landmark ID '" + id + "' is not an integer (expected " + kColumns + ")");
+		lm.id = *parsed_id;
 		if (const auto [it, added] = line_of_id.emplace(lm.id, lineno); !added)
 			failAt(
 				path, lineno,

@@ -2,12 +2,12 @@
 /// pose_errors.csv and landmark_errors.csv; see EstimationErrorFiles.h.
 
 #include <esif/core/Errors.h>
+#include <esif/core/TextInput.h>
 #include <esif/eval/EstimationErrorFiles.h>
 #include <esif/safeio/AtomicFile.h>
 
 #include <esif/formats/NumberText.h>
 
-#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -46,20 +46,16 @@ std::vector<std::string> fieldsOf(const std::string& line)
 
 double parseNumber(const std::string& field, const std::string& where)
 {
-	double v = 0;
-	const auto r = std::from_chars(field.data(), field.data() + field.size(), v);
-	if (field.empty() || r.ec != std::errc() || r.ptr != field.data() + field.size())
-		throw InputError(where + ": '" + field + "' is not a number");
-	return v;
+	const auto v = wholeToken<double>(field);
+	if (!v) throw InputError(where + ": '" + field + "' is not a number");
+	return *v;
 }
 
 long long parseInteger(const std::string& field, const std::string& where)
 {
-	long long v = 0;
-	const auto r = std::from_chars(field.data(), field.data() + field.size(), v);
-	if (field.empty() || r.ec != std::errc() || r.ptr != field.data() + field.size() || v < 0)
-		throw InputError(where + ": '" + field + "' is not a non-negative integer");
-	return v;
+	const auto v = wholeToken<long long>(field);
+	if (!v || *v < 0) throw InputError(where + ": '" + field + "' is not a non-negative integer");
+	return *v;
 }
 
 std::optional<double> parseNees(const std::string& field, const std::string& where)
