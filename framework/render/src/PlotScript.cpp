@@ -20,7 +20,6 @@ namespace
 /// Text size and line width scale with the figure: tuned at 1000 px wide.
 double scaleOf(int width_px) { return std::clamp(width_px / 1000.0, 0.4, 4.0); }
 
-
 std::string pngTerminal(int w, int h)
 {
 	const double s = scaleOf(w);

@@ -87,8 +87,6 @@ pid_t forkExec(const std::vector<std::string>& args, int stderr_fd, bool discard
 	(void)!write(STDERR_FILENO, message, sizeof(message) - 1);
 	_exit(127);
 }
-
-int waitChild(pid_t pid) { return safeio_detail::waitForChild(pid); }
 }  // namespace
 
 ChildResult runEsifChild(const std::vector<std::string>& args, ChildOutput output, const std::string& who)
@@ -115,7 +113,7 @@ ChildResult runEsifChild(const std::vector<std::string>& args, ChildOutput outpu
 	ChildResult result;
 	result.stderr_text = drain(pipe_fds[0], output == ChildOutput::Shown);
 	close(pipe_fds[0]);
-	const int status = served.pid > 0 ? waitServedRun(served) : waitChild(pid);
+	const int status = served.pid > 0 ? waitServedRun(served) : safeio_detail::waitForChild(pid);
 	termination::removeChild(pid);
 	if (WIFEXITED(status))
 		result.exit_code = WEXITSTATUS(status);
