@@ -26,6 +26,7 @@ inline constexpr CommandSummary kCommandSummaries[] = {
 	{"localmaps", "build local maps from a rawlog, or summarise a folder of them"},
 	{"montecarlo", "Monte Carlo campaign: ANEES and RMSE of configs over N noise draws"},
 	{"bench", "benchmarks (sparse: recovery methods of the sparse core)"},
+	{"calibrate", "fit a rawlog's noise model by maximum likelihood against a reference"},
 };
 
 inline bool isHelpRequest(const std::string& word) { return word == "--help" || word == "-h" || word == "help"; }

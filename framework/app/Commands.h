@@ -31,5 +31,6 @@ int exportCommand(int argc, char** argv);
 /// `esif import g2o`, which importCommand hands g2o input to.
 int importG2oCommand(int argc, char** argv);
 int monteCarloCommand(int argc, char** argv);
+int calibrateCommand(int argc, char** argv);
 
 }  // namespace esif::app

@@ -37,6 +37,7 @@ constexpr Subcommand kSubcommands[] = {
 	{"localmaps", esif::app::localMapsCommand},
 	{"montecarlo", esif::app::monteCarloCommand},
 	{"bench", esif::app::benchCommand},
+	{"calibrate", esif::app::calibrateCommand},
 };
 constexpr bool sameText(const char* a, const char* b) { return *a == *b && (*a == '\0' || sameText(a + 1, b + 1)); }
 

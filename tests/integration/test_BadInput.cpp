@@ -203,7 +203,8 @@ TEST(Cli, PluginsListsTheHostKeysWithDefaults)
 	// Before any plugin: the host's section is listed first.
 	EXPECT_LT(host, r.out.find("EkfSlam"));
 	for (const char* key : {"plugin = ", "label = ", "hide_landmark_ids = false", "keyframe_min_distance_m = 0",
-							"image_size_px = 1000", "max_measurements_per_scan = 1000", "associations_from = "})
+							"image_size_px = 1000", "max_measurements_per_scan = 1000", "associations_from = ",
+							"calibration = "})
 		EXPECT_NE(r.out.find(std::string("\n  ") + key, host), std::string::npos) << key;
 }
 

@@ -91,6 +91,7 @@ LocalMapsOfRawlog buildLocalMapsOfRawlog(const LocalMapBuildRequest& request, Pl
 
 	Rawlog log = readRawlog(request.rawlog_path, readOptionsOf(host));
 	if (log.truncation_warning) std::cerr << "esif: warning: " << *log.truncation_warning << "\n";
+	applyNoiseCalibration(log.steps, host.noise);
 	if (associations) applyAssociations(log, readAssociationFile(*associations, log.steps.size()), *associations);
 	const auto truth = findGroundTruth(request.ground_truth_prefix, request.rawlog_path);
 

@@ -90,6 +90,7 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 
 	Rawlog log = times.time("read", [&] { return readRawlog(request.rawlog_path, readOptionsOf(host)); });
 	if (log.truncation_warning) std::cerr << "esif: warning: " << *log.truncation_warning << "\n";
+	applyNoiseCalibration(log.steps, host.noise);
 	if (associations) applyAssociations(log, readAssociationFile(*associations, log.steps.size()), *associations);
 	scoreAgainstMeasurementTruth(
 		log, request.ground_truth_prefix.value_or(groundTruthPrefixFor(request.rawlog_path)));

@@ -13,6 +13,29 @@
 
 namespace esif
 {
+namespace
+{
+/// [esif] calibration = FILE: its path from the config's folder, its values
+/// into host.noise. A noise set both there and by [esif] sensor_std_* is
+/// an error: one run must not have two answers to one question.
+void loadCalibration(HostParams& host, const ConfigSection& section, const std::string& config_path)
+{
+	const std::filesystem::path file(host.calibration);
+	host.calibration = (file.is_absolute() ? file : std::filesystem::path(config_path).parent_path() / file)
+						   .lexically_normal()
+						   .string();
+	if (!std::filesystem::is_regular_file(host.calibration))
+		throw ConfigError(section.describeKey("calibration", host.calibration + ": no such file"));
+	host.noise = loadNoiseCalibration(host.calibration);
+	if (host.noise.range_std_m > 0 && host.sensor_std_range_m > 0)
+		throw ConfigError(section.describeKey(
+			"sensor_std_range_m", "set here and as range_std_m in " + host.calibration + ": keep one"));
+	if (host.noise.bearing_std_deg > 0 && host.sensor_std_bearing_deg > 0)
+		throw ConfigError(section.describeKey(
+			"sensor_std_bearing_deg", "set here and as bearing_std_deg in " + host.calibration + ": keep one"));
+}
+}  // namespace
+
 HostParams loadHostParams(const ConfigFile& cfg)
 {
 	HostParams host;
@@ -22,6 +45,7 @@ HostParams loadHostParams(const ConfigFile& cfg)
 		throw ConfigError(section.describeKey("plugin", "missing (no default): name the plugin class, see `esif plugins`"));
 	if (host.label.empty()) host.label = std::filesystem::path(cfg.origin()).stem().string();
 	section.rejectUnknownKeys();
+	if (!host.calibration.empty()) loadCalibration(host, section, cfg.origin());
 	return host;
 }
 
@@ -85,9 +109,9 @@ std::vector<NamedInput> rawlogRunInputs(
 	inputs.push_back({"the ground truth", measurementTruthFileOf(truth)});
 	// The folder named by --associations-from, else by the config (read
 	// again here: it is checked before anything is written).
-	const std::string associations =
-		associations_from ? *associations_from : loadHostParams(ConfigFile::load(config)).associations_from;
-	inputs.push_back({"the associations folder", associations});
+	const HostParams host = loadHostParams(ConfigFile::load(config));
+	inputs.push_back({"the associations folder", associations_from.value_or(host.associations_from)});
+	inputs.push_back({"the calibration file", host.calibration});
 	return inputs;
 }
 
@@ -103,6 +127,11 @@ std::string effectiveParamsIni(const HostParams& host, const FilterPlugin& plugi
 	std::ostringstream out;
 	out << "# Effective parameters of this run (defaults filled in).\n[" << kHostSection << "]\n";
 	for (const auto& p : describeParams(host)) out << p.key << " = " << p.value << "\n";
+	if (!host.calibration.empty())
+	{
+		out << "# the calibration file's values:\n";
+		for (const auto& p : describeParams(host.noise)) out << "#   " << p.key << " = " << p.value << "\n";
+	}
 	out << "\n[" << plugin.sectionName() << "]\n";
 	for (const auto& p : plugin.parameters()) out << p.key << " = " << p.value << "\n";
 	return out.str();

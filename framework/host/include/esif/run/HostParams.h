@@ -3,6 +3,7 @@
 /// The host's own INI section `[esif]`: which plugin to run and how the host
 /// turns the rawlog into plugin input and outputs.
 
+#include <esif/calibration/NoiseCalibration.h>
 #include <esif/config/ParamBinder.h>
 
 #include <string>
@@ -25,6 +26,11 @@ struct HostParams
 	/// (relative to the current directory; in `esif compare` also the label of
 	/// another compared config); empty = the rawlog's own IDs.
 	std::string associations_from;
+	/// Calibration file (NoiseCalibration.h, written by `esif calibrate`),
+	/// relative to the config's folder; empty = the rawlog's noise as it is.
+	std::string calibration;
+	/// Its values, loaded by loadHostParams (not a key of [esif]).
+	NoiseCalibration noise;
 
 	void declare(ParamBinder& b)
 	{
@@ -49,6 +55,9 @@ struct HostParams
 		b.text("associations_from", associations_from,
 			   "run folder whose associations.txt gives the landmark IDs of every measurement (in esif compare "
 			   "also another config's label); empty = the rawlog's IDs");
+		b.text("calibration", calibration,
+			   "calibration file of the rawlog's noise (esif calibrate), relative to this config's folder; empty = "
+			   "the rawlog's noise");
 	}
 };
 
