@@ -28,8 +28,8 @@
 #include "DslamParams.h"
 #include "KidnappedRobot.h"
 #include "LocalSlam.h"
-#include "NewFeatureConfirmation.h"
 
+#include <esif/association/TentativeFeatures.h>
 #include <esif/plugin/FilterPlugin.h>
 #include <esif/relative/FeatureMap.h>
 #include <esif/relative/RelativeAssociation.h>
@@ -101,7 +101,7 @@ class Dslam : public FilterPlugin
 	dslam::LocalSlam local_;
 	dslam::AdmissibleChain chain_;
 	dslam::DivergenceGuard guard_;
-	std::optional<dslam::NewFeatureConfirmation> confirmation_;
+	std::optional<TentativeFeatures> confirmation_;
 	std::optional<relative::MapUpdate> pending_;  ///< last map update, withdrawn if the next scan is inadmissible
 	std::unordered_set<LandmarkId> started_;	  ///< features reported New so far
 	LandmarkId next_own_id_ = 0;

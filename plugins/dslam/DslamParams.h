@@ -84,7 +84,7 @@ struct DslamParams
 	/// divergence_disagreeing_scans).
 	int relocalise_after_disagreeing_scans = 5;
 	/// A feature is mapped only once a second sighting agrees with its first
-	/// at the outlier gate's quantile (NewFeatureConfirmation.h); false maps
+	/// at the outlier gate's quantile (esif/association/TentativeFeatures.h); false maps
 	/// it at its first sighting, as the book. On configs/sim/wrong_ids.ini
 	/// (1% misread IDs) the first sighting of 24 features was a misread; each
 	/// then sat at its neighbour's place for good.

@@ -51,12 +51,12 @@ constexpr double kVicparkChi2PerDof = 1.5;
 
 TEST(CeresFullRealData, ConvergesOnVictoriaParkWithTheDatasetsIds)
 {
-	// configs/vicpark/ceres_full.ini keeps every [ceres_full] default but
+	// configs/calibration/vicpark_reference.ini keeps every [ceres_full] default but
 	// outliers = keep (every measurement a term, as GTSAM's solution).
 	test::TempDir dir;
 	const auto vicpark = test::importVictoriaPark(dir);
 	if (!vicpark) GTEST_SKIP() << test::victoriaParkDataset() << " not present";
-	const Stats full = runAndReadStats(test::sourcePath("configs/vicpark/ceres_full.ini"), *vicpark, dir.file("full"));
+	const Stats full = runAndReadStats(test::sourcePath("configs/calibration/vicpark_reference.ini"), *vicpark, dir.file("full"));
 	EXPECT_EQ(test::statNumber(full, "plugin_converged"), 1);
 	EXPECT_LT(test::statNumber(full, "plugin_chi2") / test::statNumber(full, "plugin_chi2_dof"), kVicparkChi2PerDof);
 	// GTSAM's optimum on the same data and noise: chi2 7930 (4 digits); any

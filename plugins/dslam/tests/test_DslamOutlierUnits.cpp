@@ -1,10 +1,9 @@
-// Units of D-SLAM's outlier handling: the second-sighting confirmation of new
-// features (NewFeatureConfirmation), the re-observation gate's innovation
+// Units of D-SLAM's outlier handling: the re-observation gate's innovation
 // (OutlierGate: reobservationDistance2) and the tracking stage of association
-// without IDs (HeldFeatureTracking).
+// without IDs (HeldFeatureTracking). The second-sighting confirmation of new
+// features is the SDK's TentativeFeatures (framework/sdk/tests/test_TentativeFeatures.cpp).
 
 #include "HeldFeatureTracking.h"
-#include "NewFeatureConfirmation.h"
 #include "OutlierGate.h"
 
 #include <esif/association/Chi2.h>
@@ -22,49 +21,6 @@ using namespace esif;
 using namespace esif::dslam;
 
 const double kGate = chi2Quantile(0.999, 2);  // 13.8
-
-TEST(DslamNewFeatureConfirmation, SecondAgreeingSightingConfirms)
-{
-	NewFeatureConfirmation c(kGate, 50);
-	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();	 // 0.1 m sigma
-	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 10));
-	EXPECT_EQ(c.tentativeCount(), 1u);
-	// 0.2 m apart with a combined sigma of 0.14 m per axis: d2 = 2, inside.
-	EXPECT_TRUE(c.confirm(7, {1.2, 2.0}, cov, 11));
-	EXPECT_EQ(c.tentativeCount(), 0u);
-}
-
-TEST(DslamNewFeatureConfirmation, DisagreeingSightingReplacesTheFirst)
-{
-	NewFeatureConfirmation c(kGate, 50);
-	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();
-	EXPECT_FALSE(c.confirm(7, {4.0, 2.0}, cov, 10));  // a misread: the neighbour's place, 3 m off
-	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 11));  // d2 = 9 / 0.02 = 450: replaces it
-	EXPECT_EQ(c.tentativeCount(), 1u);
-	EXPECT_TRUE(c.confirm(7, {1.05, 2.0}, cov, 12));  // agrees with the replacement
-}
-
-TEST(DslamNewFeatureConfirmation, OtherIdsAndExpiredSightingsDoNotConfirm)
-{
-	NewFeatureConfirmation c(kGate, 5);
-	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();
-	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 10));
-	EXPECT_FALSE(c.confirm(8, {1.0, 2.0}, cov, 11));  // same place, another landmark
-	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 16));  // step 16 > 10 + 5: the first has expired
-	EXPECT_TRUE(c.confirm(7, {1.0, 2.0}, cov, 17));
-}
-
-TEST(DslamNewFeatureConfirmation, WithoutIdsTheNearestAgreeingSightingConfirms)
-{
-	NewFeatureConfirmation c(kGate, 50);
-	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();
-	EXPECT_FALSE(c.confirm(std::nullopt, {0.0, 0.0}, cov, 1));	 // clutter
-	EXPECT_FALSE(c.confirm(std::nullopt, {5.0, 0.0}, cov, 1));	 // a feature
-	EXPECT_TRUE(c.confirm(std::nullopt, {5.1, 0.1}, cov, 2));
-	EXPECT_EQ(c.tentativeCount(), 1u);	// the clutter waits, and expires
-	EXPECT_FALSE(c.confirm(std::nullopt, {20.0, 0.0}, cov, 3));
-	EXPECT_EQ(c.tentativeCount(), 2u);
-}
 
 TEST(DslamReobservationGate, DistanceMatchesSampledInnovationStatistics)
 {

@@ -1,3 +1,4 @@
+#include <esif/association/Ambiguity.h>
 #include <esif/association/Chi2.h>
 #include <esif/ekf/EkfAssociationParams.h>
 
@@ -19,6 +20,16 @@ void EkfAssociationParams::declare(ParamBinder& b)
 	b.real("new_landmark_chi2_quantile", new_landmark_chi2_quantile,
 		   "confidence beyond which an unmatched measurement is a new landmark, not an ambiguous one",
 		   Bounds::openUnit());
+	b.flag("confirm_new_landmarks", confirm_new_landmarks,
+		   "without IDs, a new landmark enters the map only when a second sighting within "
+		   "confirmation_window_steps agrees with the first (tentative landmarks); unconfirmed sightings are "
+		   "neither mapped nor fused");
+	b.integer("confirmation_window_steps", confirmation_window_steps,
+			  "steps a tentative landmark waits for its confirming sighting", Bounds::atLeast(1));
+	b.real("ambiguity_margin_chi2_quantile", ambiguity_margin_chi2_quantile,
+		   "a match is taken only when every other candidate's squared Mahalanobis distance exceeds the chosen "
+		   "one's by this chi-square quantile (2 dof); else the measurement waits (rejected); 0 = off",
+		   Bounds{0, 1, false, true});
 	b.real("candidate_margin_m", candidate_margin_m, "range margin for association candidates [m]",
 		   Bounds::nonNegative());
 	b.real("candidate_margin_deg", candidate_margin_deg, "bearing margin for association candidates [deg]",
@@ -39,6 +50,11 @@ void EkfAssociationParams::declare(ParamBinder& b)
 		   "more than this squared Mahalanobis distance (sensor noise)",
 		   Bounds::nonNegative());
 	search.declare(b);
+}
+
+double EkfAssociationParams::ambiguityMarginDistance2() const
+{
+	return esif::ambiguityMarginDistance2(ambiguity_margin_chi2_quantile);
 }
 
 double EkfAssociationParams::idGateDistance2() const

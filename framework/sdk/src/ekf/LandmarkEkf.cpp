@@ -1,6 +1,8 @@
+#include <esif/association/Ambiguity.h>
 #include <esif/association/Chi2.h>
 #include <esif/association/DataAssociation.h>
 #include <esif/core/Errors.h>
+#include <esif/models/RangeBearingModel.h>
 #include <esif/ekf/LandmarkEkf.h>
 
 #include <Eigen/Cholesky>
@@ -22,12 +24,14 @@ LandmarkEkf::LandmarkEkf(const EkfAssociationParams& params, LandmarkId first_ow
 	  id_gate_distance2_(params.idGateDistance2()),
 	  iterated_{params.update_iterations, params.relinearise_above_d2},
 	  core_(jacobians),
-	  next_own_id_(first_own_id)
+	  next_own_id_(first_own_id),
+	  tentative_(gate_distance2_new_, static_cast<std::size_t>(params.confirmation_window_steps))
 {
 }
 
 StepReport LandmarkEkf::processStep(const StepInput& step)
 {
+	tentative_.expire(step.index);
 	if (step.odometry) core_.predict(*step.odometry);
 	if (!step.scan) return {};
 	if (params_.min_range_m > 0) return processUsableMeasurements(step);
@@ -48,7 +52,7 @@ StepReport LandmarkEkf::processScan(const StepInput& step)
 	if (outcome.stopped_uphill) ++stopped_uphill_;
 	for (const auto& m : matches) confirmed_.insert(ids_[m.landmark]);
 	dropLandmarks(unconfirmed_failing_);
-	addNewLandmarks(*step.scan, report);
+	addNewLandmarks(*step.scan, step.index, report);
 	return report;
 }
 
@@ -214,10 +218,19 @@ StepReport LandmarkEkf::associateByDistance(const Scan& scan, std::vector<EkfSla
 
 	StepReport report;
 	std::vector<bool> taken(candidates.size(), false);
+	// With two pairs or more the joint test has decided between the
+	// hypotheses; a lone pair rests on its individual gate alone.
+	const bool lone_pair =
+		std::count_if(result.candidate_of.begin(), result.candidate_of.end(), [](int c) { return c >= 0; }) == 1;
 	for (std::size_t i = 0; i < ms.size(); ++i)
 	{
 		const int c = result.candidate_of[i];
-		if (c >= 0 && !taken[c])
+		if (c >= 0 && !taken[c] && lone_pair && isAmbiguous(ms[i], sensor, candidates, static_cast<std::size_t>(c)))
+		{
+			++ambiguous_waits_;
+			report.associations.push_back({Association::Kind::Rejected, -1});
+		}
+		else if (c >= 0 && !taken[c])
 		{
 			taken[c] = true;
 			const std::size_t idx = candidates[c];
@@ -232,7 +245,32 @@ StepReport LandmarkEkf::associateByDistance(const Scan& scan, std::vector<EkfSla
 	return report;
 }
 
-void LandmarkEkf::addNewLandmarks(const Scan& scan, StepReport& report)
+bool LandmarkEkf::isAmbiguous(
+	const RangeBearing& m, const Pose2& sensor, const std::vector<std::size_t>& candidates, std::size_t chosen) const
+{
+	const double margin = params_.ambiguityMarginDistance2();
+	if (margin <= 0) return false;
+	Eigen::VectorXd d2(static_cast<Eigen::Index>(candidates.size()));
+	for (std::size_t j = 0; j < candidates.size(); ++j) d2(static_cast<Eigen::Index>(j)) = innovationDistance2(candidates[j], m, sensor);
+	const Eigen::Vector2d z_chosen = core_.predictMeasurement(candidates[chosen], sensor).z;
+	const Eigen::LLT<Eigen::Matrix2d> sensor_noise(m.cov);
+	return ambiguousMatch(d2, static_cast<Eigen::Index>(chosen), margin, [&](Eigen::Index j) {
+		Eigen::Vector2d dz = core_.predictMeasurement(candidates[static_cast<std::size_t>(j)], sensor).z - z_chosen;
+		dz(1) = wrapAngle(dz(1));
+		return dz.dot(sensor_noise.solve(dz));
+	});
+}
+
+bool LandmarkEkf::confirmedSighting(const RangeBearing& m, const Pose2& sensor, std::size_t step)
+{
+	const LandmarkFromMeasurement p = landmarkFromRangeBearing(core_.robot(), sensor, m.range_m, m.bearing_rad);
+	Eigen::Matrix2d cov = p.d_robot * core_.robotCov() * p.d_robot.transpose() +
+		p.d_measurement * m.cov * p.d_measurement.transpose();
+	cov = (0.5 * (cov + cov.transpose())).eval();
+	return tentative_.confirm(std::nullopt, p.position, cov, step);
+}
+
+void LandmarkEkf::addNewLandmarks(const Scan& scan, std::size_t step, StepReport& report)
 {
 	const Pose2 sensor = toPose2(scan.sensor_on_robot);
 	for (std::size_t i = 0; i < report.associations.size(); ++i)
@@ -240,6 +278,12 @@ void LandmarkEkf::addNewLandmarks(const Scan& scan, StepReport& report)
 		auto& a = report.associations[i];
 		if (a.kind != Association::Kind::New) continue;
 		const auto& m = scan.measurements[i];
+		if (a.id < 0 && params_.confirm_new_landmarks && !confirmedSighting(m, sensor, step))
+		{
+			a.kind = Association::Kind::Rejected;
+			++unconfirmed_sightings_;
+			continue;
+		}
 		if (a.id < 0)
 		{
 			while (index_of_.count(next_own_id_)) ++next_own_id_;

@@ -1,6 +1,8 @@
+#include <esif/association/Ambiguity.h>
 #include <esif/association/Chi2.h>
 #include <esif/association/DataAssociation.h>
 #include <esif/models/RangeBearingModel.h>
+#include <esif/models/Se2.h>
 #include <esif/relative/RelativeAssociation.h>
 
 #include <Eigen/Cholesky>
@@ -20,7 +22,8 @@ Eigen::Vector2d measurementOf(const RangeBearing& m) { return {m.range_m, m.bear
 RelativeAssociation::RelativeAssociation(const RelativeAssociationParams& params,
 										 const ReferenceRules& reference_rules)
 	: params_(params), reference_rules_(reference_rules),
-	  new_gate_(chi2Quantile(params.new_landmark_chi2_quantile, 2))
+	  new_gate_(chi2Quantile(params.new_landmark_chi2_quantile, 2)),
+	  ambiguity_margin_d2_(ambiguityMarginDistance2(params.ambiguity_margin_chi2_quantile))
 {
 }
 
@@ -137,6 +140,7 @@ StepReport RelativeAssociation::associate(const Scan& scan, const Pose2& robot, 
 		}
 	}
 	verify(matches, t);
+	dropUncheckedAmbiguousMatch(matches, in, d2, scan);
 
 	StepReport report;
 	report.associations.assign(ms.size(), {Association::Kind::Rejected, -1});
@@ -151,6 +155,20 @@ StepReport RelativeAssociation::associate(const Scan& scan, const Pose2& robot, 
 			report.associations[i] = {Association::Kind::New, -1};
 	}
 	return report;
+}
+
+void RelativeAssociation::dropUncheckedAmbiguousMatch(
+	std::vector<Match>& matches, const AssociationInput& in, const Eigen::MatrixXd& d2, const Scan& scan)
+{
+	if (matches.size() != 1 || matches.front().anchor) return;	// checked by eq. (3.45), or nothing to check
+	const Eigen::Index i = matches.front().measurement, c = matches.front().candidate;
+	const Eigen::LLT<Eigen::Matrix2d> noise(scan.measurements[static_cast<std::size_t>(i)].cov);
+	const bool ambiguous = ambiguousMatch(d2.row(i).transpose(), c, ambiguity_margin_d2_, [&](Eigen::Index j) {
+		Eigen::Vector2d dz = (in.predictions.row(j) - in.predictions.row(c)).transpose();
+		dz(1) = wrapAngle(dz(1));
+		return dz.dot(noise.solve(dz));
+	});
+	if (ambiguous) matches.clear(), ++ambiguous_waits_;
 }
 
 std::vector<int> RelativeAssociation::bestFitsToAnchors(const Eigen::MatrixXd& d2, const std::vector<Match>& anchored,

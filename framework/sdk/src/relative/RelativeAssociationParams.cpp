@@ -19,6 +19,10 @@ void RelativeAssociationParams::declare(ParamBinder& b)
 	b.real("new_landmark_chi2_quantile", new_landmark_chi2_quantile,
 		   "confidence beyond which an unmatched measurement is a new feature, not an ambiguous one",
 		   Bounds::openUnit());
+	b.real("ambiguity_margin_chi2_quantile", ambiguity_margin_chi2_quantile,
+		   "a match the relative test could not check (alone in its scan) is dropped while another candidate "
+		   "the sensor could tell apart is within this chi-square quantile (2 dof) of it; 0 = off",
+		   Bounds{0, 1, false, true});
 	b.real("candidate_margin_m", candidate_margin_m, "range margin for association candidates [m]",
 		   Bounds::nonNegative());
 	b.real("candidate_margin_deg", candidate_margin_deg, "bearing margin for association candidates [deg]",

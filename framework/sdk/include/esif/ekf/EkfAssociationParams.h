@@ -27,6 +27,20 @@ struct EkfAssociationParams
 	/// squared Mahalanobis distance to every candidate exceeds this chi-square
 	/// quantile; otherwise it is ambiguous and rejected (no duplicate landmarks).
 	double new_landmark_chi2_quantile = 0.9999;
+	/// Tentative landmarks (association/TentativeFeatures.h): a measurement
+	/// associated by distance that would start a landmark is held until a
+	/// second sighting within confirmation_window_steps agrees with it (at
+	/// the new-landmark gate); until then it is Rejected, neither mapped
+	/// nor fused. A landmark seen once never enters the map.
+	bool confirm_new_landmarks = false;
+	int confirmation_window_steps = 50;
+	/// A scan's lone match (JCBB had no second pair to decide with) waits
+	/// (Rejected, neither fused nor a new landmark) while another candidate
+	/// the sensor could tell apart is nearly as likely:
+	/// within this chi-square quantile (2 dof) of squared Mahalanobis
+	/// distance (association/Ambiguity.h). 0 = off (nearest neighbour or
+	/// JCBB decide alone).
+	double ambiguity_margin_chi2_quantile = 0;
 	double candidate_margin_m = 2.0;  ///< candidates: predicted range <= max range + this [m]
 	double candidate_margin_deg = 10.0;	 ///< ... and bearing within half the field of view + this [deg]
 	/// Measurements of features closer than this are not used [m]. The
@@ -61,6 +75,8 @@ struct EkfAssociationParams
 
 	/// The chi-square value of id_gate_chi2_quantile (+inf when disabled).
 	double idGateDistance2() const;
+	/// The chi-square value of ambiguity_margin_chi2_quantile (0 when off).
+	double ambiguityMarginDistance2() const;
 
 	void declare(ParamBinder& b);
 };

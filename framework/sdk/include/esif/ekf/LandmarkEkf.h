@@ -35,6 +35,7 @@
 /// 1% wrong IDs that made the landmark RMSE 1.47x the clean one, dropping
 /// both 1.02x.)
 
+#include <esif/association/TentativeFeatures.h>
 #include <esif/core/Estimate.h>
 #include <esif/ekf/EkfAssociationParams.h>
 #include <esif/ekf/EkfSlamCore.h>
@@ -78,6 +79,14 @@ class LandmarkEkf
 	/// before any had confirmed them (the measurement is counted here, not
 	/// in idGateRejections()).
 	std::size_t idGateDrops() const { return id_gate_drops_; }
+	/// Matches left out because another candidate was nearly as likely
+	/// (EkfAssociationParams::ambiguity_margin_chi2_quantile).
+	std::size_t ambiguousWaits() const { return ambiguous_waits_; }
+	/// First sightings held as tentative landmarks, waiting for their second
+	/// (EkfAssociationParams::confirm_new_landmarks).
+	std::size_t tentativeCount() const { return tentative_.tentativeCount(); }
+	/// Sightings held (and not fused) because no earlier one confirmed them.
+	std::size_t unconfirmedSightings() const { return unconfirmed_sightings_; }
 	/// Updates that were iterated (EkfAssociationParams::relinearise_above_d2).
 	std::size_t iteratedUpdates() const { return iterated_updates_; }
 	/// Their linearisations beyond the first.
@@ -102,7 +111,13 @@ class LandmarkEkf
 	void dropLandmarks(std::vector<std::size_t> indices);
 	StepReport associateByDistance(const Scan& scan, std::vector<EkfSlamCore::Match>& matches);
 	std::vector<std::size_t> candidatesFor(const Scan& scan) const;
-	void addNewLandmarks(const Scan& scan, StepReport& report);
+	/// Whether a candidate other than `chosen` is within the ambiguity margin of it for `m`.
+	bool isAmbiguous(const RangeBearing& m, const Pose2& sensor, const std::vector<std::size_t>& candidates,
+					 std::size_t chosen) const;
+	void addNewLandmarks(const Scan& scan, std::size_t step, StepReport& report);
+	/// Whether a sighting without ID that would start a landmark is confirmed
+	/// by an earlier one (TentativeFeatures); if not, it is held.
+	bool confirmedSighting(const RangeBearing& m, const Pose2& sensor, std::size_t step);
 
 	EkfAssociationParams params_;
 	double gate_distance2_new_ = 0;	 // chi-square value of new_landmark_chi2_quantile
@@ -120,6 +135,9 @@ class LandmarkEkf
 	std::size_t jcbb_fallbacks_ = 0;
 	std::size_t id_gate_rejections_ = 0;
 	std::size_t id_gate_drops_ = 0;
+	std::size_t ambiguous_waits_ = 0;
+	TentativeFeatures tentative_;
+	std::size_t unconfirmed_sightings_ = 0;
 	std::size_t iterated_updates_ = 0;
 	std::size_t relinearisations_ = 0;
 	std::size_t stopped_uphill_ = 0;

@@ -68,6 +68,9 @@ class RelativeAssociation
 	/// Scans whose anchors failed the relative test among themselves: their
 	/// other measurements were left unassociated.
 	std::size_t anchorConflicts() const { return anchor_conflicts_; }
+	/// Scans whose one match, unchecked by the relative test, was dropped as
+	/// ambiguous (RelativeAssociationParams::ambiguity_margin_chi2_quantile).
+	std::size_t ambiguousWaits() const { return ambiguous_waits_; }
 
    private:
 	struct Match
@@ -95,6 +98,10 @@ class RelativeAssociation
 								   const Tested& t) const;
 	/// Drops matches until the relative test passes.
 	void verify(std::vector<Match>& matches, const Tested& t);
+	/// Drops the scan's one match when the relative test had nothing to check
+	/// it against and another candidate is nearly as likely (Ambiguity.h).
+	void dropUncheckedAmbiguousMatch(std::vector<Match>& matches, const AssociationInput& in, const Eigen::MatrixXd& d2,
+									 const Scan& scan);
 	static AssociationInput absoluteInput(const Scan& scan, const Pose2& robot, const Eigen::Matrix3d& robot_cov,
 										  const FeatureMap& map, const std::vector<LandmarkId>& candidates,
 										  const Eigen::MatrixXd& candidate_cov);
@@ -111,10 +118,12 @@ class RelativeAssociation
 	RelativeAssociationParams params_;
 	ReferenceRules reference_rules_;
 	double new_gate_ = 0;
+	double ambiguity_margin_d2_ = 0;
 	std::size_t jcbb_nodes_ = 0;
 	std::size_t jcbb_fallbacks_ = 0;
 	std::size_t dropped_ = 0;
 	std::size_t anchor_conflicts_ = 0;
+	std::size_t ambiguous_waits_ = 0;
 };
 
 }  // namespace esif::relative

@@ -36,6 +36,14 @@ struct RelativeAssociationParams
 	/// An unmatched measurement starts a new feature only beyond this
 	/// chi-square quantile from every candidate; otherwise it is rejected.
 	double new_landmark_chi2_quantile = 0.9999;
+	/// A match the relative test could not check (the only one of its
+	/// scan, no tracked feature beside it) rests on the absolute gate alone,
+	/// from a robot estimate D-SLAM does not correlate with the map: it is
+	/// dropped (the measurement waits) while another candidate the sensor
+	/// could tell apart is within this chi-square quantile (2 dof) of it
+	/// (association/Ambiguity.h). A wrong feature fused into the map's EIF
+	/// stays there; a measurement left out costs one sighting. 0 = off.
+	double ambiguity_margin_chi2_quantile = 0.99;
 	double candidate_margin_m = 2.0;	 ///< candidates: predicted range <= max range + this [m]
 	double candidate_margin_deg = 10.0;	 ///< ... and bearing within half the field of view + this [deg]
 	/// ... both widened by this many standard deviations of the predicted

@@ -1,15 +1,18 @@
 #pragma once
-/// \file NewFeatureConfirmation.h
-/// A feature enters D-SLAM only when a second sighting confirms the first
-/// (a two-of-N track initiation, as in target tracking). The book maps a
-/// feature at its first sighting; a single bad return then plants a feature
-/// that no later measurement can move: with a misread landmark ID the
-/// feature sits at its neighbour's place, and the re-observation and mapping
-/// gates (OutlierGate.h) reject every correct sighting after it (1,554 on
-/// configs/sim/wrong_ids.ini); with clutter, the spurious feature becomes a
-/// reference for later scans. D-SLAM's information form cannot remove a
-/// feature once its relative measurements are fused, so the check has to
-/// come before.
+/// \file TentativeFeatures.h
+/// Tentative landmarks: a landmark enters a map only when a second sighting
+/// confirms the first (a two-of-N track initiation, as in target
+/// tracking), and an unconfirmed sighting is dropped, never fused. The book
+/// maps a feature at its first sighting; a single bad return then plants a
+/// feature that no later measurement can move: with a misread landmark ID
+/// the feature sits at its neighbour's place and the gates reject every
+/// correct sighting after it; with clutter, the spurious feature becomes a
+/// reference for later scans; without IDs, a measurement of a mapped
+/// landmark that missed its gate starts a duplicate. An information-form
+/// map cannot remove a feature once its measurements are fused, so the
+/// check has to come before. Used by D-SLAM and by the EKF with
+/// association by distance (LandmarkEkf: the EKF plugin and every local-map
+/// builder).
 ///
 /// A first sighting is held as a tentative feature: its position in the map
 /// frame from the local SLAM's robot, with covariance J_r P_r J_r^T +
@@ -28,12 +31,12 @@
 #include <optional>
 #include <vector>
 
-namespace esif::dslam
+namespace esif
 {
-class NewFeatureConfirmation
+class TentativeFeatures
 {
    public:
-	NewFeatureConfirmation(double gate_chi2, std::size_t window_steps)
+	TentativeFeatures(double gate_chi2, std::size_t window_steps)
 		: gate_chi2_(gate_chi2), window_steps_(window_steps)
 	{
 	}
@@ -47,6 +50,8 @@ class NewFeatureConfirmation
 				 std::size_t step);
 
 	std::size_t tentativeCount() const { return tentative_.size(); }
+	/// Drops the tentative features older than the window at `step`.
+	void expire(std::size_t step);
 
    private:
 	struct Tentative
@@ -57,7 +62,6 @@ class NewFeatureConfirmation
 		std::size_t step = 0;
 	};
 
-	void expire(std::size_t step);
 	/// Index of the tentative feature this sighting is compared with.
 	std::optional<std::size_t> partner(std::optional<LandmarkId> id, const Eigen::Vector2d& position,
 									   const Eigen::Matrix2d& cov) const;
@@ -68,4 +72,4 @@ class NewFeatureConfirmation
 	std::vector<Tentative> tentative_;
 };
 
-}  // namespace esif::dslam
+}  // namespace esif

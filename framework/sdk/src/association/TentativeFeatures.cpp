@@ -1,12 +1,12 @@
-#include "NewFeatureConfirmation.h"
+#include <esif/association/TentativeFeatures.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <limits>
 
-namespace esif::dslam
+namespace esif
 {
-bool NewFeatureConfirmation::confirm(std::optional<LandmarkId> id, const Eigen::Vector2d& position,
+bool TentativeFeatures::confirm(std::optional<LandmarkId> id, const Eigen::Vector2d& position,
 									 const Eigen::Matrix2d& cov, std::size_t step)
 {
 	expire(step);
@@ -23,14 +23,14 @@ bool NewFeatureConfirmation::confirm(std::optional<LandmarkId> id, const Eigen::
 	return false;
 }
 
-void NewFeatureConfirmation::expire(std::size_t step)
+void TentativeFeatures::expire(std::size_t step)
 {
 	tentative_.erase(std::remove_if(tentative_.begin(), tentative_.end(),
 									[&](const Tentative& t) { return step > t.step + window_steps_; }),
 					 tentative_.end());
 }
 
-std::optional<std::size_t> NewFeatureConfirmation::partner(std::optional<LandmarkId> id,
+std::optional<std::size_t> TentativeFeatures::partner(std::optional<LandmarkId> id,
 														   const Eigen::Vector2d& position,
 														   const Eigen::Matrix2d& cov) const
 {
@@ -55,7 +55,7 @@ std::optional<std::size_t> NewFeatureConfirmation::partner(std::optional<Landmar
 	return best;
 }
 
-double NewFeatureConfirmation::distance2(const Tentative& t, const Eigen::Vector2d& position,
+double TentativeFeatures::distance2(const Tentative& t, const Eigen::Vector2d& position,
 										 const Eigen::Matrix2d& cov) const
 {
 	const Eigen::Vector2d d = position - t.position;
@@ -64,4 +64,4 @@ double NewFeatureConfirmation::distance2(const Tentative& t, const Eigen::Vector
 	return d.dot(ldlt.solve(d));
 }
 
-}  // namespace esif::dslam
+}  // namespace esif

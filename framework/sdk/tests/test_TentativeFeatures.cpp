@@ -1,0 +1,197 @@
+// Tentative landmarks (TentativeFeatures) and waiting on an ambiguous match
+// (Ambiguity.h), the SDK's shared pieces of association without IDs; and
+// both in LandmarkEkf, on small constructed cases: two twins, a blind
+// drive, a poorly observed feature.
+
+#include <esif/association/Ambiguity.h>
+#include <esif/association/Chi2.h>
+#include <esif/association/TentativeFeatures.h>
+#include <esif/ekf/LandmarkEkf.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+using namespace esif;
+
+const double kGate = chi2Quantile(0.999, 2);  // 13.8
+
+TEST(TentativeFeatures, SecondAgreeingSightingConfirms)
+{
+	TentativeFeatures c(kGate, 50);
+	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();	 // 0.1 m sigma
+	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 10));
+	EXPECT_EQ(c.tentativeCount(), 1u);
+	// 0.2 m apart with a combined sigma of 0.14 m per axis: d2 = 2, inside.
+	EXPECT_TRUE(c.confirm(7, {1.2, 2.0}, cov, 11));
+	EXPECT_EQ(c.tentativeCount(), 0u);
+}
+
+TEST(TentativeFeatures, DisagreeingSightingReplacesTheFirst)
+{
+	TentativeFeatures c(kGate, 50);
+	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();
+	EXPECT_FALSE(c.confirm(7, {4.0, 2.0}, cov, 10));  // a misread: the neighbour's place, 3 m off
+	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 11));  // d2 = 9 / 0.02 = 450: replaces it
+	EXPECT_EQ(c.tentativeCount(), 1u);
+	EXPECT_TRUE(c.confirm(7, {1.05, 2.0}, cov, 12));  // agrees with the replacement
+}
+
+TEST(TentativeFeatures, OtherIdsAndExpiredSightingsDoNotConfirm)
+{
+	TentativeFeatures c(kGate, 5);
+	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();
+	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 10));
+	EXPECT_FALSE(c.confirm(8, {1.0, 2.0}, cov, 11));  // same place, another landmark
+	EXPECT_FALSE(c.confirm(7, {1.0, 2.0}, cov, 16));  // step 16 > 10 + 5: the first has expired
+	EXPECT_TRUE(c.confirm(7, {1.0, 2.0}, cov, 17));
+}
+
+TEST(TentativeFeatures, WithoutIdsTheNearestAgreeingSightingConfirms)
+{
+	TentativeFeatures c(kGate, 50);
+	const Eigen::Matrix2d cov = 0.01 * Eigen::Matrix2d::Identity();
+	EXPECT_FALSE(c.confirm(std::nullopt, {0.0, 0.0}, cov, 1));	 // clutter
+	EXPECT_FALSE(c.confirm(std::nullopt, {5.0, 0.0}, cov, 1));	 // a feature
+	EXPECT_TRUE(c.confirm(std::nullopt, {5.1, 0.1}, cov, 2));
+	EXPECT_EQ(c.tentativeCount(), 1u);	// the clutter waits, and expires
+	EXPECT_FALSE(c.confirm(std::nullopt, {20.0, 0.0}, cov, 3));
+	EXPECT_EQ(c.tentativeCount(), 2u);
+}
+
+TEST(Ambiguity, ARunnerUpWithinTheMarginMakesTheMatchWait)
+{
+	const double margin = ambiguityMarginDistance2(0.99);  // 9.21
+	EXPECT_NEAR(margin, 9.21, 0.01);
+	const auto resolvable = [](Eigen::Index) { return 100.0; };
+	Eigen::VectorXd d2(3);
+	d2 << 1.0, 5.0, 30.0;  // candidate 1 is e^-2 as likely as 0: not 100 times less
+	EXPECT_TRUE(ambiguousMatch(d2, 0, margin, resolvable));
+	d2 << 1.0, 11.0, 30.0;	// 11 - 1 >= 9.21: a likelihood ratio above 100
+	EXPECT_FALSE(ambiguousMatch(d2, 0, margin, resolvable));
+	EXPECT_FALSE(ambiguousMatch(d2, 0, 0.0, resolvable));  // off
+}
+
+TEST(Ambiguity, TwinsTheSensorCannotTellApartDoNotMakeItWait)
+{
+	Eigen::VectorXd d2(2);
+	d2 << 1.0, 1.5;
+	EXPECT_FALSE(ambiguousMatch(d2, 0, 9.21, [](Eigen::Index) { return 2.0; }));
+	EXPECT_TRUE(ambiguousMatch(d2, 0, 9.21, [](Eigen::Index) { return 50.0; }));
+}
+
+/// A step driving `dx` forward with odometry noise `sigma_xy`, `sigma_phi`
+/// per step, then seeing `points` (range, bearing) with a sensor of 0.1 m, 1 deg.
+StepInput step(std::size_t k, double dx, double sigma_xy, double sigma_phi,
+			   const std::vector<Eigen::Vector2d>& points)
+{
+	StepInput s;
+	s.index = k;
+	if (dx >= 0)
+		s.odometry = OdometryIncrement{{dx, 0, 0}, Eigen::Vector3d(sigma_xy * sigma_xy, sigma_xy * sigma_xy, sigma_phi * sigma_phi).asDiagonal()};
+	Scan scan;
+	for (const auto& p : points)
+	{
+		RangeBearing m;
+		m.range_m = p(0);
+		m.bearing_rad = p(1);
+		m.cov = Eigen::Vector2d(0.01, std::pow(M_PI / 180, 2)).asDiagonal();
+		scan.measurements.push_back(m);
+	}
+	s.scan = scan;
+	return s;
+}
+
+EkfAssociationParams distanceAssociation(bool confirm, double ambiguity)
+{
+	EkfAssociationParams p;
+	p.association = EkfAssociation::NearestNeighbor;
+	p.confirm_new_landmarks = confirm;
+	p.ambiguity_margin_chi2_quantile = ambiguity;
+	p.update_iterations = 1;
+	return p;
+}
+
+TEST(LandmarkEkfTentative, ALandmarkEntersOnlyWhenASecondSightingConfirmsIt)
+{
+	LandmarkEkf ekf(distanceAssociation(true, 0));
+	// First sighting of a landmark 5 m ahead: held, not mapped, not fused.
+	auto r = ekf.processStep(step(0, -1, 0, 0, {{5.0, 0.0}}));
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::Rejected);
+	EXPECT_EQ(ekf.core().landmarkCount(), 0u);
+	// A clutter return 3 m to the left, seen once.
+	r = ekf.processStep(step(1, 0.1, 0.01, 0.001, {{4.9, 0.0}, {3.0, M_PI / 2}}));
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::New);	// the second sighting confirms: mapped
+	EXPECT_EQ(r.associations[1].kind, Association::Kind::Rejected);
+	EXPECT_EQ(ekf.core().landmarkCount(), 1u);
+	// The landmark is matched from now on; the clutter never enters the map.
+	for (std::size_t k = 2; k < 60; ++k)
+	{
+		r = ekf.processStep(step(k, 0.0, 0.01, 0.001, {{4.9, 0.0}}));
+		EXPECT_EQ(r.associations[0].kind, Association::Kind::Matched) << k;
+	}
+	EXPECT_EQ(ekf.core().landmarkCount(), 1u);
+	EXPECT_EQ(ekf.tentativeCount(), 0u);  // the clutter's sighting expired
+}
+
+TEST(LandmarkEkfTentative, AnUnconfirmedSightingNeverMovesTheRobot)
+{
+	LandmarkEkf ekf(distanceAssociation(true, 0));
+	ekf.processStep(step(0, -1, 0, 0, {{5.0, 0.0}}));
+	ekf.processStep(step(1, 1.0, 0.1, 0.01, {{4.0, 0.0}}));	 // mapped here
+	const Pose2 before = ekf.core().robot();
+	// A poorly observed feature: one sighting, far from the mapped one.
+	ekf.processStep(step(2, 0.0, 0.1, 0.01, {{3.9, 0.0}, {8.0, -1.0}}));
+	const Pose2 after_single = ekf.core().robot();
+	EkfAssociationParams plain = distanceAssociation(true, 0);
+	LandmarkEkf reference(plain);
+	reference.processStep(step(0, -1, 0, 0, {{5.0, 0.0}}));
+	reference.processStep(step(1, 1.0, 0.1, 0.01, {{4.0, 0.0}}));
+	reference.processStep(step(2, 0.0, 0.1, 0.01, {{3.9, 0.0}}));
+	EXPECT_LT((after_single - reference.core().robot()).norm(), 1e-12);
+	EXPECT_GT((after_single - before).norm(), 0.0);	 // the mapped landmark's update did move it
+}
+
+TEST(LandmarkEkfAmbiguity, AfterABlindDriveTheFirstMatchWaitsUntilUnambiguous)
+{
+	// Two landmarks 1.5 m apart, both mapped from the start.
+	LandmarkEkf ekf(distanceAssociation(false, 0.99));
+	ekf.processStep(step(0, -1, 0, 0, {{6.0, 0.25}, {6.0, 0.0}}));
+	ASSERT_EQ(ekf.core().landmarkCount(), 2u);
+	// A blind drive: 30 steps of odometry with large heading noise, no scan.
+	for (std::size_t k = 1; k <= 30; ++k)
+	{
+		StepInput s;
+		s.index = k;
+		s.odometry = OdometryIncrement{{0.0, 0, 0}, Eigen::Vector3d(1e-4, 1e-4, std::pow(0.02, 2)).asDiagonal()};
+		ekf.processStep(s);
+	}
+	// One landmark in view: compatible with both. It waits.
+	auto r = ekf.processStep(step(31, 0.0, 0.001, 0.001, {{6.0, 0.0}}));
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::Rejected);
+	EXPECT_EQ(ekf.ambiguousWaits(), 1u);
+	// Both in view: JCBB pairs them jointly, the pose is resolved, and single
+	// sightings are matched again.
+	r = ekf.processStep(step(32, 0.0, 0.001, 0.001, {{6.0, 0.25}, {6.0, 0.0}}));
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::Matched);
+	EXPECT_EQ(r.associations[1].kind, Association::Kind::Matched);
+	r = ekf.processStep(step(33, 0.0, 0.001, 0.001, {{6.0, 0.0}}));
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::Matched);
+	EXPECT_EQ(ekf.ambiguousWaits(), 1u);
+}
+
+TEST(LandmarkEkfAmbiguity, TwinsCloserThanTheSensorResolvesAreMatchedNotWaitedOn)
+{
+	// Two landmarks 0.2 m apart at 6 m: 1.9 deg of bearing, which a 1 deg
+	// sensor separates by less than the 0.99 margin once range adds nothing.
+	LandmarkEkf ekf(distanceAssociation(false, 0.99));
+	ekf.processStep(step(0, -1, 0, 0, {{6.0, 0.0}}));
+	// The twin: rejected as ambiguous with the first (not a new landmark).
+	auto r = ekf.processStep(step(1, 0.0, 0.01, 0.001, {{6.0, 0.0333}}));
+	EXPECT_NE(r.associations[0].kind, Association::Kind::New);
+	EXPECT_EQ(ekf.core().landmarkCount(), 1u);
+	EXPECT_EQ(ekf.ambiguousWaits(), 0u);
+}
+}  // namespace
