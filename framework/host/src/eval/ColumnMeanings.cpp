@@ -115,6 +115,15 @@ const std::vector<ColumnMeaning>& monteCarloSummaryColumns()
 		 "deviation over runs"},
 		{{"time per run [s]"}, "", "the filter's wall time per run, median [quartiles]"},
 		{{"wrong associations"}, "", "`da_wrong` summed over runs, and in how many runs"},
+		{{"true landmarks / found"}, "", "`landmarks_true` and `landmarks_found`, median over runs"},
+		{{"duplicated / spurious"},
+		 "",
+		 "`landmarks_duplicated` and `landmarks_spurious` summed over runs, and in how many runs"},
+		{{"precision / recall"}, "", "`da_precision` and `da_recall`, median over runs [lowest]"},
+		{{"landmark OSPA [m]"},
+		 "",
+		 "`landmark_ospa_m` (p = 2, c = `ospa_c_m`, the same in every run of a scenario); mean ± standard deviation "
+		 "over runs"},
 	};
 	return columns;
 }
