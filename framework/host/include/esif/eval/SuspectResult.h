@@ -4,7 +4,7 @@
 /// it maps no landmark; a map-joining run fused no local map; with the true
 /// landmark of each measurement known, it matched none of more measurements
 /// than there are true landmarks, or mapped more than three landmarks per
-/// true one; given landmark IDs, it rejected more than 10% of those
+/// true one; given landmark IDs, it rejected more than a quarter of those
 /// measurements; or it rejected more measurements than it used. Each rule
 /// is explained in SuspectResult.cpp. Such a run is not a failure (it exits
 /// 0 and writes every output), but it is never silent either: one warning
