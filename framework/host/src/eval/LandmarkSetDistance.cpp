@@ -57,6 +57,14 @@ std::vector<PointGroup> linkedGroups(
 
 }  // namespace
 
+std::vector<Eigen::Vector2d> landmarkPositions(const std::vector<LandmarkEstimate>& landmarks)
+{
+	std::vector<Eigen::Vector2d> out;
+	out.reserve(landmarks.size());
+	for (const LandmarkEstimate& lm : landmarks) out.push_back(lm.mean);
+	return out;
+}
+
 SetMatch matchPointSets(const std::vector<Eigen::Vector2d>& x, const std::vector<Eigen::Vector2d>& y, double c, double p)
 {
 	if (!(c > 0) || !(p >= 1)) throw std::invalid_argument("matchPointSets: c must be > 0 and p >= 1");

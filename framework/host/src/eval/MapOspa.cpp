@@ -41,11 +41,10 @@ std::optional<double> ospaCutoff(const std::vector<StepInput>& steps)
 
 double truthOspa(const GroundTruth& truth, const Estimate& estimate, const std::set<LandmarkId>& observed, double c)
 {
-	std::vector<Eigen::Vector2d> mapped, actual;
-	for (const LandmarkEstimate& lm : estimate.landmarks) mapped.push_back(lm.mean);
+	std::vector<Eigen::Vector2d> actual;
 	for (const auto& [id, position] : truth.landmarks)
 		if (observed.empty() || observed.count(id)) actual.push_back(position);
-	return matchPointSets(mapped, actual, c).ospa;
+	return matchPointSets(landmarkPositions(estimate.landmarks), actual, c).ospa;
 }
 
 }  // namespace esif

@@ -74,13 +74,6 @@ std::vector<MatchedLandmark> pairThroughTrueLandmarks(const RunOutputs& run, con
 	return matched;
 }
 
-std::vector<Eigen::Vector2d> positionsOf(const std::vector<LandmarkEstimate>& landmarks)
-{
-	std::vector<Eigen::Vector2d> out;
-	for (const auto& lm : landmarks) out.push_back(lm.mean);
-	return out;
-}
-
 /// The pairs closer than c of the optimal assignment (the OSPA's), in the reference's order.
 std::vector<MatchedLandmark> pairByAssignment(const SetMatch& match, const RunOutputs& run, const RunOutputs& reference)
 {
@@ -147,7 +140,7 @@ std::vector<MatchedLandmark> pairLandmarks(
 	std::optional<SetMatch> match;
 	if (cutoff_m)
 	{
-		match = matchPointSets(positionsOf(run.landmarks), positionsOf(reference.landmarks), *cutoff_m);
+		match = matchPointSets(landmarkPositions(run.landmarks), landmarkPositions(reference.landmarks), *cutoff_m);
 		out.cutoff_m = cutoff_m;
 		out.ospa_m = match->ospa;
 	}
@@ -161,10 +154,18 @@ std::vector<MatchedLandmark> pairLandmarks(
 	return pairByAssignment(*match, run, reference);
 }
 
-void compareLandmarks(
-	const RunOutputs& run, const RunOutputs& reference, const std::optional<double>& cutoff_m, RunDifference& out)
+/// Every finite landmark of `reference` paired with itself: its own row.
+std::vector<MatchedLandmark> pairWithItself(const RunOutputs& reference)
 {
-	const auto matched = pairLandmarks(run, reference, cutoff_m, out);
+	std::vector<MatchedLandmark> matched;
+	for (const auto& lm : reference.landmarks)
+		if (lm.mean.allFinite()) matched.push_back({&lm, &lm});
+	return matched;
+}
+
+/// The landmark figures of `matched` pairs.
+void compareLandmarks(const std::vector<MatchedLandmark>& matched, const RunOutputs& reference, RunDifference& out)
+{
 	DifferenceSpread position;
 	for (const auto& m : matched) position.add((m.run->mean - m.reference->mean).norm());
 	out.landmarks_in_reference = reference.landmarks.size();
@@ -197,19 +198,18 @@ RunDifference runDifference(const RunOutputs& run, const RunOutputs& reference, 
 {
 	RunDifference out;
 	compareTrajectories(run.trajectory, reference.trajectory, out);
-	compareLandmarks(run, reference, cutoff_m, out);
+	compareLandmarks(pairLandmarks(run, reference, cutoff_m, out), reference, out);
 	return out;
 }
 
 RunDifference referenceItself(const RunOutputs& reference)
 {
-	// Paired by position with itself: every finite landmark with its own, at distance 0.
-	RunOutputs anonymous = reference;
-	anonymous.identities.reset();
-	RunDifference out = runDifference(anonymous, anonymous, 1.0);
+	RunDifference out;
+	compareTrajectories(reference.trajectory, reference.trajectory, out);
+	compareLandmarks(pairWithItself(reference), reference, out);
 	out.landmarks_matched = out.landmarks_in_reference;
 	out.pairing = LandmarkPairing::Itself;
-	out.cutoff_m.reset();
+	out.ospa_m = 0.0;
 	return out;
 }
 

@@ -13,6 +13,12 @@ std::string countText(double n) { return std::to_string(static_cast<long long>(n
 
 std::string percentText(double part, double whole) { return countText(std::round(100.0 * part / whole)) + "%"; }
 
+/// Measurements the run used: new or matched.
+double usedMeasurements(const Stats& stats)
+{
+	return stats.number("da_new").value_or(0) + stats.number("da_matched").value_or(0);
+}
+
 /// Nothing to judge: no landmark, no local map fused.
 std::optional<std::string> emptyResult(const Stats& stats)
 {
@@ -30,7 +36,7 @@ std::optional<std::string> emptyResult(const Stats& stats)
 std::optional<std::string> neverMatched(const Stats& stats)
 {
 	const auto true_landmarks = stats.number("landmarks_true");
-	const double used = stats.number("da_new").value_or(0) + stats.number("da_matched").value_or(0);
+	const double used = usedMeasurements(stats);
 	if (!true_landmarks || stats.number("da_matched").value_or(0) != 0 || used <= *true_landmarks)
 		return std::nullopt;
 	return "it matched none of the " + countText(used) + " measurements it used, which came from " +
@@ -73,7 +79,7 @@ std::optional<std::string> idsRejected(const Stats& stats)
 std::optional<std::string> mostlyRejected(const Stats& stats)
 {
 	const double rejected = stats.number("da_rejected").value_or(0);
-	const double used = stats.number("da_new").value_or(0) + stats.number("da_matched").value_or(0);
+	const double used = usedMeasurements(stats);
 	if (rejected <= used) return std::nullopt;
 	return "it rejected " + countText(rejected) + " of " + countText(rejected + used) + " measurements";
 }

@@ -21,6 +21,8 @@
 /// separately on each group of points linked by such pairs
 /// (OptimalAssignment.h): exact, and small problems however large the maps.
 
+#include <esif/core/Estimate.h>
+
 #include <Eigen/Core>
 
 #include <cstddef>
@@ -39,6 +41,9 @@ struct SetMatch
 	/// The optimal assignment's pairs closer than c: (index in X, index in Y).
 	std::vector<std::pair<std::size_t, std::size_t>> pairs;
 };
+
+/// The positions of `landmarks`, in their order: a map as a point set.
+std::vector<Eigen::Vector2d> landmarkPositions(const std::vector<LandmarkEstimate>& landmarks);
 
 /// OSPA of `x` and `y` with cut-off `c` > 0 and order `p` >= 1
 /// (std::invalid_argument otherwise), and the pairs closer than c. A point
