@@ -5,8 +5,9 @@
 # (with the seed in its file), then `esif compare` runs every config beside the full-SLAM
 # baseline; the table gives, per run, its status, landmark RMSE, ATE, share
 # of landmarks inside their 95% ellipse, wrong and rejected associations
-# (scored against the simulator's true measurement IDs), JCBB fallbacks and
-# wall time. Runs are whole `esif` processes; a run that fails is a row,
+# (scored against the simulator's true measurement IDs), the map's
+# duplicated and spurious landmarks, association precision and recall, the
+# landmark OSPA, JCBB fallbacks and wall time. Runs are whole `esif` processes; a run that fails is a row,
 # never a stop.
 #
 # Writes out/bench/outliers/ (the simulated rawlogs, one compare folder per
@@ -40,7 +41,10 @@ import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 cols = [("status", "status", "{}"), ("landmark RMSE [m]", "landmark_rmse_m", "{:.3f}"), ("ATE [m]", "ate_rmse_m", "{:.3f}"),
         ("in 95%", "landmark_consistent_fraction", "{:.1%}"), ("da_wrong", "da_wrong", "{:.0f}"),
-        ("da_rejected", "da_rejected", "{:.0f}"), ("JCBB fallbacks", "plugin_jcbb_fallbacks", "{:.0f}"),
+        ("da_rejected", "da_rejected", "{:.0f}"), ("duplicated", "landmarks_duplicated", "{:.0f}"),
+        ("spurious", "landmarks_spurious", "{:.0f}"), ("precision", "da_precision", "{:.3f}"),
+        ("recall", "da_recall", "{:.3f}"), ("OSPA [m]", "landmark_ospa_m", "{:.3f}"),
+        ("JCBB fallbacks", "plugin_jcbb_fallbacks", "{:.0f}"),
         ("wall [s]", "wall_s", "{:.1f}"), ("error", "error", "{}")]
 def cell(r, k, f):
     v = r.get(k, "")
@@ -66,8 +70,10 @@ the seed in its file: see [consistency.md](consistency.md) for Monte Carlo figur
 side by side in one `esif compare` per scenario. `status` is `-` when
 every run succeeded and none is suspect, else `ok`, `suspect` or `failed`
 (with the first error line); `in 95%` is the share of landmarks inside
-their 95% ellipse; `da_wrong` is scored against the simulator's true measurement IDs
-([outputs.md](../outputs.md#statsjson)).
+their 95% ellipse; `da_wrong`, the duplicated and spurious landmarks,
+precision and recall are scored against the simulator's true measurement
+IDs, and the OSPA (p = 2, c = `ospa_c_m`) needs none
+([outputs.md](../outputs.md#scoring-without-ids)).
 
 MD
     cat "$work/tables.md"

@@ -121,23 +121,9 @@ std::vector<PlannedRun> planRuns(const std::vector<std::string>& configs)
 		const ConfigFile config = ConfigFile::load(c);
 		const auto host = config.section("esif");
 		planned.push_back(
-			{c, configLabel(config), host.getString("associations_from", ""), host.getBool("hide_landmark_ids", false)});
+			{c, configLabel(config), host.getString("associations_from", "")});
 	}
 	return planned;
-}
-
-/// Landmarks are paired with the reference's by ID: runs whose IDs come from
-/// elsewhere (a filter associating on its own numbers them itself) pair
-/// unrelated landmarks.
-void warnAboutUnrelatedIds(
-	const std::vector<PlannedRun>& planned, const std::vector<std::optional<std::size_t>>& sources, std::size_t ref)
-{
-	const std::string reference_origin = landmarkIdOrigin(planned, sources, ref);
-	for (std::size_t i = 0; i < planned.size(); ++i)
-		if (const auto origin = landmarkIdOrigin(planned, sources, i); origin != reference_origin)
-			std::cerr << "esif: warning: " << planned[i].config << ": its landmark IDs are " << origin
-					  << ", the reference's " << reference_origin
-					  << ": ref_landmark_* pair landmarks of unrelated IDs\n";
 }
 
 /// Shared settings of every `esif run` child.
@@ -210,12 +196,18 @@ std::string addReferenceColumns(std::vector<Stats>& runs, const std::vector<std:
 			continue;
 		}
 		RunOutputs outputs = readRunOutputs(dirs[i]);
-		setDifferenceStats(runs[i], runDifference(outputs, reference_outputs));
+		// The run's own OSPA cut-off (from the rawlog's measurements, so the
+		// same for every run on it), else the reference run's.
+		const auto cutoff = runs[i].number("ospa_c_m") ? runs[i].number("ospa_c_m")
+													   : (ref ? runs[*ref].number("ospa_c_m") : std::nullopt);
+		setDifferenceStats(runs[i], runDifference(outputs, reference_outputs, cutoff));
 		layers.push_back({labelOf(runs[i]), std::move(outputs)});
 	}
 	writeMapOverlayImage(layers, "maps over " + who, (fs::path(out_dir) / "maps_overlay.png").string(), 1200);
 	return "ref_*: difference from " + who +
-		   " in the initial-pose frame, no alignment (trajectory by step, landmarks by ID); ref_rotation_deg and "
+		   " in the initial-pose frame, no alignment (trajectory by step; landmarks through their true landmarks, "
+		   "or by the optimal assignment within the OSPA cut-off where a run has none: ref_landmarks_paired_by); "
+		   "ref_ospa_m: OSPA of the two maps (p = 2, c = the run's ospa_c_m); ref_rotation_deg and "
 		   "ref_landmark_rms_aligned_m: the best-fit rigid transform of the landmarks and what is left after it; "
 		   "ref_landmarks_in_own95: share of landmarks whose reference position is inside the run's own 95% "
 		   "ellipse; maps_overlay.png draws them\n";
@@ -301,8 +293,7 @@ std::string failedBaselineNote(const std::vector<Stats>& runs, const std::vector
 /// returns the notes, including a remark when the baseline's own check
 /// finds its optimum implausible and one when the baseline's run failed.
 std::string measureAgainstBaseline(
-	std::vector<Stats>& runs, const std::vector<std::string>& dirs, const std::vector<PlannedRun>& planned,
-	const std::vector<std::optional<std::size_t>>& sources, const std::vector<CheckedConfig>& checked,
+	std::vector<Stats>& runs, const std::vector<std::string>& dirs, const std::vector<CheckedConfig>& checked,
 	const std::optional<std::pair<std::size_t, std::string>>& reference,
 	const std::optional<std::string>& outside_reference, const std::string& out_dir)
 {
@@ -331,7 +322,6 @@ std::string measureAgainstBaseline(
 		note += addReferenceColumns(runs, dirs, reference->first, "run '" + reference->second + "'", out_dir);
 	else if (baseline.index && !with_truth)
 	{
-		warnAboutUnrelatedIds(planned, sources, *baseline.index);
 		note += addReferenceColumns(
 			runs, dirs, *baseline.index, "the optimization baseline '" + labelOf(runs[*baseline.index]) + "'",
 			out_dir);
@@ -375,7 +365,8 @@ int compareCommand(int argc, char** argv)
 		"import g2o): adds each run's "
 		"difference from it, in the shared initial-pose frame without alignment, as ref_traj_rms_m, "
 		"ref_traj_max_m, ref_heading_rms_deg (poses of the same step), ref_landmark_rms_m, ref_landmark_max_m "
-		"and ref_landmarks_matched (landmarks with the same ID: the runs must use the rawlog's landmark IDs). "
+		"and ref_landmarks_matched (landmarks paired through the true landmark each stands for, or, where a run "
+		"has none, by the optimal assignment within its OSPA cut-off: ref_landmarks_paired_by), ref_ospa_m. "
 		"The reference's row shows zeros and its own landmark count. Default without ground truth: the "
 		"optimization baseline (the full-SLAM run), if any",
 		false, "", "LABEL|DIR", cmd);
@@ -417,7 +408,6 @@ int compareCommand(int argc, char** argv)
 	}
 	const auto sources = associationSources(planned);
 	const auto order = runOrder(planned, sources);
-	if (ref) warnAboutUnrelatedIds(planned, sources, *ref);
 	const auto checked = checkConfigs(config_list, plugin_folder, local_maps.isSet());
 	requireOutputApart(
 		out.getValue(), compareInputs(
@@ -437,7 +427,7 @@ int compareCommand(int argc, char** argv)
 		markSucceededRuns(runs);
 
 		std::string note = measureAgainstBaseline(
-			runs, run_dirs, planned, sources, checked,
+			runs, run_dirs, checked,
 			ref ? std::optional<std::pair<std::size_t, std::string>>({*ref, reference.getValue()}) : std::nullopt,
 			outside_reference, staging);
 		if (reference_result.isSet())

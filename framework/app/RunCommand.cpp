@@ -80,9 +80,10 @@ int runCommand(int argc, char** argv)
 	TCLAP::ValueArg<std::string> reference_run(
 		"", "reference-run",
 		"run folder of a smoother on the same rawlog (the full-SLAM optimum's) to compute the whole-state NEES "
-		"against instead of the ground truth: stats.json state_nees*, landmarks paired by the rawlog's IDs, poses "
-		"by step (a filter's trajectory.tum holds each pose as estimated at its time, not finally). The reference "
-		"shares the run's error, so only a NEES above the interval is a finding",
+		"against instead of the ground truth: stats.json state_nees*, landmarks paired through the true landmark "
+		"each stands for, poses by step (a filter's trajectory.tum holds each pose as estimated at its time, not "
+		"finally). The reference shares the run's error, so only a NEES above the interval is a finding. Also the "
+		"run's difference from it, the ref_* keys of esif compare --reference",
 		false, "", "DIR", cmd);
 	TCLAP::SwitchArg quiet("q", "quiet", "no progress bar and no summary", cmd);
 	TCLAP::SwitchArg no_figures(

@@ -1,11 +1,14 @@
 // `esif compare --reference LABEL` as a user runs it: EKF and D-SLAM on a
 // small simulated rawlog, each run's difference from the reference in
 // comparison.csv / .md and the printed table, and a one-line error for a
-// label that is not one of the runs.
+// label that is not one of the runs; a run that associates on its own
+// paired with the reference through the true landmarks, as `esif run
+// --reference-run` pairs it too.
 
 #include <EsifTestSupport.h>
 
 #include <esif/eval/RunDifference.h>
+#include <esif/formats/RunOutputReader.h>
 
 #include <gtest/gtest.h>
 #include <algorithm>
@@ -155,6 +158,54 @@ TEST_F(CompareReference, RunFolderNameAlsoNamesTheReference)
 	EXPECT_EQ(number(rows.at("other_name"), "ref_traj_max_m"), 0.0);
 	// Same filter, same data: the same estimate.
 	EXPECT_NEAR(number(rows.at("ekf"), "ref_traj_max_m"), 0.0, 1e-9);
+}
+
+/// The EKF with the IDs as the reference, the EKF with JCBB (IDs hidden,
+/// its landmarks numbered by itself in the order it made them) as the run:
+/// their landmarks are paired through the true landmark each stands for.
+TEST_F(CompareReference, PairsThroughTrueLandmarksNotNumbers)
+{
+	const auto r = runEsif(
+		"compare --configs '" + sourcePath("configs/ekf.ini") + "," + sourcePath("configs/ekf_jcbb.ini") +
+		"' --rawlog '" + dir_->file("small.rawlog") + "' --out '" + dir_->file("jcbb") + "' --reference ekf");
+	ASSERT_EQ(r.exit_code, 0) << r.out;
+	const auto rows = readCsv(dir_->file("jcbb/comparison.csv"));
+	ASSERT_TRUE(rows.count("ekf_jcbb")) << r.out;
+	const auto& jcbb = rows.at("ekf_jcbb");
+	EXPECT_EQ(jcbb.at("ref_landmarks_paired_by"), "true landmark");
+	EXPECT_EQ(rows.at("ekf").at("ref_landmarks_paired_by"), "itself");
+	EXPECT_EQ(number(jcbb, "ref_landmarks_matched"), number(jcbb, "landmarks_found"));
+	EXPECT_EQ(number(jcbb, "landmarks_found"), number(jcbb, "landmarks_true"));
+	// Two EKFs on the same data differ by centimetres (each is within about
+	// 0.1 m of the truth here: landmark_ospa_m).
+	EXPECT_LT(number(jcbb, "ref_landmark_rms_m"), 0.1);
+	EXPECT_LT(number(jcbb, "ref_ospa_m"), number(jcbb, "ospa_c_m"));
+
+	// The numbers alone would have paired other landmarks: the run numbers
+	// some landmark differently from the true landmark it stands for, and
+	// pairing by number puts landmarks metres apart.
+	const auto run = esif::readRunOutputs(dir_->file("jcbb/ekf_jcbb"));
+	const auto ref = esif::readRunOutputs(dir_->file("jcbb/ekf"));
+	ASSERT_TRUE(run.identities && run.identities->truth);
+	EXPECT_TRUE(std::any_of(run.identities->landmarks.begin(), run.identities->landmarks.end(),
+							[](const esif::LandmarkIdentity& l) { return l.true_id != l.landmark; }));
+	double by_number_sq = 0;
+	std::size_t by_number = 0;
+	for (const auto& a : run.landmarks)
+		for (const auto& b : ref.landmarks)
+			if (a.id == b.id) by_number_sq += (a.mean - b.mean).squaredNorm(), ++by_number;
+	ASSERT_GT(by_number, 0u);
+	EXPECT_GT(std::sqrt(by_number_sq / by_number), 1.0);
+
+	// esif run --reference-run measures the same run the same way.
+	const auto again = runEsif(
+		"run -q --config '" + sourcePath("configs/ekf_jcbb.ini") + "' --rawlog '" + dir_->file("small.rawlog") +
+		"' --reference-run '" + dir_->file("jcbb/ekf") + "' --out '" + dir_->file("jcbb_run") + "'");
+	ASSERT_EQ(again.exit_code, 0) << again.out;
+	const auto stats = esif::Stats::load(dir_->file("jcbb_run/stats.json"));
+	EXPECT_EQ(stats.text("ref_landmarks_paired_by"), std::string("true landmark"));
+	EXPECT_NEAR(*stats.number("ref_landmark_rms_m"), number(jcbb, "ref_landmark_rms_m"), 1e-12);
+	EXPECT_NEAR(*stats.number("ref_ospa_m"), number(jcbb, "ref_ospa_m"), 1e-12);
 }
 
 }  // namespace

@@ -170,7 +170,7 @@ TEST_F(LocalMapsCli, RunOnSim5GivesFiniteRmseAndEveryOutput)
 	const std::string out = dir_->file("sim5_run");
 	for (const char* f : {"landmarks.gz", "landmarks.txt", "trajectory.tum", "map.simplemap", "map.png",
 						  "map.svg", "scene.3Dscene", "stats.json", "params.ini", "associations.txt",
-						  "localmap_times.png", "localmap_times.svg"})
+						  "landmark_identities.txt", "localmap_times.png", "localmap_times.svg"})
 		EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
 	EXPECT_FALSE(fs::exists(out + "/step_times.png"));	// no steps to time
 

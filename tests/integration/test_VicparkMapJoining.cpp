@@ -44,7 +44,10 @@ class VicparkMapJoining : public ::testing::Test
 	/// The run of `config` against the optimum.
 	static RunDifference fromOptimum(const std::string& config)
 	{
-		const RunDifference d = runDifference(readRunOutputs(run(config)), readRunOutputs(dir_->file("ceres_full")));
+		// Both runs have the tree IDs: paired through them, no cut-off needed.
+		const RunDifference d =
+			runDifference(readRunOutputs(run(config)), readRunOutputs(dir_->file("ceres_full")), std::nullopt);
+		EXPECT_EQ(d.pairing, LandmarkPairing::TrueLandmark);
 		std::cout << config << ": " << *d.landmark_rms_m << " m RMS from the optimum, rotation "
 				  << *d.best_fit_rotation_deg << " deg, " << 100 * *d.landmarks_inside_own95_fraction
 				  << "% inside their own 95% ellipse\n";

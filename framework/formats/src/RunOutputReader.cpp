@@ -117,11 +117,35 @@ std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path)
 	return out;
 }
 
+namespace
+{
+/// The identities of a run folder, which must cover landmarks.txt row for row.
+LandmarkIdentities identitiesOfMap(const std::string& path, const std::vector<LandmarkEstimate>& landmarks)
+{
+	LandmarkIdentities identities = readLandmarkIdentityFile(path);
+	std::map<LandmarkId, bool> listed;
+	for (const auto& row : identities.landmarks) listed[row.landmark] = false;
+	for (const auto& lm : landmarks)
+	{
+		const auto it = listed.find(lm.id);
+		if (it == listed.end())
+			throw InputError(path + ": no row for landmark " + std::to_string(lm.id) + " of landmarks.txt");
+		it->second = true;
+	}
+	for (const auto& [id, in_map] : listed)
+		if (!in_map) throw InputError(path + ": landmark " + std::to_string(id) + " is not in landmarks.txt");
+	return identities;
+}
+}  // namespace
+
 RunOutputs readRunOutputs(const std::string& dir)
 {
+	const std::filesystem::path d(dir);
 	RunOutputs out;
-	out.trajectory = readTrajectoryTum((std::filesystem::path(dir) / "trajectory.tum").string());
-	out.landmarks = readLandmarksTxt((std::filesystem::path(dir) / "landmarks.txt").string());
+	out.trajectory = readTrajectoryTum((d / "trajectory.tum").string());
+	out.landmarks = readLandmarksTxt((d / "landmarks.txt").string());
+	const std::string identities = (d / kLandmarkIdentityFileName).string();
+	if (pathPresent(identities)) out.identities = identitiesOfMap(identities, out.landmarks);
 	return out;
 }
 

@@ -350,6 +350,78 @@ TEST(MonteCarloCollect, SplitsThePoseAneesIntoPositionAndHeadingAsCheckedByHand)
 	EXPECT_NE(per_step.find(",8,0.0253178079842898"), std::string::npos) << per_step;
 }
 
+/// A run folder whose stats.json holds the map-scoring keys (`extra`: more JSON members).
+void writeScoredRun(const std::string& dir, const std::string& extra)
+{
+	esif::ensureDirectory(dir);
+	esif::writeEstimationErrorFiles(dir, {pose(1, 0, 0, 0, 1.0)}, {});
+	esif::writeTextAtomically(dir + "/stats.json", "{\"wall_s\": 1, \"da_wrong\": 0" + extra + "}\n");
+}
+
+TEST(MonteCarloCollect, AggregatesTheMapScoresAsCheckedByHand)
+{
+	esif::test::TempDir tmp;
+	const std::string dir = campaignFolder(tmp, 3);
+	// Three draws: 16 true landmarks each; 16, 15, 16 found; duplicates 0, 2,
+	// 1; one spurious landmark in run 3; precision 1, 0.9, 0.95; recall 0.99,
+	// 0.8, 0.9; OSPA 0.1, 0.3, 0.2.
+	const auto scores = [](int found, int dup, int spur, double precision, double recall, double ospa) {
+		return ", \"landmarks_true\": 16, \"landmarks_found\": " + std::to_string(found) +
+			   ", \"landmarks_duplicated\": " + std::to_string(dup) + ", \"landmarks_spurious\": " +
+			   std::to_string(spur) + ", \"da_precision\": " + std::to_string(precision) +
+			   ", \"da_recall\": " + std::to_string(recall) + ", \"landmark_ospa_m\": " + std::to_string(ospa);
+	};
+	writeScoredRun(esif::campaign_layout::runFolder(dir, "ekf", 1), scores(16, 0, 0, 1.0, 0.99, 0.1));
+	writeScoredRun(esif::campaign_layout::runFolder(dir, "ekf", 2), scores(15, 2, 0, 0.9, 0.8, 0.3));
+	writeScoredRun(esif::campaign_layout::runFolder(dir, "ekf", 3), scores(16, 1, 1, 0.95, 0.9, 0.2));
+	const esif::CampaignCollection c = esif::collectCampaign(dir, esif::CampaignPlan::load(dir));
+	ASSERT_EQ(c.configs.size(), 1u);
+	const ConfigStatistics& s = c.configs[0];
+	EXPECT_DOUBLE_EQ(*s.landmarks_true_median, 16.0);
+	EXPECT_DOUBLE_EQ(*s.landmarks_found_median, 16.0);
+	EXPECT_EQ(s.landmarks_duplicated_total, 3);
+	EXPECT_EQ(s.runs_with_duplicated, 2u);
+	EXPECT_EQ(s.landmarks_spurious_total, 1);
+	EXPECT_EQ(s.runs_with_spurious, 1u);
+	EXPECT_DOUBLE_EQ(s.da_precision->median, 0.95);
+	EXPECT_DOUBLE_EQ(s.da_precision->min, 0.9);
+	EXPECT_DOUBLE_EQ(s.da_recall->median, 0.9);
+	EXPECT_DOUBLE_EQ(s.da_recall->min, 0.8);
+	EXPECT_NEAR(s.landmark_ospa_m->mean, 0.2, 1e-12);
+	EXPECT_NEAR(s.landmark_ospa_m->stddev, 0.1, 1e-12);
+	const std::string md = esif::writeCampaignOutputs(dir, esif::CampaignPlan::load(dir), c);
+	EXPECT_NE(md.find("| 16 / 16 | 3 in 2 runs / 1 in 1 runs | 0.95 [0.9] / 0.9 [0.8] | 0.2 ± 0.1 |"), std::string::npos)
+		<< md;
+	const std::string csv = esif::test::readText(dir + "/summary.csv");
+	EXPECT_NE(csv.find(",16,16,3,2,1,1,0.94999999999999996,0.90000000000000002,0.90000000000000002,"
+					   "0.80000000000000004,0.20000000000000004,"),
+			  std::string::npos)
+		<< csv;
+}
+
+TEST(MonteCarloCollect, RunsWithoutScoresLeaveThemEmptyAndBadScoresAreNamed)
+{
+	esif::test::TempDir tmp;
+	const std::string dir = campaignFolder(tmp, 1);
+	writeScoredRun(esif::campaign_layout::runFolder(dir, "ekf", 1), ", \"landmarks_true\": null");
+	const ConfigStatistics s = esif::collectCampaign(dir, esif::CampaignPlan::load(dir)).configs.at(0);
+	EXPECT_FALSE(s.landmarks_true_median);
+	EXPECT_FALSE(s.da_precision);
+	EXPECT_FALSE(s.landmark_ospa_m);
+	EXPECT_NE(esif::monteCarloSummaryCells({s})[0].back(), "");
+	const std::string run = tmp.file("bad");
+	writeScoredRun(run, ", \"da_recall\": 1.5");
+	try
+	{
+		esif::readCampaignRun(run, 0);
+		FAIL() << "no error";
+	}
+	catch (const esif::InputError& e)
+	{
+		EXPECT_EQ(std::string(e.what()), run + "/stats.json: da_recall = 1.5 is outside [0, 1]");
+	}
+}
+
 TEST(MonteCarloCollect, AMalformedErrorFileIsOneLineNamingIt)
 {
 	esif::test::TempDir tmp;

@@ -38,6 +38,22 @@ std::string write(const test::TempDir& dir, const std::string& name, const std::
 	return path;
 }
 
+/// `run` as a run solved with the rawlog's IDs: each landmark stands for
+/// the true landmark of its own ID.
+RunOutputs identifiedByIds(RunOutputs run)
+{
+	LandmarkIdentities ids{true, {}};
+	for (const auto& lm : run.landmarks) ids.landmarks.push_back({lm.id, lm.id, 1, 1});
+	run.identities = ids;
+	return run;
+}
+
+/// The difference of two runs both solved with the rawlog's IDs (no cut-off needed).
+RunDifference differenceById(const RunOutputs& run, const RunOutputs& reference)
+{
+	return runDifference(identifiedByIds(run), identifiedByIds(reference), std::nullopt);
+}
+
 /// The InputError message of `f`, or "" when it does not throw one.
 template <class F>
 std::string inputErrorOf(F f)
@@ -87,13 +103,13 @@ TEST(RunOutputReader, ReadsWhatTheWritersWrite)
 	EXPECT_TRUE(std::isnan(back.landmarks[1].mean.x()));
 }
 
-TEST(RunDifference, LandmarksMatchedByIdWithKnownRmsAndMax)
+TEST(RunDifference, LandmarksOfRunsWithTheRawlogsIdsPairedByThemWithKnownRmsAndMax)
 {
 	RunOutputs ref, run;
 	ref.landmarks = {{1, {0, 0}, {}}, {2, {10, 10}, {}}, {3, {5, 5}, {}}};
 	// ID 1 off by (3, 4): 5 m; ID 2 off by 1 m; ID 3 missing; ID 9 is not in the reference.
 	run.landmarks = {{9, {100, 100}, {}}, {2, {10, 11}, {}}, {1, {3, 4}, {}}};
-	const RunDifference d = runDifference(run, ref);
+	const RunDifference d = differenceById(run, ref);
 	EXPECT_EQ(d.landmarks_in_reference, 3u);
 	EXPECT_EQ(d.landmarks_matched, 2u);
 	ASSERT_TRUE(d.landmark_max_m && d.landmark_rms_m);
@@ -111,7 +127,7 @@ TEST(RunDifference, NonFiniteAndUnmatchedLandmarksAreNotCounted)
 	RunOutputs ref, run;
 	ref.landmarks = {{1, {0, 0}, {}}, {2, {std::nan(""), 0}, {}}, {3, {1, 1}, {}}};
 	run.landmarks = {{1, {0, 2}, {}}, {2, {0, 0}, {}}, {3, {INFINITY, 1}, {}}, {4, {0, 0}, {}}};
-	const RunDifference d = runDifference(run, ref);
+	const RunDifference d = differenceById(run, ref);
 	EXPECT_EQ(d.landmarks_matched, 1u);
 	EXPECT_EQ(d.landmarks_in_reference, 3u);
 	EXPECT_DOUBLE_EQ(*d.landmark_rms_m, 2.0);
@@ -119,7 +135,7 @@ TEST(RunDifference, NonFiniteAndUnmatchedLandmarksAreNotCounted)
 
 	RunOutputs none;
 	none.landmarks = {{5, {0, 0}, {}}};
-	const RunDifference e = runDifference(none, ref);
+	const RunDifference e = differenceById(none, ref);
 	EXPECT_EQ(e.landmarks_matched, 0u);
 	EXPECT_FALSE(e.landmark_rms_m);
 	EXPECT_FALSE(e.landmark_max_m);
@@ -143,13 +159,13 @@ TEST(RunDifference, TrajectoryByStepWithHeadingWrappedAt180)
 	ASSERT_EQ(run.trajectory.size(), 4u);
 	EXPECT_NEAR(run.trajectory[1].pose.phi, -179 * kDeg, 1e-12);
 
-	const RunDifference d = runDifference(run, ref);
+	const RunDifference d = differenceById(run, ref);
 	EXPECT_EQ(d.steps_compared, 3u);
 	EXPECT_NEAR(*d.trajectory_max_m, 5.0, 1e-12);
 	EXPECT_NEAR(*d.trajectory_rms_m, std::sqrt((0.0 + 25.0 + 1.0) / 3.0), 1e-12);
 	EXPECT_NEAR(*d.heading_rms_deg, std::sqrt((0.0 + 4.0 + 100.0) / 3.0), 1e-9);
 	// Symmetric in the two runs.
-	const RunDifference r = runDifference(ref, run);
+	const RunDifference r = differenceById(ref, run);
 	EXPECT_NEAR(*r.heading_rms_deg, *d.heading_rms_deg, 1e-12);
 	EXPECT_NEAR(*r.trajectory_rms_m, *d.trajectory_rms_m, 1e-12);
 }
@@ -159,7 +175,7 @@ TEST(RunDifference, StepsArePairedByTimeNotLine)
 	RunOutputs ref, run;
 	ref.trajectory = {{0.0, {0, 0, 0}}, {0.5, {1, 0, 0}}, {1.0, {2, 0, 0}}};
 	run.trajectory = {{0.5, {1, 2, 0}}, {1.0, {2, 0, 0}}};
-	const RunDifference d = runDifference(run, ref);
+	const RunDifference d = differenceById(run, ref);
 	EXPECT_EQ(d.steps_compared, 2u);
 	EXPECT_DOUBLE_EQ(*d.trajectory_max_m, 2.0);
 	EXPECT_DOUBLE_EQ(*d.trajectory_rms_m, std::sqrt(2.0));
@@ -197,21 +213,74 @@ TEST(RunDifference, ColumnsAppearInTablesOnlyWhenSet)
 	ref.landmarks = {{1, {0, 0}, I}, {2, {1, 1}, I}};
 	run.landmarks = {{1, {3, 4}, I}};
 	setDifferenceStats(a, referenceItself(ref));
-	setDifferenceStats(b, runDifference(run, ref));
+	setDifferenceStats(b, differenceById(run, ref));
 	const auto csv = comparisonCsv({a, b});
 	// One matched landmark fits no rotation; with unit covariances the
 	// reference's own landmarks are inside their ellipse and
 	// the run's, 5 m off, is not.
 	EXPECT_NE(csv.find("label,ref_traj_rms_m,ref_traj_max_m,ref_heading_rms_deg,ref_landmark_rms_m,"
-					   "ref_landmark_max_m,ref_landmarks_matched,ref_rotation_deg,ref_landmark_rms_aligned_m,"
-					   "ref_landmarks_in_own95\n"),
+					   "ref_landmark_max_m,ref_landmarks_matched,ref_landmarks_paired_by,ref_ospa_m,ref_rotation_deg,"
+					   "ref_landmark_rms_aligned_m,ref_landmarks_in_own95\n"),
 			  std::string::npos)
 		<< csv;
-	EXPECT_NE(csv.find("ekf,,,,0,0,2,0,0,1\n"), std::string::npos) << csv;
-	EXPECT_NE(csv.find("other,,,,5,5,1,,,0\n"), std::string::npos) << csv;
+	EXPECT_NE(csv.find("ekf,,,,0,0,2,itself,0,0,0,1\n"), std::string::npos) << csv;
+	EXPECT_NE(csv.find("other,,,,5,5,1,true landmark,,,,0\n"), std::string::npos) << csv;
 	const auto text = comparisonText({a, b});
 	for (const auto& k : runDifferenceKeys()) EXPECT_NE(text.find(k), std::string::npos) << k;
 	EXPECT_NE(comparisonMarkdown({a, b}).find("| ref_landmarks_matched | 2 | 1 |"), std::string::npos);
+}
+
+/// A reference solved with the IDs (its landmarks numbered by their true
+/// landmarks) and a run that associated on its own (numbered 0, 1, 2, ...
+/// in the order it created them): paired through what each landmark stands
+/// for, never by number.
+TEST(RunDifference, PairsThroughTrueLandmarksWhateverTheNumbers)
+{
+	RunOutputs ref, run;
+	ref.landmarks = {{1, {0, 0}, {}}, {2, {10, 0}, {}}, {3, {20, 0}, {}}};
+	ref.identities = LandmarkIdentities{true, {{1, 1, 9, 9}, {2, 2, 9, 9}, {3, 3, 9, 9}}};
+	// Its landmark 0 is true 3 (0.3 m off), 1 is true 1 (0.4 m off), 2 is true
+	// 2 (1 m off); 3 is a duplicate of true 1 with fewer measurements (far
+	// off, left out); 4 is clutter. By number, 1-1, 2-2 and 3-3 would pair
+	// landmarks 10 m and more apart.
+	run.landmarks = {{0, {20, 0.3}, {}}, {1, {0.4, 0}, {}}, {2, {10, 1}, {}}, {3, {5, 5}, {}}, {4, {-9, -9}, {}}};
+	run.identities =
+		LandmarkIdentities{true, {{0, 3, 5, 5}, {1, 1, 6, 7}, {2, 2, 4, 4}, {3, 1, 2, 2}, {4, std::nullopt, 0, 3}}};
+	const RunDifference d = runDifference(run, ref, 2.0);
+	EXPECT_EQ(d.pairing, LandmarkPairing::TrueLandmark);
+	EXPECT_EQ(d.landmarks_matched, 3u);
+	EXPECT_NEAR(*d.landmark_rms_m, std::sqrt((0.09 + 0.16 + 1.0) / 3.0), 1e-12);
+	EXPECT_NEAR(*d.landmark_max_m, 1.0, 1e-12);
+	// OSPA over all five against three: three pairs below c = 2, two extra at c.
+	EXPECT_NEAR(*d.ospa_m, std::sqrt((0.09 + 0.16 + 1.0 + 4.0 + 4.0) / 5.0), 1e-12);
+	EXPECT_EQ(landmarkPairingText(d.pairing, d.cutoff_m), "true landmark");
+}
+
+/// Where a run has no identities (no measurement carried its true landmark,
+/// or a folder without landmark_identities.txt), the optimal assignment
+/// within c pairs the maps, and the row says so.
+TEST(RunDifference, WithoutIdentitiesPairsByAssignmentWithinTheCutoff)
+{
+	RunOutputs ref, run;
+	ref.landmarks = {{1, {0, 0}, {}}, {2, {10, 0}, {}}, {3, {20, 0}, {}}};
+	ref.identities = LandmarkIdentities{true, {{1, 1, 9, 9}, {2, 2, 9, 9}, {3, 3, 9, 9}}};
+	run.landmarks = {{3, {0.5, 0}, {}}, {1, {10, 0.2}, {}}, {2, {35, 0}, {}}};
+	run.identities = LandmarkIdentities{false, {{3, std::nullopt, 0, 4}, {1, std::nullopt, 0, 4}, {2, std::nullopt, 0, 4}}};
+	const RunDifference d = runDifference(run, ref, 1.0);
+	EXPECT_EQ(d.pairing, LandmarkPairing::Assignment);
+	EXPECT_EQ(d.landmarks_matched, 2u);	 // 15 m is beyond c
+	EXPECT_NEAR(*d.landmark_rms_m, std::sqrt((0.25 + 0.04) / 2.0), 1e-12);
+	EXPECT_NEAR(*d.ospa_m, std::sqrt((0.25 + 0.04 + 1.0) / 3.0), 1e-12);
+	EXPECT_EQ(landmarkPairingText(d.pairing, d.cutoff_m), "assignment within c = 1 m");
+	// A reference folder without identities (another solver's): the same.
+	run.identities = identifiedByIds(run).identities;
+	ref.identities.reset();
+	EXPECT_EQ(runDifference(run, ref, 1.0).landmarks_matched, 2u);
+	// No cut-off (runs on local maps): nothing is paired.
+	const RunDifference none = runDifference(run, ref, std::nullopt);
+	EXPECT_EQ(none.pairing, LandmarkPairing::None);
+	EXPECT_EQ(none.landmarks_matched, 0u);
+	EXPECT_FALSE(none.ospa_m);
 }
 
 TEST(RunDifference, BestFitRotationTellsARotatedMapFromADistortedOne)
@@ -230,7 +299,7 @@ TEST(RunDifference, BestFitRotationTellsARotatedMapFromADistortedOne)
 		ref.landmarks.push_back({i, p, Eigen::Matrix2d::Identity()});
 		run.landmarks.push_back({i, centre + R * (p - centre), Eigen::Matrix2d::Identity()});
 	}
-	const RunDifference d = runDifference(run, ref);
+	const RunDifference d = differenceById(run, ref);
 	// MRPT's se2_l2 sums in single precision (SSE): 1e-6 deg and 1e-6 m
 	// seen at these 40 m coordinates; 1e-5 leaves a margin.
 	EXPECT_GT(*d.landmark_rms_m, 1.0);
@@ -248,7 +317,7 @@ TEST(RunDifference, CountsReferencePositionsInsideTheRunsOwn95Ellipse)
 	RunOutputs ref, run;
 	ref.landmarks = {{1, {2, 0}, {}}, {2, {0, 0.3}, {}}, {3, {0, 0.2}, {}}, {4, {5, 5}, {}}};
 	run.landmarks = {{1, {0, 0}, P}, {2, {0, 0}, P}, {3, {0, 0}, P}, {4, {0, 0}, Eigen::Matrix2d::Zero()}};
-	const RunDifference d = runDifference(run, ref);
+	const RunDifference d = differenceById(run, ref);
 	EXPECT_EQ(d.landmarks_matched, 4u);
 	EXPECT_EQ(d.landmarks_with_covariance, 3u);
 	EXPECT_NEAR(*d.landmarks_inside_own95_fraction, 2.0 / 3.0, 1e-12);

@@ -82,17 +82,4 @@ TEST(RunOrder, CycleIsAnError)
 			  std::string::npos);
 }
 
-TEST(RunOrder, LandmarkIdOriginFollowsTheSources)
-{
-	const std::vector<PlannedRun> runs = {
-		{"full.ini", "full", "jcbb", true}, {"jcbb.ini", "jcbb", "", true}, {"ekf.ini", "ekf", "", false},
-		{"old.ini", "old", "out/x", false}, {"chain.ini", "chain", "full", false}};
-	const auto sources = esif::associationSources(runs);
-	EXPECT_EQ(esif::landmarkIdOrigin(runs, sources, 0), "numbered by run 'jcbb' itself");
-	EXPECT_EQ(esif::landmarkIdOrigin(runs, sources, 1), "numbered by run 'jcbb' itself");
-	EXPECT_EQ(esif::landmarkIdOrigin(runs, sources, 2), "from the rawlog");
-	EXPECT_EQ(esif::landmarkIdOrigin(runs, sources, 3), "from out/x/associations.txt");
-	EXPECT_EQ(esif::landmarkIdOrigin(runs, sources, 4), "numbered by run 'jcbb' itself");
-}
-
 }  // namespace

@@ -11,14 +11,48 @@ void AssociationAudit::record(const StepReport& report, const std::vector<std::o
 	for (std::size_t i = 0; i < report.associations.size(); ++i)
 	{
 		const auto& a = report.associations[i];
+		const std::optional<LandmarkId> true_id = i < true_ids.size() ? true_ids[i] : std::nullopt;
+		if (true_id)
+		{
+			++with_truth_;
+			true_landmarks_.insert(*true_id);
+		}
 		switch (a.kind)
 		{
 			case Association::Kind::New: ++new_; break;
 			case Association::Kind::Matched: ++matched_; break;
 			case Association::Kind::Rejected: ++rejected_; continue;
 		}
-		if (i < true_ids.size() && true_ids[i]) ++votes_[a.id][*true_ids[i]];
+		++used_[a.id];
+		if (true_id) ++votes_[a.id][*true_id];
 	}
+}
+
+void AssociationAudit::recordGivenIds(const StepReport& report, const StepInput& step)
+{
+	tracks_given_ = true;
+	if (!step.scan) return;
+	const auto& measurements = step.scan->measurements;
+	for (std::size_t i = 0; i < measurements.size() && i < report.associations.size(); ++i)
+	{
+		if (!measurements[i].id) continue;
+		++given_ids_;
+		given_ids_rejected_ += report.associations[i].kind == Association::Kind::Rejected;
+	}
+}
+
+std::size_t AssociationAudit::usedOn(LandmarkId id) const
+{
+	const auto it = used_.find(id);
+	return it == used_.end() ? 0 : it->second;
+}
+
+std::size_t AssociationAudit::votesFor(LandmarkId id, LandmarkId true_id) const
+{
+	const auto it = votes_.find(id);
+	if (it == votes_.end()) return 0;
+	const auto vote = it->second.find(true_id);
+	return vote == it->second.end() ? 0 : vote->second;
 }
 
 std::map<LandmarkId, LandmarkId> AssociationAudit::filterToTrue() const

@@ -24,7 +24,23 @@ const std::vector<ColumnMeaning>& comparisonColumnMeanings()
 		{{"peak_rss_mb"}, "", "peak memory [MiB]"},
 		{{"da_new", "da_matched", "da_rejected"}, "", "data-association decisions"},
 		{{"da_wrong"}, "", "wrong associations against the rawlog's (or the simulator's true) IDs"},
+		{{"landmarks_true", "landmarks_found", "landmarks_duplicated", "landmarks_spurious"},
+		 "",
+		 "with the true landmark of each measurement (the rawlog's IDs, shown or hidden, or the simulator's): the "
+		 "true landmarks measured; those a landmark of the final map is identified with (the true landmark most of "
+		 "its measurements came from); landmarks identified with a true landmark another landmark already stands "
+		 "for (the one with most of its measurements); landmarks with no true landmark (clutter, or no measurement)"},
+		{{"da_precision", "da_recall"},
+		 "",
+		 "the same: of the measurements used (new or matched), the share put on the landmark that stands for their "
+		 "true landmark; of the measurements with a true landmark, the share so used (a rejected one counts against "
+		 "recall, one put on a duplicate or on another true landmark's against both)"},
 		{{"landmark_rmse_m", "ate_rmse_m"}, "", "ground truth: landmark and trajectory RMS error [m]"},
+		{{"landmark_ospa_m", "ospa_c_m"},
+		 "",
+		 "ground truth: OSPA distance (p = 2) of the final map to the true landmarks measured, which needs no "
+		 "identity; and its cut-off c, what one missing, extra or far landmark costs: 4.29 times the larger position "
+		 "sigma of the median measurement (rawlog runs) [m]"},
 		{{"landmark_nees_mean", "pose_nees_mean"},
 		 "",
 		 "ground truth: mean NEES of landmarks (2 dof) and poses (3 dof); about 2 and 3 for a consistent filter"},
@@ -45,8 +61,13 @@ const std::vector<ColumnMeaning>& comparisonColumnMeanings()
 		 "steps of `trajectory.tum` [m, deg]"},
 		{{"ref_landmark_rms_m", "ref_landmark_max_m", "ref_landmarks_matched"},
 		 "a reference",
-		 "RMS and largest difference of landmarks with the same ID in `landmarks.txt`, and how many were paired (the "
+		 "RMS and largest difference of the landmarks paired with the reference's, and how many were paired (the "
 		 "reference's own row: its landmark count)"},
+		{{"ref_landmarks_paired_by", "ref_ospa_m"},
+		 "a reference",
+		 "how they were paired: through the true landmark each stands for (`landmark_identities.txt`), or, where "
+		 "a run has none, by the optimal one-to-one assignment, pairs closer than c only; and the OSPA distance "
+		 "(p = 2) of the two maps, with the run's c [m]"},
 		{{"ref_rotation_deg", "ref_landmark_rms_aligned_m"},
 		 "a reference",
 		 "rotation of the best-fit rigid transform of the run's map onto the reference's (MRPT `tfest::se2_l2`) and "
@@ -94,6 +115,15 @@ const std::vector<ColumnMeaning>& monteCarloSummaryColumns()
 		 "deviation over runs"},
 		{{"time per run [s]"}, "", "the filter's wall time per run, median [quartiles]"},
 		{{"wrong associations"}, "", "`da_wrong` summed over runs, and in how many runs"},
+		{{"true landmarks / found"}, "", "`landmarks_true` and `landmarks_found`, median over runs"},
+		{{"duplicated / spurious"},
+		 "",
+		 "`landmarks_duplicated` and `landmarks_spurious` summed over runs, and in how many runs"},
+		{{"precision / recall"}, "", "`da_precision` and `da_recall`, median over runs [lowest]"},
+		{{"landmark OSPA [m]"},
+		 "",
+		 "`landmark_ospa_m` (p = 2, c = `ospa_c_m`, the same in every run of a scenario); mean ± standard deviation "
+		 "over runs"},
 	};
 	return columns;
 }

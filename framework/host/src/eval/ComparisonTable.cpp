@@ -15,8 +15,9 @@ const std::vector<std::string>& comparisonKeys()
 	static const std::vector<std::string> keys = {
 		"plugin", "steps", "landmarks", "state_dim", "info_nnz", "wall_s", "step_us_mean", "step_us_p50",
 		"step_us_p99", "step_us_max", "peak_rss_mb", "da_new", "da_matched", "da_rejected", "da_wrong",
-		"landmark_rmse_m", "ate_rmse_m", "landmark_nees_mean", "pose_nees_mean", "landmark_consistent_fraction",
-		"pose_consistent_fraction"};
+		"landmarks_true", "landmarks_found", "landmarks_duplicated", "landmarks_spurious", "da_precision",
+		"da_recall", "landmark_rmse_m", "ate_rmse_m", "landmark_ospa_m", "ospa_c_m", "landmark_nees_mean",
+		"pose_nees_mean", "landmark_consistent_fraction", "pose_consistent_fraction"};
 	return keys;
 }
 

@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <tuple>
 
 namespace esif
 {
@@ -225,6 +226,49 @@ void addStateStatistics(const std::vector<CampaignRunErrors>& runs, ConfigStatis
 }
 }  // namespace
 
+namespace
+{
+/// The values of `field` over the runs that have one.
+std::vector<double> presentValues(
+	const std::vector<CampaignRunErrors>& runs, std::optional<double> CampaignRunErrors::*field)
+{
+	std::vector<double> out;
+	for (const auto& run : runs)
+		if (run.*field) out.push_back(*(run.*field));
+	return out;
+}
+
+/// The sum of `field` over the runs, and how many runs have it above 0.
+std::pair<long long, std::size_t> totalOf(
+	const std::vector<CampaignRunErrors>& runs, std::optional<double> CampaignRunErrors::*field)
+{
+	long long total = 0;
+	std::size_t runs_with = 0;
+	for (const double v : presentValues(runs, field))
+	{
+		total += static_cast<long long>(v);
+		runs_with += v > 0;
+	}
+	return {total, runs_with};
+}
+
+void addMapScoreStatistics(const std::vector<CampaignRunErrors>& runs, ConfigStatistics& out)
+{
+	if (const auto v = presentValues(runs, &CampaignRunErrors::landmarks_true); !v.empty())
+		out.landmarks_true_median = quantilesOf(v).median;
+	if (const auto v = presentValues(runs, &CampaignRunErrors::landmarks_found); !v.empty())
+		out.landmarks_found_median = quantilesOf(v).median;
+	std::tie(out.landmarks_duplicated_total, out.runs_with_duplicated) =
+		totalOf(runs, &CampaignRunErrors::landmarks_duplicated);
+	std::tie(out.landmarks_spurious_total, out.runs_with_spurious) =
+		totalOf(runs, &CampaignRunErrors::landmarks_spurious);
+	if (const auto v = presentValues(runs, &CampaignRunErrors::da_precision); !v.empty()) out.da_precision = quantilesOf(v);
+	if (const auto v = presentValues(runs, &CampaignRunErrors::da_recall); !v.empty()) out.da_recall = quantilesOf(v);
+	if (const auto v = presentValues(runs, &CampaignRunErrors::landmark_ospa_m); !v.empty())
+		out.landmark_ospa_m = meanSpreadOf(v);
+}
+}  // namespace
+
 ConfigStatistics aggregateRuns(const std::string& name, const std::vector<CampaignRunErrors>& runs)
 {
 	if (runs.empty()) throw std::invalid_argument("aggregateRuns: " + name + ": no finished run");
@@ -234,6 +278,7 @@ ConfigStatistics aggregateRuns(const std::string& name, const std::vector<Campai
 	addPoseStatistics(runs, out);
 	addLandmarkStatistics(runs, out);
 	addStateStatistics(runs, out);
+	addMapScoreStatistics(runs, out);
 	std::vector<double> trajectory, landmarks, wall;
 	for (const auto& run : runs)
 	{

@@ -45,7 +45,23 @@ const char* const kSummaryColumns =
 	"trajectory_rmse_mean_m,trajectory_rmse_std_m,landmark_rmse_mean_m,landmark_rmse_std_m,"
 	"final_position_rmse_m,wall_s_median,wall_s_p25,wall_s_p75,wall_s_min,wall_s_max,da_wrong_total,"
 	"runs_with_da_wrong,pose_position_anees_mean,pose_heading_anees_mean,state_runs,state_anees_per_dof,"
-	"state_bound_lo,state_bound_hi,state_runs_inside_fraction";
+	"state_bound_lo,state_bound_hi,state_runs_inside_fraction,landmarks_true_median,landmarks_found_median,"
+	"landmarks_duplicated_total,runs_with_duplicated,landmarks_spurious_total,runs_with_spurious,"
+	"da_precision_median,da_precision_min,da_recall_median,da_recall_min,landmark_ospa_mean_m,landmark_ospa_std_m";
+
+std::optional<double> medianOf(const std::optional<Quantiles>& q) { return q ? std::optional<double>(q->median) : std::nullopt; }
+std::optional<double> lowestOf(const std::optional<Quantiles>& q) { return q ? std::optional<double>(q->min) : std::nullopt; }
+std::optional<double> meanOf(const std::optional<MeanSpread>& m) { return m ? std::optional<double>(m->mean) : std::nullopt; }
+std::optional<double> spreadOf(const std::optional<MeanSpread>& m)
+{
+	return m ? std::optional<double>(m->stddev) : std::nullopt;
+}
+
+/// "median [lowest]" of a share, "-" without runs.
+std::string medianAndLowest(const std::optional<Quantiles>& q)
+{
+	return q ? rounded(q->median) + " [" + rounded(q->min) + "]" : std::string("-");
+}
 
 /// The RMSE over runs of the position at the last step all runs have.
 double finalPositionRmse(const ConfigStatistics& c)
@@ -68,7 +84,12 @@ std::string monteCarloSummaryCsv(const std::vector<ConfigStatistics>& configs, s
 			full(c.wall_s.median), full(c.wall_s.p25), full(c.wall_s.p75), full(c.wall_s.min), full(c.wall_s.max),
 			std::to_string(c.da_wrong_total), std::to_string(c.runs_with_da_wrong), full(c.pose_position_anees_mean),
 			full(c.pose_heading_anees_mean), std::to_string(c.state_runs), full(c.state_anees_per_dof),
-			full(c.state_bounds.lo), full(c.state_bounds.hi), full(c.state_runs_inside_fraction)};
+			full(c.state_bounds.lo), full(c.state_bounds.hi), full(c.state_runs_inside_fraction),
+			full(c.landmarks_true_median), full(c.landmarks_found_median), std::to_string(c.landmarks_duplicated_total),
+			std::to_string(c.runs_with_duplicated), std::to_string(c.landmarks_spurious_total),
+			std::to_string(c.runs_with_spurious), full(medianOf(c.da_precision)), full(lowestOf(c.da_precision)),
+			full(medianOf(c.da_recall)), full(lowestOf(c.da_recall)), full(meanOf(c.landmark_ospa_m)),
+			full(spreadOf(c.landmark_ospa_m))};
 		for (std::size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + cells[i];
 		out += "\n";
 	}
@@ -95,7 +116,13 @@ std::vector<std::vector<std::string>> monteCarloSummaryCells(const std::vector<C
 			 rounded(c.trajectory_rmse_m.mean) + " ± " + rounded(c.trajectory_rmse_m.stddev, 2),
 			 rounded(c.landmark_rmse_m.mean) + " ± " + rounded(c.landmark_rmse_m.stddev, 2),
 			 rounded(c.wall_s.median) + " [" + rounded(c.wall_s.p25) + ", " + rounded(c.wall_s.p75) + "]",
-			 std::to_string(c.da_wrong_total) + " in " + std::to_string(c.runs_with_da_wrong) + " runs"});
+			 std::to_string(c.da_wrong_total) + " in " + std::to_string(c.runs_with_da_wrong) + " runs",
+			 rounded(c.landmarks_true_median) + " / " + rounded(c.landmarks_found_median),
+			 std::to_string(c.landmarks_duplicated_total) + " in " + std::to_string(c.runs_with_duplicated) + " runs / " +
+				 std::to_string(c.landmarks_spurious_total) + " in " + std::to_string(c.runs_with_spurious) + " runs",
+			 medianAndLowest(c.da_precision) + " / " + medianAndLowest(c.da_recall),
+			 c.landmark_ospa_m ? rounded(c.landmark_ospa_m->mean) + " ± " + rounded(c.landmark_ospa_m->stddev, 2)
+							   : std::string("-")});
 	return rows;
 }
 

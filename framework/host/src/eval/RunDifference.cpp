@@ -1,5 +1,7 @@
 #include <esif/association/Chi2.h>
 #include "eval/DifferenceSpread.h"
+#include <esif/eval/LandmarkIdentities.h>
+#include <esif/eval/LandmarkSetDistance.h>
 #include <esif/eval/RunDifference.h>
 #include <esif/models/Se2.h>
 
@@ -10,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <unordered_map>
 
 namespace esif
@@ -49,21 +52,40 @@ struct MatchedLandmark
 	const LandmarkEstimate* reference;
 };
 
-/// Landmarks of equal ID with finite positions on both sides, in the reference's order.
-std::vector<MatchedLandmark> matchLandmarks(
-	const std::vector<LandmarkEstimate>& run, const std::vector<LandmarkEstimate>& reference)
+/// Each map's landmark that stands for a true landmark, paired through it,
+/// finite on both sides, in the reference's order.
+std::vector<MatchedLandmark> pairThroughTrueLandmarks(const RunOutputs& run, const RunOutputs& reference)
 {
-	std::unordered_map<LandmarkId, const LandmarkEstimate*> in_run;
-	for (const auto& lm : run) in_run.emplace(lm.id, &lm);
+	std::unordered_map<LandmarkId, const LandmarkEstimate*> run_by_id;
+	for (const auto& lm : run.landmarks) run_by_id.emplace(lm.id, &lm);
+	// reference landmark -> the run's landmark for the same true landmark
+	std::unordered_map<LandmarkId, LandmarkId> partner;
+	const auto run_primary = primaryLandmarks(*run.identities);
+	for (const auto& [true_id, ref_id] : primaryLandmarks(*reference.identities))
+		if (const auto it = run_primary.find(true_id); it != run_primary.end()) partner.emplace(ref_id, it->second);
 	std::vector<MatchedLandmark> matched;
-	for (const auto& ref : reference)
+	for (const auto& ref : reference.landmarks)
 	{
-		const auto it = in_run.find(ref.id);
-		if (it == in_run.end() || !ref.mean.allFinite() || !it->second->mean.allFinite()) continue;
-		matched.push_back({it->second, &ref});
+		const auto it = partner.find(ref.id);
+		if (it == partner.end()) continue;
+		const LandmarkEstimate* lm = run_by_id.at(it->second);
+		if (ref.mean.allFinite() && lm->mean.allFinite()) matched.push_back({lm, &ref});
 	}
 	return matched;
 }
+
+/// The pairs closer than c of the optimal assignment (the OSPA's), in the reference's order.
+std::vector<MatchedLandmark> pairByAssignment(const SetMatch& match, const RunOutputs& run, const RunOutputs& reference)
+{
+	std::vector<std::pair<std::size_t, std::size_t>> by_reference;
+	for (const auto& [i, j] : match.pairs) by_reference.emplace_back(j, i);
+	std::sort(by_reference.begin(), by_reference.end());
+	std::vector<MatchedLandmark> matched;
+	for (const auto& [j, i] : by_reference) matched.push_back({&run.landmarks[i], &reference.landmarks[j]});
+	return matched;
+}
+
+bool hasTrueLandmarks(const RunOutputs& run) { return run.identities && run.identities->truth; }
 
 /// The rigid transform q with reference ~ q (+) run, by MRPT's closed-form
 /// least squares; its rotation and the RMS left after applying it.
@@ -111,13 +133,42 @@ void countInsideOwnEllipse(const std::vector<MatchedLandmark>& matched, RunDiffe
 	if (usable) out.landmarks_inside_own95_fraction = static_cast<double>(inside) / static_cast<double>(usable);
 }
 
-void compareLandmarks(
-	const std::vector<LandmarkEstimate>& run, const std::vector<LandmarkEstimate>& reference, RunDifference& out)
+/// The landmark pairs (see runDifference) and, with a cut-off, the OSPA of the maps.
+std::vector<MatchedLandmark> pairLandmarks(
+	const RunOutputs& run, const RunOutputs& reference, const std::optional<double>& cutoff_m, RunDifference& out)
 {
-	const auto matched = matchLandmarks(run, reference);
+	std::optional<SetMatch> match;
+	if (cutoff_m)
+	{
+		match = matchPointSets(landmarkPositions(run.landmarks), landmarkPositions(reference.landmarks), *cutoff_m);
+		out.cutoff_m = cutoff_m;
+		out.ospa_m = match->ospa;
+	}
+	if (hasTrueLandmarks(run) && hasTrueLandmarks(reference))
+	{
+		out.pairing = LandmarkPairing::TrueLandmark;
+		return pairThroughTrueLandmarks(run, reference);
+	}
+	if (!match) return {};
+	out.pairing = LandmarkPairing::Assignment;
+	return pairByAssignment(*match, run, reference);
+}
+
+/// Every finite landmark of `reference` paired with itself: its own row.
+std::vector<MatchedLandmark> pairWithItself(const RunOutputs& reference)
+{
+	std::vector<MatchedLandmark> matched;
+	for (const auto& lm : reference.landmarks)
+		if (lm.mean.allFinite()) matched.push_back({&lm, &lm});
+	return matched;
+}
+
+/// The landmark figures of `matched` pairs.
+void compareLandmarks(const std::vector<MatchedLandmark>& matched, const RunOutputs& reference, RunDifference& out)
+{
 	DifferenceSpread position;
 	for (const auto& m : matched) position.add((m.run->mean - m.reference->mean).norm());
-	out.landmarks_in_reference = reference.size();
+	out.landmarks_in_reference = reference.landmarks.size();
 	out.landmarks_matched = position.count();
 	out.landmark_rms_m = position.rms();
 	out.landmark_max_m = position.max();
@@ -126,26 +177,48 @@ void compareLandmarks(
 }
 }  // namespace
 
-RunDifference runDifference(const RunOutputs& run, const RunOutputs& reference)
+std::string landmarkPairingText(LandmarkPairing pairing, const std::optional<double>& cutoff_m)
+{
+	switch (pairing)
+	{
+		case LandmarkPairing::TrueLandmark: return "true landmark";
+		case LandmarkPairing::Assignment:
+		{
+			char c[32];
+			std::snprintf(c, sizeof(c), "%.3g", cutoff_m.value_or(0));
+			return std::string("assignment within c = ") + c + " m";
+		}
+		case LandmarkPairing::Itself: return "itself";
+		case LandmarkPairing::None: break;
+	}
+	return "none";
+}
+
+RunDifference runDifference(const RunOutputs& run, const RunOutputs& reference, const std::optional<double>& cutoff_m)
 {
 	RunDifference out;
 	compareTrajectories(run.trajectory, reference.trajectory, out);
-	compareLandmarks(run.landmarks, reference.landmarks, out);
+	compareLandmarks(pairLandmarks(run, reference, cutoff_m, out), reference, out);
 	return out;
 }
 
 RunDifference referenceItself(const RunOutputs& reference)
 {
-	RunDifference out = runDifference(reference, reference);
+	RunDifference out;
+	compareTrajectories(reference.trajectory, reference.trajectory, out);
+	compareLandmarks(pairWithItself(reference), reference, out);
 	out.landmarks_matched = out.landmarks_in_reference;
+	out.pairing = LandmarkPairing::Itself;
+	out.ospa_m = 0.0;
 	return out;
 }
 
 const std::vector<std::string>& runDifferenceKeys()
 {
 	static const std::vector<std::string> keys = {
-		"ref_traj_rms_m",	  "ref_traj_max_m",	  "ref_heading_rms_deg",		"ref_landmark_rms_m",	  "ref_landmark_max_m",
-		"ref_landmarks_matched", "ref_rotation_deg", "ref_landmark_rms_aligned_m", "ref_landmarks_in_own95"};
+		"ref_traj_rms_m",		  "ref_traj_max_m",	  "ref_heading_rms_deg", "ref_landmark_rms_m",
+		"ref_landmark_max_m",	  "ref_landmarks_matched", "ref_landmarks_paired_by", "ref_ospa_m",
+		"ref_rotation_deg",		  "ref_landmark_rms_aligned_m", "ref_landmarks_in_own95"};
 	return keys;
 }
 
@@ -158,9 +231,11 @@ void setDifferenceStats(Stats& stats, const RunDifference& d)
 	stats.set(k[3], d.landmark_rms_m);
 	stats.set(k[4], d.landmark_max_m);
 	stats.set(k[5], StatValue(static_cast<long long>(d.landmarks_matched)));
-	stats.set(k[6], d.best_fit_rotation_deg);
-	stats.set(k[7], d.landmark_rms_aligned_m);
-	stats.set(k[8], d.landmarks_inside_own95_fraction);
+	stats.set(k[6], StatValue(landmarkPairingText(d.pairing, d.cutoff_m)));
+	stats.set(k[7], d.ospa_m);
+	stats.set(k[8], d.best_fit_rotation_deg);
+	stats.set(k[9], d.landmark_rms_aligned_m);
+	stats.set(k[10], d.landmarks_inside_own95_fraction);
 }
 
 }  // namespace esif

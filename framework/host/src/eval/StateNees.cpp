@@ -1,4 +1,5 @@
 #include <esif/core/Errors.h>
+#include <esif/eval/LandmarkIdentities.h>
 #include <esif/eval/StateNees.h>
 
 #include <esif/eval/MonteCarloStatistics.h>
@@ -72,6 +73,13 @@ StateReference stateReferenceOf(const RunOutputs& run, std::size_t steps)
 {
 	GroundTruth truth = runAsGroundTruth(run);
 	if (truth.path.size() != steps) truth.path.clear();	 // rows that cannot be paired with steps
+	if (run.identities && run.identities->truth)
+	{
+		// By true landmark: the landmark that stands for each (its duplicates left out).
+		std::map<LandmarkId, Eigen::Vector2d> by_true_id;
+		for (const auto& [true_id, id] : primaryLandmarks(*run.identities)) by_true_id.emplace(true_id, truth.landmarks.at(id));
+		truth.landmarks = std::move(by_true_id);
+	}
 	return stateReferenceOf(truth);
 }
 

@@ -1,6 +1,7 @@
 #include "RunFiles.h"
 
 #include <esif/core/Errors.h>
+#include <esif/eval/LandmarkIdentities.h>
 #include <esif/eval/LocalMapEvaluation.h>
 #include <esif/eval/ReferenceResultDifference.h>
 #include <esif/formats/AssociationFile.h>
@@ -19,7 +20,8 @@ namespace
 /// What every local-map run writes, checked before the folder is put in place.
 const std::vector<std::string> kLocalMapRunOutputFiles = {
 	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "map.svg",
-	"landmarks.gz", "localmap_times.png", "localmap_times.svg", "params.ini", kAssociationFileName, "stats.json"};
+	"landmarks.gz", "localmap_times.png", "localmap_times.svg", "params.ini", kAssociationFileName,
+	kLandmarkIdentityFileName, "stats.json"};
 
 /// What the run was given, read before any output is written.
 struct LocalMapInput
@@ -53,8 +55,9 @@ void rejectRawlogOnlyKeys(const ConfigFile& cfg, const HostParams& host)
 
 Stats collectStats(
 	const HostParams& host, const LocalMapRunRequest& request, const LocalMapInput& in,
-	const LocalMapReplayResult& result, const FilterPlugin& plugin, const std::optional<Accuracy>& accuracy,
-	const std::optional<ReferenceResultDifference>& difference, double total_wall_s)
+	const LocalMapReplayResult& result, const FilterPlugin& plugin, const MapScores& scores,
+	const std::optional<Accuracy>& accuracy, const std::optional<ReferenceResultDifference>& difference,
+	double total_wall_s)
 {
 	Stats s;
 	const auto cost = plugin.costFigures();
@@ -67,7 +70,7 @@ Stats collectStats(
 	s.set("wall_s", StatValue(result.wall_s));
 	s.set("total_wall_s", StatValue(total_wall_s));
 	setLocalMapJoinStats(s, in.folder.maps.size(), result.join_us, result.fusion_costs);
-	setRunOutcomeStats(s, result.finish_us, cost, result.audit, accuracy);
+	setRunOutcomeStats(s, result.finish_us, cost, result.audit, scores, accuracy);
 	if (difference) setReferenceResultStats(s, *difference);
 	setPluginCounters(s, cost);
 	return s;
@@ -112,6 +115,10 @@ Stats runInto(const LocalMapRunRequest& request, PluginLoader& loader)
 		*plugin, in.folder.maps, request.local_maps_dir, {host.hide_landmark_ids, request.progress_bar});
 	result.record.truth = localMapGroundTruth(in.folder);
 	const auto filter_to_file = result.audit.filterToTrue();
+	const LandmarkIdentities identities = landmarkIdentities(result.audit, result.record.final_estimate.landmarks);
+	// No OSPA: local-map files hold information matrices, not the
+	// measurement covariances the cut-off is taken from (MapOspa.h).
+	const MapScores scores{scoreAssociations(identities, result.audit), std::nullopt, std::nullopt};
 	const auto accuracy = times.time("evaluate", [&] {
 		return evaluateLocalMapRun(in.folder, result.record.trajectory, result.record.final_estimate, filter_to_file);
 	});
@@ -125,10 +132,10 @@ Stats runInto(const LocalMapRunRequest& request, PluginLoader& loader)
 	// fusion_costs holds one entry per map at least (LocalMapReplay.h), so
 	// localmap_times.png is always written.
 	writeRunFiles(
-		request.out_dir, host, *plugin, {result.record, result.reports, result.fusion_costs, request.local_maps_dir},
-		times);
+		request.out_dir, host, *plugin,
+		{result.record, result.reports, result.fusion_costs, request.local_maps_dir, identities}, times);
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-	Stats stats = collectStats(host, request, in, result, *plugin, accuracy, difference, total_wall_s);
+	Stats stats = collectStats(host, request, in, result, *plugin, scores, accuracy, difference, total_wall_s);
 	const auto nees =
 		times.time("state_nees", [&] { return truthStateNees(in.folder, *plugin, filter_to_file, request.config_path); });
 	closeRunStats(stats, nees, "truth", times, request.out_dir);

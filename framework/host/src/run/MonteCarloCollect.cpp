@@ -3,6 +3,7 @@
 /// MonteCarloCollect.h.
 
 #include <esif/core/Errors.h>
+#include <esif/core/InputBounds.h>
 #include <esif/eval/EstimationErrorFiles.h>
 #include "eval/MonteCarloFigures.h"
 #include <esif/eval/SuspectResult.h>
@@ -20,6 +21,21 @@ namespace esif
 namespace
 {
 constexpr int kFigureWidthPx = 1200;
+
+/// Largest count a run's stats.json may hold: summed over thousands of
+/// runs it still fits a long long exactly.
+constexpr double kMaxCount = 1e12;
+
+/// stats.json `key` (nullopt when absent or null), which must be a number in
+/// [0, `max`]: a damaged file is one error naming it, never summed as it is.
+std::optional<double> scoreValue(const Stats& stats, const std::string& key, double max, const std::string& path)
+{
+	const auto v = stats.number(key);
+	if (v && !(*v >= 0 && *v <= max))
+		throw InputError(path + ": " + key + " = " + statText(*stats.get(key)) + " is outside [0, " +
+						 statText(StatValue(max)) + "]");
+	return v;
+}
 
 std::string failureLine(const std::string& id, const FailureRecord& r)
 {
@@ -41,6 +57,13 @@ CampaignRunErrors readCampaignRun(const std::string& run_folder, std::size_t see
 	run.wall_s = *wall;
 	run.da_wrong = static_cast<long long>(stats.number("da_wrong").value_or(0));
 	run.suspect_reason = recordedSuspectReason(stats);
+	run.landmarks_true = scoreValue(stats, "landmarks_true", kMaxCount, stats_path);
+	run.landmarks_found = scoreValue(stats, "landmarks_found", kMaxCount, stats_path);
+	run.landmarks_duplicated = scoreValue(stats, "landmarks_duplicated", kMaxCount, stats_path);
+	run.landmarks_spurious = scoreValue(stats, "landmarks_spurious", kMaxCount, stats_path);
+	run.da_precision = scoreValue(stats, "da_precision", 1, stats_path);
+	run.da_recall = scoreValue(stats, "da_recall", 1, stats_path);
+	run.landmark_ospa_m = scoreValue(stats, "landmark_ospa_m", kMaxCoordinate_m, stats_path);
 	run.state_nees = stats.number("state_nees");
 	if (run.state_nees) run.state_nees_dof = static_cast<std::size_t>(stats.number("state_nees_dof").value_or(0));
 	return run;

@@ -49,7 +49,11 @@ void applyFinalReports(std::vector<StepReport> final_reports, const Rawlog& log,
 				std::to_string(out.reports[k].associations.size()) + " measurements at step " + std::to_string(k));
 	out.reports = std::move(final_reports);
 	out.audit = AssociationAudit();
-	for (std::size_t k = 0; k < out.reports.size(); ++k) out.audit.record(out.reports[k], log.true_ids[k]);
+	for (std::size_t k = 0; k < out.reports.size(); ++k)
+	{
+		out.audit.record(out.reports[k], log.true_ids[k]);
+		out.audit.recordGivenIds(out.reports[k], log.steps[k]);
+	}
 }
 }  // namespace
 
@@ -79,6 +83,7 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 		for (const auto& a : report.associations) landmarks += a.kind == Association::Kind::New;
 		out.landmark_counts.push_back(landmarks);
 		out.audit.record(report, log.true_ids[k]);
+		out.audit.recordGivenIds(report, step);
 
 		const PoseEstimate pose = plugin.robotPose();
 		out.record.trajectory.push_back({k, step.time_s, pose});

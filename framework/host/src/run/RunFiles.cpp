@@ -34,6 +34,9 @@ void writeRunFiles(
 	jobs.add("associations_txt", [&in, d, &host] {
 		writeAssociationFile((d / kAssociationFileName).string(), in.reports, host.plugin, in.input_path);
 	});
+	jobs.add("landmark_identities_txt", [&in, d] {
+		writeLandmarkIdentityFile((d / kLandmarkIdentityFileName).string(), in.identities);
+	});
 	jobs.append(std::move(extra));
 	if (!in.figures) jobs.dropFigures();
 	jobs.run(&times);
@@ -48,14 +51,17 @@ void setRunIdentityStats(Stats& stats, const HostParams& host, const FilterPlugi
 }
 
 void setRunOutcomeStats(
-	Stats& stats, double finish_us, const CostFigures& cost, const AssociationAudit& audit,
+	Stats& stats, double finish_us, const CostFigures& cost, const AssociationAudit& audit, const MapScores& scores,
 	const std::optional<Accuracy>& accuracy)
 {
 	stats.set("finish_us", StatValue(finish_us));
 	stats.set("peak_rss_mb", StatValue(peakRssMb()));
 	setCostStats(stats, cost);
 	setAssociationStats(stats, audit);
+	setAssociationScoreStats(stats, scores.association);
 	setAccuracyStats(stats, accuracy);
+	stats.set("landmark_ospa_m", scores.landmark_ospa_m);
+	stats.set("ospa_c_m", scores.ospa_c_m);
 }
 
 void closeRunStats(Stats& stats, const std::optional<StateNees>& nees, const std::string& nees_reference,

@@ -6,8 +6,10 @@
 /// flag, stats.json), and the staged, all-or-nothing run folder.
 
 #include <esif/eval/AssociationAudit.h>
+#include <esif/eval/AssociationScore.h>
 #include <esif/eval/Evaluator.h>
 #include <esif/eval/StateNees.h>
+#include <esif/formats/LandmarkIdentityFile.h>
 #include <esif/formats/RunRecord.h>
 #include <esif/formats/StatsJson.h>
 #include <esif/plugin/FilterPlugin.h>
@@ -31,13 +33,24 @@ struct RunFilesInput
 	const std::vector<StepReport>& reports;	 ///< one per step or per local map
 	const std::vector<LocalMapFusionCost>& fusion_costs;  ///< empty but for map joining
 	std::string input_path;	 ///< the rawlog or local-map folder, named in associations.txt
+	const LandmarkIdentities& identities;  ///< the final map's, for landmark_identities.txt
 	bool figures = true;  ///< false: no PNG or SVG is drawn (`esif run --no-figures`)
 };
 
+/// How the final map scores without positions (AssociationScore.h) and by
+/// OSPA (MapOspa.h): null figures where the run has no measurement truth,
+/// no cut-off (runs on local maps) or no ground truth.
+struct MapScores
+{
+	std::optional<AssociationScore> association;
+	std::optional<double> ospa_c_m;
+	std::optional<double> landmark_ospa_m;	///< against the ground truth
+};
+
 /// Writes the map outputs (MapOutputs.h), info_matrix.png (information-form
-/// plugins), localmap_times.png (map joining), params.ini, associations.txt
-/// and the caller's `extra` files into `dir`, side by side (OutputJobs.h),
-/// each file's time recorded in `times`.
+/// plugins), localmap_times.png (map joining), params.ini, associations.txt,
+/// landmark_identities.txt and the caller's `extra` files into `dir`, side
+/// by side (OutputJobs.h), each file's time recorded in `times`.
 void writeRunFiles(
 	const std::string& dir, const HostParams& host, const FilterPlugin& plugin, const RunFilesInput& in,
 	PhaseTimes& times, OutputJobs extra = {});
@@ -45,9 +58,9 @@ void writeRunFiles(
 /// Sets plugin, formulation, label and config: the keys every stats.json starts with.
 void setRunIdentityStats(Stats& stats, const HostParams& host, const FilterPlugin& plugin, const std::string& config);
 
-/// Sets finish_us, peak_rss_mb, the cost, association and accuracy keys.
+/// Sets finish_us, peak_rss_mb, the cost, association, map-score and accuracy keys.
 void setRunOutcomeStats(
-	Stats& stats, double finish_us, const CostFigures& cost, const AssociationAudit& audit,
+	Stats& stats, double finish_us, const CostFigures& cost, const AssociationAudit& audit, const MapScores& scores,
 	const std::optional<Accuracy>& accuracy);
 
 /// Sets the whole-state NEES keys and the phase times, flags a suspect

@@ -65,17 +65,6 @@ std::vector<std::optional<std::size_t>> associationSources(const std::vector<Pla
 	return sources;
 }
 
-std::string landmarkIdOrigin(
-	const std::vector<PlannedRun>& runs, const std::vector<std::optional<std::size_t>>& sources, std::size_t i)
-{
-	// Follow the chain of sources; runOrder() has ruled out cycles, the bound keeps this safe anyway.
-	for (std::size_t hops = 0; sources[i] && hops < runs.size(); ++hops) i = *sources[i];
-	const PlannedRun& run = runs[i];
-	if (!run.associations_from.empty()) return "from " + run.associations_from + "/associations.txt";
-	if (run.hide_landmark_ids) return "numbered by run '" + run.label + "' itself";
-	return "from the rawlog";
-}
-
 std::vector<std::size_t> runOrder(
 	const std::vector<PlannedRun>& runs, const std::vector<std::optional<std::size_t>>& sources)
 {

@@ -4,6 +4,9 @@
 #include <esif/core/Errors.h>
 #include <esif/eval/EstimationErrorFiles.h>
 #include <esif/eval/Evaluator.h>
+#include <esif/eval/LandmarkIdentities.h>
+#include <esif/eval/MapOspa.h>
+#include <esif/eval/RunDifference.h>
 #include <esif/formats/AssociationFile.h>
 #include <esif/formats/GroundTruth.h>
 #include <esif/formats/RawlogReader.h>
@@ -26,7 +29,8 @@ namespace
 /// What every run writes, checked before the folder is put in place.
 const std::vector<std::string> kRunOutputFiles = {
 	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "map.svg",
-	"landmarks.gz", "step_times.png", "step_times.svg", "params.ini", kAssociationFileName, "stats.json"};
+	"landmarks.gz", "step_times.png", "step_times.svg", "params.ini", kAssociationFileName, kLandmarkIdentityFileName,
+	"stats.json"};
 
 /// `files` but the figures (PNG and SVG).
 std::vector<std::string> withoutFigures(const std::vector<std::string>& files)
@@ -58,7 +62,7 @@ void scoreAgainstMeasurementTruth(Rawlog& log, const std::string& prefix)
 
 Stats collectStats(
 	const HostParams& host, const RunRequest& request, const Rawlog& log, const ReplayResult& result,
-	const FilterPlugin& plugin, const std::optional<Accuracy>& accuracy, double total_wall_s)
+	const FilterPlugin& plugin, const MapScores& scores, const std::optional<Accuracy>& accuracy, double total_wall_s)
 {
 	Stats s;
 	const auto cost = plugin.costFigures();
@@ -70,7 +74,7 @@ Stats collectStats(
 	s.set("wall_s", StatValue(result.wall_s));
 	s.set("total_wall_s", StatValue(total_wall_s));
 	setTimeStats(s, "step_us", result.step_us);
-	setRunOutcomeStats(s, result.finish_us, cost, result.audit, accuracy);
+	setRunOutcomeStats(s, result.finish_us, cost, result.audit, scores, accuracy);
 	s.set("truncated", StatValue(log.truncation_warning ? 1LL : 0LL));
 	if (!result.fusion_costs.empty()) setLocalMapJoinStats(s, result.fusion_costs.size(), {}, result.fusion_costs);
 	setPluginCounters(s, cost);
@@ -106,6 +110,8 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 		request.reference_run ? std::optional<RunOutputs>(readRunOutputs(*request.reference_run)) : std::nullopt;
 	ReplayResult result = replay(*plugin, log, {host.keyframe_min_distance_m, request.progress_bar});
 	const std::map<LandmarkId, LandmarkId> filter_to_true = result.audit.filterToTrue();
+	const LandmarkIdentities identities = landmarkIdentities(result.audit, result.record.final_estimate.landmarks);
+	MapScores scores{scoreAssociations(identities, result.audit), ospaCutoff(log.steps), std::nullopt};
 
 	std::optional<Accuracy> accuracy;
 	if (truth)
@@ -115,6 +121,9 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 		const auto landmark_errors =
 			landmarkErrors(*result.record.truth, result.record.final_estimate, filter_to_true);
 		accuracy = summarizeErrors(pose_errors, landmark_errors);
+		if (scores.ospa_c_m)
+			scores.landmark_ospa_m = truthOspa(
+				*result.record.truth, result.record.final_estimate, result.audit.trueLandmarks(), *scores.ospa_c_m);
 		// Per step and per landmark, for campaigns over many runs (esif montecarlo).
 		writeEstimationErrorFiles(request.out_dir, pose_errors, landmark_errors);
 	});
@@ -127,10 +136,16 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 	});
 	writeRunFiles(
 		request.out_dir, host, *plugin,
-		{result.record, result.reports, result.fusion_costs, request.rawlog_path, request.figures}, times,
+		{result.record, result.reports, result.fusion_costs, request.rawlog_path, identities, request.figures}, times,
 		std::move(step_times));
 	const double total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-	Stats stats = collectStats(host, request, log, result, *plugin, accuracy, total_wall_s);
+	Stats stats = collectStats(host, request, log, result, *plugin, scores, accuracy, total_wall_s);
+	// After total_wall_s, like the whole-state test: read back from the files
+	// just written, the run is measured exactly as `esif compare` measures it.
+	if (reference_run)
+		times.time("evaluate", [&] {
+			setDifferenceStats(stats, runDifference(readRunOutputs(request.out_dir), *reference_run, scores.ospa_c_m));
+		});
 	// After total_wall_s: the whole-state test is a figure about the result,
 	// against the reference run when one is given, else the ground truth.
 	std::optional<StateReference> nees_against;

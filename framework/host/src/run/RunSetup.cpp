@@ -179,6 +179,11 @@ void setAssociationStats(Stats& s, const AssociationAudit& audit)
 		s.set("da_wrong", StatValue(static_cast<long long>(audit.wrongCount())));
 	else
 		s.set("da_wrong", StatValue(nullptr));
+	const auto tracked = [&](std::size_t n) {
+		return audit.tracksGivenIds() ? StatValue(static_cast<long long>(n)) : StatValue(nullptr);
+	};
+	s.set("da_id_given", tracked(audit.givenIdCount()));
+	s.set("da_id_rejected", tracked(audit.givenIdRejectedCount()));
 }
 
 void setAccuracyStats(Stats& s, const std::optional<Accuracy>& accuracy)

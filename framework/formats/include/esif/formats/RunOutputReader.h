@@ -10,8 +10,11 @@
 
 #include <esif/core/Estimate.h>
 #include <esif/formats/GroundTruth.h>
+#include <esif/formats/LandmarkIdentityFile.h>
 
 #include <mrpt/math/TPose2D.h>
+
+#include <optional>
 
 #include <string>
 #include <vector>
@@ -30,6 +33,9 @@ struct RunOutputs
 {
 	std::vector<TimedPose2D> trajectory;  ///< in file order: strictly increasing times
 	std::vector<LandmarkEstimate> landmarks;  ///< in file order: distinct IDs
+	/// landmark_identities.txt, one row per landmark; none in a folder
+	/// without it (another solver's solution read by `esif import g2o`).
+	std::optional<LandmarkIdentities> identities;
 };
 
 /// Reads a TUM trajectory. Each data line holds 8 numbers; the timestamp must
@@ -42,7 +48,9 @@ std::vector<TimedPose2D> readTrajectoryTum(const std::string& path);
 /// distinct. Throws InputError naming the file or "file:line".
 std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path);
 
-/// Reads DIR/trajectory.tum and DIR/landmarks.txt.
+/// Reads DIR/trajectory.tum, DIR/landmarks.txt and, when present,
+/// DIR/landmark_identities.txt, which must list exactly the landmarks of
+/// landmarks.txt (InputError naming it otherwise).
 RunOutputs readRunOutputs(const std::string& dir);
 
 /// A run's estimate as a reference in ground-truth form: its landmarks by

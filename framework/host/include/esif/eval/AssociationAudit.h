@@ -8,6 +8,7 @@
 
 #include <map>
 #include <optional>
+#include <set>
 #include <vector>
 
 namespace esif
@@ -18,12 +19,35 @@ class AssociationAudit
 	/// Records one step: the filter's report and the IDs stored in the file.
 	void record(const StepReport& report, const std::vector<std::optional<LandmarkId>>& true_ids);
 
+	/// Records which measurements of `step` the filter was given a landmark
+	/// ID for (the rawlog's shown, or another run's associations) and which
+	/// of those it rejected anyway.
+	void recordGivenIds(const StepReport& report, const StepInput& step);
+
+	/// Whether recordGivenIds was called (rawlog runs); measurements given an
+	/// ID, and those of them rejected.
+	bool tracksGivenIds() const { return tracks_given_; }
+	std::size_t givenIdCount() const { return given_ids_; }
+	std::size_t givenIdRejectedCount() const { return given_ids_rejected_; }
+
 	std::size_t newCount() const { return new_; }
 	std::size_t matchedCount() const { return matched_; }
 	std::size_t rejectedCount() const { return rejected_; }
 
-	/// Whether any measurement carried a true ID.
-	bool hasTruth() const { return !votes_.empty(); }
+	/// Whether any measurement carried a true ID (used or rejected).
+	bool hasTruth() const { return with_truth_ > 0; }
+
+	/// Measurements that carried a true ID, used or rejected.
+	std::size_t measurementsWithTruth() const { return with_truth_; }
+
+	/// The distinct true IDs the measurements carried, used or rejected.
+	const std::set<LandmarkId>& trueLandmarks() const { return true_landmarks_; }
+
+	/// Measurements used on filter landmark `id` (new or matched), with or without a true ID.
+	std::size_t usedOn(LandmarkId id) const;
+
+	/// Of those, the ones whose true ID was `true_id`.
+	std::size_t votesFor(LandmarkId id, LandmarkId true_id) const;
 
 	/// The true ID each filter landmark stands for: the ID most of the
 	/// measurements assigned to it carried.
@@ -35,9 +59,14 @@ class AssociationAudit
 	std::size_t wrongCount() const;
 
    private:
-	std::size_t new_ = 0, matched_ = 0, rejected_ = 0;
+	std::size_t new_ = 0, matched_ = 0, rejected_ = 0, with_truth_ = 0;
+	bool tracks_given_ = false;
+	std::size_t given_ids_ = 0, given_ids_rejected_ = 0;
 	// filter landmark -> (true ID -> measurements)
 	std::map<LandmarkId, std::map<LandmarkId, std::size_t>> votes_;
+	// filter landmark -> measurements used on it
+	std::map<LandmarkId, std::size_t> used_;
+	std::set<LandmarkId> true_landmarks_;
 };
 
 }  // namespace esif

@@ -57,6 +57,11 @@ struct CampaignRunErrors
 	/// state_nees_dof), when the back-end has an information matrix.
 	std::optional<double> state_nees;
 	std::size_t state_nees_dof = 0;
+	/// The map's score (stats.json landmarks_true, landmarks_found,
+	/// landmarks_duplicated, landmarks_spurious, da_precision, da_recall,
+	/// landmark_ospa_m; AssociationScore.h, MapOspa.h), where the run has it.
+	std::optional<double> landmarks_true, landmarks_found, landmarks_duplicated, landmarks_spurious;
+	std::optional<double> da_precision, da_recall, landmark_ospa_m;
 };
 
 /// Mean and sample standard deviation (0 for one value).
@@ -133,6 +138,15 @@ struct ConfigStatistics
 	Quantiles wall_s;
 	long long da_wrong_total = 0;
 	std::size_t runs_with_da_wrong = 0;
+	/// Over the runs that have them: medians of the true landmarks measured
+	/// and of those found; duplicated and spurious landmarks summed, and in
+	/// how many runs; precision and recall (median and lowest); the OSPA to
+	/// the truth (mean and spread).
+	std::optional<double> landmarks_true_median, landmarks_found_median;
+	long long landmarks_duplicated_total = 0, landmarks_spurious_total = 0;
+	std::size_t runs_with_duplicated = 0, runs_with_spurious = 0;
+	std::optional<Quantiles> da_precision, da_recall;
+	std::optional<MeanSpread> landmark_ospa_m;
 };
 
 /// The statistics of `runs` (at least one) of config `name`.

@@ -54,8 +54,10 @@ struct StateNees
 StateReference stateReferenceOf(const GroundTruth& truth);
 
 /// Another run's outputs as a reference (e.g. the full-SLAM optimum): its
-/// landmarks by ID, and trajectory row k as the pose after step k when it
-/// has exactly `steps` rows (else no poses: the rows cannot be paired).
+/// landmarks by their true landmarks when its landmark_identities.txt has
+/// them (the landmark that stands for each, LandmarkIdentities.h), else by
+/// ID; trajectory row k as the pose after step k when it has exactly
+/// `steps` rows (else no poses: the rows cannot be paired).
 StateReference stateReferenceOf(const RunOutputs& run, std::size_t steps);
 
 /// NEES of `state` against `reference`. A landmark is compared with the

@@ -1,11 +1,15 @@
 #pragma once
 /// \file SuspectResult.h
 /// A run that finished but whose result nobody should use without a look:
-/// it maps no landmark, a map-joining run fused no local map, or more than
-/// half of the measurements were rejected. Such a run is not a failure (it
-/// exits 0 and writes every output), but it is never silent either: one
-/// warning line, `suspect` and `suspect_reason` in stats.json, a `suspect`
-/// status in `esif compare` and a line in a Monte Carlo summary.
+/// it maps no landmark; a map-joining run fused no local map; with the true
+/// landmark of each measurement known, it matched none of more measurements
+/// than there are true landmarks, or mapped more than three landmarks per
+/// true one; given landmark IDs, it rejected more than a quarter of those
+/// measurements; or it rejected more measurements than it used. Each rule
+/// is explained in SuspectResult.cpp. Such a run is not a failure (it exits
+/// 0 and writes every output), but it is never silent either: one warning
+/// line, `suspect` and `suspect_reason` in stats.json, a `suspect` status in
+/// `esif compare` and a line in a Monte Carlo summary.
 
 #include <esif/formats/StatsJson.h>
 

@@ -23,7 +23,8 @@ struct RunRequest
 	std::optional<std::string> associations_from;
 	/// A smoother's run folder (the full-SLAM optimum's) the whole-state NEES
 	/// is computed against instead of the ground truth (`esif run
-	/// --reference-run`); its trajectory.tum must hold one final pose per step.
+	/// --reference-run`; its trajectory.tum must hold one final pose per
+	/// step), and the run's difference from it (the ref_* keys, RunDifference.h).
 	std::optional<std::string> reference_run;
 	/// false: the data files only, no figure (`esif run --no-figures`; what
 	/// `esif montecarlo` runs, whose summary draws the campaign's figures).
@@ -35,7 +36,8 @@ struct RunRequest
 /// map.png, step_times.png, info_matrix.png (information-form plugins),
 /// localmap_times.png (map-joining plugins that report fusion costs),
 /// associations.txt (the plugin's decision for every measurement, see
-/// AssociationFile.h), stats.json and params.ini (the effective parameters).
+/// AssociationFile.h), landmark_identities.txt (LandmarkIdentityFile.h),
+/// stats.json and params.ini (the effective parameters).
 /// Returns the stats. Warnings (e.g. a truncated rawlog) go to stderr.
 /// The folder is all-or-nothing (RunFolder.h): locked while written, filled
 /// aside and swapped into place only when complete, so a failure or a

@@ -83,7 +83,8 @@ void setTimeStats(Stats& stats, const std::string& key, const std::vector<double
 /// Sets state_dim, poses_in_state and info_nnz (null for covariance-form plugins).
 void setCostStats(Stats& stats, const CostFigures& cost);
 
-/// Sets da_new, da_matched, da_rejected and da_wrong (null without true IDs).
+/// Sets da_new, da_matched, da_rejected, da_wrong (null without true IDs),
+/// da_id_given and da_id_rejected (null on local maps).
 void setAssociationStats(Stats& stats, const AssociationAudit& audit);
 
 /// Sets the accuracy keys (landmark_rmse_m, ate_rmse_m, NEES means,
