@@ -42,7 +42,7 @@ for arg in "$@"; do
   esac
 done
 [ -n "$log" ] || log=$(vicpark_rawlog)
-configs=$(ls configs/vicpark/*.ini | grep -v ceres_full | tr '\n' ',')configs/vicpark/ceres_full.ini
+configs=$(ls configs/vicpark/*.ini | grep -v ceres_full | grep -v _jcbb | tr '\n' ',')configs/vicpark/ceres_full.ini
 set +e
 "$esif" compare --configs "$configs" --rawlog "$log" --out "$out" >/dev/null
 status=$?
