@@ -9,7 +9,7 @@
 # whose optimal position lies inside the filter's own 95% ellipse (a
 # consistency test without ground truth: about 95% for a consistent filter).
 # The optimum's chi-square is printed beside (GTSAM's batch optimum of the
-# same problem: 7930 at 0.5 m / 2 deg, the importer's defaults).
+# problem under the rawlog's own noise, configs/calibration/vicpark_reference.ini: 7930).
 #
 # Writes out/bench/vicpark_report/ (one folder per run, comparison.md/.csv,
 # maps_overlay.png: every map over the optimum's).
@@ -74,7 +74,7 @@ for name in sorted(os.listdir(out)):  # run folders are named after their config
         s = json.load(open(stats))
         if "plugin_chi2" in s:
             print(f"\noptimum '{s.get('label', name)}': chi2 {s['plugin_chi2']:.1f} for {s.get('plugin_chi2_dof', 'n/a')} dof,"
-                  f" plausible {s.get('plugin_optimum_plausible', 'n/a')} (GTSAM's batch optimum: 7930)")
+                  f" plausible {s.get('plugin_optimum_plausible', 'n/a')} (calibrated noise; GTSAM's optimum of the rawlog's own noise, configs/calibration/vicpark_reference.ini: 7930)")
 PY
 echo "figure: $out/maps_overlay.png"
 
