@@ -14,8 +14,10 @@
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>
 
+#include <mrpt/core/format.h>
+
 #include <chrono>
-#include <cstdio>
+#include <iostream>
 #include <string>
 
 namespace esif::app
@@ -26,7 +28,7 @@ namespace
 void printGaps(const SimulationSummary& s, const Scenario& scenario)
 {
 	const double metres_per_scan = scenario.speed_mps * scenario.dt_s;
-	std::printf(
+	std::cout << mrpt::format(
 		"Scans without any measurement: %zu, longest run %zu (%.1f m); longest run below two measurements %zu "
 		"(%.1f m).\n",
 		s.scans_without_measurements, s.longest_run_without_measurements,
@@ -41,16 +43,16 @@ void printOutliers(const SimulationSummary& s, const Scenario& scenario, const s
 {
 	const std::size_t true_returns = s.measurements - s.spurious_measurements;
 	if (scenario.wrong_id_rate > 0)
-		std::printf(
+		std::cout << mrpt::format(
 			"Wrong IDs: %zu of %zu landmark measurements carry another landmark's ID (%.3f %%, wrong_id_rate %g).\n",
 			s.wrong_id_measurements, true_returns, true_returns ? 100.0 * s.wrong_id_measurements / true_returns : 0.0,
 			scenario.wrong_id_rate);
 	if (scenario.spurious_rate > 0)
-		std::printf(
+		std::cout << mrpt::format(
 			"Clutter: %zu spurious returns (%.3f per scan, spurious_rate %g), IDs %lld and up (no landmark).\n",
 			s.spurious_measurements, s.steps ? double(s.spurious_measurements) / s.steps : 0.0, scenario.spurious_rate,
 			static_cast<long long>(scenario.clutterIdBase()));
-	std::printf("True landmark of every measurement in %s.\n", measurementTruthFileOf(prefix).c_str());
+	std::cout << mrpt::format("True landmark of every measurement in %s.\n", measurementTruthFileOf(prefix).c_str());
 }
 }  // namespace
 

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <new>
 #include <set>
 #include <sstream>
 #include <system_error>
@@ -444,6 +445,10 @@ void writeInto(const fs::path& dir, const std::string& name, const std::function
 	try
 	{
 		write(path);
+	}
+	catch (const std::bad_alloc&)
+	{
+		throw;
 	}
 	catch (const std::exception& e)
 	{
