@@ -12,6 +12,7 @@
 #include <esif/eval/ComparisonTable.h>
 #include <esif/eval/RunDifference.h>
 #include <esif/formats/GroundTruth.h>
+#include <esif/formats/Markdown.h>
 #include <esif/formats/RunOutputReader.h>
 #include <esif/formats/StatsJson.h>
 #include <esif/render/MapOverlay.h>
@@ -71,8 +72,10 @@ std::string configLabel(const ConfigFile& config)
 	return label.empty() ? fs::path(config.origin()).stem().string() : label;
 }
 
-/// Index of the run `reference` names: by label, else (or among runs of
-/// one label) by run folder name.
+/// Index of the run `reference` names: the one run of that label, else the
+/// run of that folder name. A label several runs carry names none of them,
+/// even when one of their folders has that name too (which would be a
+/// silent pick): refused, listing the folder names that pick one.
 std::size_t referenceIndex(
 	const std::string& reference, const std::vector<std::string>& configs, const std::vector<std::string>& labels,
 	const std::vector<std::string>& dirs)
@@ -83,9 +86,6 @@ std::size_t referenceIndex(
 	if (hits.empty())
 		for (std::size_t i = 0; i < dirs.size(); ++i)
 			if (fs::path(dirs[i]).filename().string() == reference) hits.push_back(i);
-	if (hits.size() > 1)  // one label, several configs: their run folders still differ
-		for (const auto i : hits)
-			if (fs::path(dirs[i]).filename().string() == reference) return i;
 	if (hits.size() == 1) return hits.front();
 	std::string list;
 	if (hits.empty())
@@ -98,11 +98,14 @@ std::size_t referenceIndex(
 	for (const auto i : hits)
 	{
 		list += (list.empty() ? "" : ", ") + configs[i];
-		folders += (folders.empty() ? "" : ", ") + fs::path(dirs[i]).filename().string();
+		const std::string folder = fs::path(dirs[i]).filename().string();
+		if (std::find(labels.begin(), labels.end(), folder) == labels.end())
+			folders += (folders.empty() ? "" : ", ") + folder;
 	}
 	throw ConfigError(
-		"esif compare: --reference '" + reference + "': several runs have this label (" + list +
-		"); name one of their run folders (" + folders + ") or give each config its own [esif] label");
+		"esif compare: --reference '" + reference + "': several runs have this label (" + list + "); " +
+		(folders.empty() ? "" : "name one of their run folders (" + folders + ") or ") +
+		"give each config its own [esif] label");
 }
 
 Stats readStats(const std::string& path)
@@ -480,8 +483,9 @@ int compareCommand(int argc, char** argv)
 		writeTextAtomically((fs::path(staging) / "comparison.csv").string(), comparisonCsv(runs));
 		const std::string title = "esif compare on " + input;
 		writeTextAtomically((fs::path(staging) / "comparison.md").string(),
-							"# " + title + "\n\n" + comparisonMarkdown(runs) + (note.empty() ? "" : "\n" + note) +
-								"\n" + bookTable51Markdown(succeeded));
+							"# " + markdown::text(title) + "\n\n" + comparisonMarkdown(runs) +
+								(note.empty() ? "" : "\n" + markdown::lines(note)) + "\n" +
+								bookTable51Markdown(succeeded));
 		writeComparisonPage((fs::path(staging) / "comparison.html").string(), {title, runs, run_dirs, note, staging});
 		return std::make_pair(comparisonExitCode(runs), text);
 	});
