@@ -168,8 +168,8 @@ TEST(VictoriaParkImporter, ImplausibleOptionsNameTheOption)
 	{
 		EXPECT_STREQ(
 			e.what(),
-			"import victoria-park: --std-range-m = 1e+300: must be in (0, 100] (beyond it a measurement carries no "
-			"information)");
+			"import victoria-park: --std-range-m = 1e+300: must be in [1e-06, 100] (below a micrometre no sensor "
+			"measures; beyond 100 m a measurement carries no information)");
 	}
 	// A valid file still imports (the bounds leave the dataset's values alone).
 	const auto summary = importVictoriaPark(dir.file("vp.txt"), dir.file("vp.rawlog"), {});
