@@ -9,7 +9,7 @@
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 #include <esif/formats/GroundTruth.h>
-#include <esif/safeio/OutputApart.h>
+#include <esif/run/RawlogOutput.h>
 #include <esif/sim/MeasurementTruth.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>
@@ -90,19 +90,17 @@ int simulateCommand(int argc, char** argv)
 		throw ConfigError(config_arg.getValue() + ": " + e.what());
 	}
 
-	// The rawlog and the ground-truth files beside it: none may be the config.
+	// The rawlog and the ground-truth files beside it, one set: none may be
+	// the scenario, none replaces a file esif did not write.
 	const std::string prefix = groundTruthPrefixFor(out_arg.getValue());
-	std::vector<std::string> written = groundTruthFilesOf(prefix);
-	written.push_back(out_arg.getValue());
-	written.push_back(measurementTruthFileOf(prefix));
-	for (const auto& file : written) requireOutputApart(file, {{"the scenario", config_arg.getValue()}});
-
 	const auto start = std::chrono::steady_clock::now();
 	const Simulator simulator(scenario);
-	const SimulationSummary s = simulator.writeRawlog(out_arg.getValue());
+	const SimulationSummary s = writeRawlogOutput(
+		out_arg.getValue(), {{"the scenario", config_arg.getValue()}},
+		[&](const std::string& rawlog) { return simulator.writeRawlog(rawlog); });
 	const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-	std::printf(
+	std::cout << mrpt::format(
 		"Simulated %s (seed %d, noise seed %u) in %.1f s: %zu steps, %zu measurements, %zu of %zu features seen, "
 		"%.2f measurements per scan on average, true path length %.1f m. Ground truth in %s_ground_truth.txt "
 		"and %s_ground_truth_robot_path.txt.\n",
