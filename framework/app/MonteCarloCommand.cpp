@@ -187,6 +187,7 @@ int monteCarloCommand(int argc, char** argv)
 	checkConfigs(config_list);
 
 	const std::string dir = out.getValue();
+	if (emit_jobs.isSet()) requireJobLinesPossible(dir);  // before anything is written
 	std::vector<NamedInput> inputs{{"the scenario", scenario.getValue()}};
 	for (const auto& c : config_list) inputs.push_back({"the config", c});
 	requireOutputApart(dir, inputs);
@@ -194,6 +195,9 @@ int monteCarloCommand(int argc, char** argv)
 	// are the campaign's (campaign.ini, the runs' stats.json).
 	inputs.push_back({"the campaign folder", dir});
 	if (emit_jobs.isSet()) requireOutputApart(emit_jobs.getValue(), inputs, "--emit-jobs");
+	// Paths campaign.ini could not hold are refused before anything is written.
+	const CampaignPlan requested =
+		CampaignPlan::create(scenario.getValue(), config_list, seed0.getValue(), runs.getValue());
 	// One campaign at a time on a folder: a second would record the first
 	// one's runs as its own failures. (Jobs of a job list take no such lock:
 	// they run side by side, each job under a lock of its own.)
@@ -201,8 +205,7 @@ int monteCarloCommand(int argc, char** argv)
 	if (!folder.has_filename()) folder = folder.parent_path();
 	ensureDirectory(folder.parent_path().string());
 	const FolderLock campaign_lock(folder, LockWait::No, "this campaign");
-	const CampaignPlan plan =
-		planCampaign(dir, CampaignPlan::create(scenario.getValue(), config_list, seed0.getValue(), runs.getValue()));
+	const CampaignPlan plan = planCampaign(dir, requested);
 	requireNoLinksInCampaign(dir);
 	const std::vector<CampaignJob> todo = unfinishedJobs(dir, plan);
 	const std::string job_list = emit_jobs.isSet() ? jobListText(dir, plan, todo) : "";

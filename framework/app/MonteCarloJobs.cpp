@@ -118,6 +118,14 @@ std::string quoted(const std::string& word, const std::string& what)
 	for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
 	return out + "'";
 }
+/// "'ESIF' montecarlo --out 'DIR' --job ", the part every job line shares.
+std::string jobLinePrefix(const std::string& dir)
+{
+	std::error_code ec;
+	const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
+	return quoted(self, "the esif binary") + " montecarlo --out " +
+		   quoted(fs::absolute(dir).lexically_normal().string(), "--out") + " --job ";
+}
 }  // namespace
 
 JobOutcome runCampaignJob(const std::string& dir, const CampaignPlan& plan, const CampaignJob& job)
@@ -186,11 +194,9 @@ std::vector<JobOutcome> runCampaignJobs(
 
 std::string jobCommandLine(const std::string& dir, const CampaignPlan& plan, const CampaignJob& job)
 {
-	std::error_code ec;
-	const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
-	return quoted(self, "the esif binary") + " montecarlo --out " +
-		   quoted(fs::absolute(dir).lexically_normal().string(), "--out") + " --job " +
-		   quoted(campaign_layout::jobId(plan, job), "the job");
+	return jobLinePrefix(dir) + quoted(campaign_layout::jobId(plan, job), "the job");
 }
+
+void requireJobLinesPossible(const std::string& dir) { jobLinePrefix(dir); }
 
 }  // namespace esif::app

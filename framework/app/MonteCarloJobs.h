@@ -41,4 +41,9 @@ std::vector<JobOutcome> runCampaignJobs(
 /// engines read one job per line, so no byte of a path may end one.
 std::string jobCommandLine(const std::string& dir, const CampaignPlan& plan, const CampaignJob& job);
 
+/// Throws that ConfigError now when a job line of the campaign in `dir`
+/// could not be written (the esif binary's path or `dir` holds a control
+/// character): checked before anything is written.
+void requireJobLinesPossible(const std::string& dir);
+
 }  // namespace esif::app

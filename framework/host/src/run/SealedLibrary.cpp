@@ -10,6 +10,7 @@
 #include <dlfcn.h>
 #include <elf.h>
 #include <fcntl.h>
+#include <map>
 #include <mutex>
 #include <sys/mman.h>
 #include <sys/stat.h>
@@ -94,13 +95,22 @@ std::string elfProblem(const unsigned char* bytes, std::uintmax_t size)
 	return "";
 }
 
-/// The sealed copies stay open for the process's life: dlopen knows a
-/// library by the name it was opened with, so a /proc/self/fd/N used again
-/// for another plugin would be taken for the first one.
-std::mutex& sealedMutex()
+/// The libraries loaded so far, by the file they were copied from (device,
+/// inode): each is loaded once per process, as dlopen of one path would, so
+/// its classes register once however many PluginLoaders ask for it. Their
+/// sealed copies stay open for the process's life: dlopen knows a library by
+/// the name it was opened with, so a /proc/self/fd/N used again for another
+/// plugin would be taken for the first one.
+struct Loaded
 {
-	static std::mutex m;
-	return m;
+	std::mutex mutex;
+	std::map<std::pair<dev_t, ino_t>, void*> handles;
+};
+
+Loaded& loaded()
+{
+	static Loaded l;
+	return l;
 }
 }  // namespace
 
@@ -112,6 +122,9 @@ LibraryLoad loadSealedLibrary(const std::string& path)
 	if (::fstat(file.get(), &st) != 0) return {nullptr, systemError("stat")};
 	if (!S_ISREG(st.st_mode)) return {nullptr, "not a regular file (a FIFO, device or folder is never loaded)"};
 	const auto size = static_cast<std::uintmax_t>(st.st_size);
+	const std::lock_guard<std::mutex> lock(loaded().mutex);
+	if (const auto it = loaded().handles.find({st.st_dev, st.st_ino}); it != loaded().handles.end())
+		return {it->second, ""};
 	if (size > kMaxLibraryBytes)
 		return {nullptr, std::to_string(size) + " bytes, more than a plugin holds (" + std::to_string(kMaxLibraryBytes) + ")"};
 
@@ -127,7 +140,6 @@ LibraryLoad loadSealedLibrary(const std::string& path)
 	::munmap(image, size ? size : 1);
 	if (!problem.empty()) return {nullptr, problem};
 
-	const std::lock_guard<std::mutex> lock(sealedMutex());
 	const std::string proc_path = "/proc/self/fd/" + std::to_string(sealed.get());
 	void* handle = ::dlopen(proc_path.c_str(), RTLD_LAZY);
 	if (!handle)
@@ -137,7 +149,8 @@ LibraryLoad loadSealedLibrary(const std::string& path)
 		text = replaceAll(replaceAll(text, proc_path + ": ", ""), proc_path, path);
 		return {nullptr, "dlerror: " + text};
 	}
-	sealed.release();  // kept open: see sealedMutex
+	sealed.release();  // kept open: see loaded()
+	loaded().handles[{st.st_dev, st.st_ino}] = handle;
 	return {handle, ""};
 }
 
