@@ -32,6 +32,12 @@ class OwnedFd
 	}
 	OwnedFd(const OwnedFd&) = delete;
 	OwnedFd& operator=(const OwnedFd&) = delete;
+	OwnedFd& operator=(OwnedFd&& other) noexcept
+	{
+		if (fd_ >= 0) ::close(fd_);
+		fd_ = other.release();
+		return *this;
+	}
 	int get() const { return fd_; }
 	int release()
 	{
@@ -46,8 +52,9 @@ class OwnedFd
 
 std::string systemError(const char* step) { return std::string(step) + ": " + std::strerror(errno); }
 
-/// Copies the `size` bytes of `from` into `to`; the problem, or "".
-std::string copyWhole(int from, int to, std::uintmax_t size)
+/// Copies the `size` bytes of `from` into `to`: 0, an errno value, or -1
+/// when the file's size changed while it was read.
+int copyWhole(int from, int to, std::uintmax_t size)
 {
 	std::vector<char> buffer(1 << 16);
 	std::uintmax_t done = 0;
@@ -55,19 +62,40 @@ std::string copyWhole(int from, int to, std::uintmax_t size)
 	{
 		const ssize_t n = ::read(from, buffer.data(), buffer.size());
 		if (n < 0 && errno == EINTR) continue;
-		if (n < 0) return systemError("read");
+		if (n < 0) return errno;
 		if (n == 0) break;
 		for (ssize_t put = 0; put < n;)
 		{
 			const ssize_t w = ::write(to, buffer.data() + put, static_cast<std::size_t>(n - put));
 			if (w < 0 && errno == EINTR) continue;
-			if (w < 0) return systemError("copy");
+			if (w < 0) return errno;
 			put += w;
 		}
 		done += static_cast<std::uintmax_t>(n);
 		if (done > size) break;
 	}
-	return done == size ? "" : "its size changed while it was read (a copy or install in progress?)";
+	return done == size ? 0 : -1;
+}
+
+/// The descriptor to check and load: a sealed copy of `file`, or, when the
+/// process may not write one that large (RLIMIT_FSIZE, `ulimit -f`, holds
+/// for memory files too), `file` itself, checked in place. "" or the problem.
+std::string imageOf(OwnedFd& file, std::uintmax_t size, OwnedFd& image)
+{
+	OwnedFd sealed(::memfd_create("esif-plugin", MFD_CLOEXEC | MFD_ALLOW_SEALING));
+	if (sealed.get() < 0) return systemError("memfd_create");
+	const int copied = copyWhole(file.get(), sealed.get(), size);
+	if (copied == EFBIG)
+	{
+		image = OwnedFd(file.release());
+		return "";
+	}
+	if (copied == -1) return "its size changed while it was read (a copy or install in progress?)";
+	if (copied != 0) return std::string("copy: ") + std::strerror(copied);
+	if (::fcntl(sealed.get(), F_ADD_SEALS, F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_WRITE | F_SEAL_SEAL) != 0)
+		return systemError("seal");
+	image = OwnedFd(sealed.release());
+	return "";
 }
 
 /// Why the ELF image `bytes` (`size` of them) cannot be mapped as it says,
@@ -116,7 +144,7 @@ Loaded& loaded()
 
 LibraryLoad loadSealedLibrary(const std::string& path)
 {
-	const OwnedFd file(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
+	OwnedFd file(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
 	if (file.get() < 0) return {nullptr, systemError("open")};
 	struct stat st{};
 	if (::fstat(file.get(), &st) != 0) return {nullptr, systemError("stat")};
@@ -128,19 +156,16 @@ LibraryLoad loadSealedLibrary(const std::string& path)
 	if (size > kMaxLibraryBytes)
 		return {nullptr, std::to_string(size) + " bytes, more than a plugin holds (" + std::to_string(kMaxLibraryBytes) + ")"};
 
-	OwnedFd sealed(::memfd_create("esif-plugin", MFD_CLOEXEC | MFD_ALLOW_SEALING));
-	if (sealed.get() < 0) return {nullptr, systemError("memfd_create")};
-	if (const std::string problem = copyWhole(file.get(), sealed.get(), size); !problem.empty()) return {nullptr, problem};
-	if (::fcntl(sealed.get(), F_ADD_SEALS, F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_WRITE | F_SEAL_SEAL) != 0)
-		return {nullptr, systemError("seal")};
-
-	void* image = ::mmap(nullptr, size ? size : 1, PROT_READ, MAP_PRIVATE, sealed.get(), 0);
-	if (image == MAP_FAILED) return {nullptr, systemError("mmap")};
-	const std::string problem = elfProblem(static_cast<const unsigned char*>(image), size);
-	::munmap(image, size ? size : 1);
+	OwnedFd image(-1);
+	if (const std::string problem = imageOf(file, size, image); !problem.empty()) return {nullptr, problem};
+	if (size < sizeof(Elf64_Ehdr)) return {nullptr, "not an ELF file"};
+	void* mapped = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, image.get(), 0);
+	if (mapped == MAP_FAILED) return {nullptr, systemError("mmap")};
+	const std::string problem = elfProblem(static_cast<const unsigned char*>(mapped), size);
+	::munmap(mapped, size);
 	if (!problem.empty()) return {nullptr, problem};
 
-	const std::string proc_path = "/proc/self/fd/" + std::to_string(sealed.get());
+	const std::string proc_path = "/proc/self/fd/" + std::to_string(image.get());
 	void* handle = ::dlopen(proc_path.c_str(), RTLD_LAZY);
 	if (!handle)
 	{
@@ -149,7 +174,7 @@ LibraryLoad loadSealedLibrary(const std::string& path)
 		text = replaceAll(replaceAll(text, proc_path + ": ", ""), proc_path, path);
 		return {nullptr, "dlerror: " + text};
 	}
-	sealed.release();  // kept open: see loaded()
+	image.release();  // kept open: see loaded()
 	loaded().handles[{st.st_dev, st.st_ino}] = handle;
 	return {handle, ""};
 }

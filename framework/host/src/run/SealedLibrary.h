@@ -11,7 +11,11 @@
 /// checked (every segment inside the file), and only then is it loaded, by
 /// its /proc/self/fd path. Its dependencies are found by their sonames among
 /// the libraries the host has loaded and in the system's paths ($ORIGIN in a
-/// plugin's runpath names /proc/self/fd).
+/// plugin's runpath names /proc/self/fd). Where the process may not write a
+/// file that large (RLIMIT_FSIZE, `ulimit -f`, holds for memory files too)
+/// the file itself is checked and loaded through its open descriptor: a
+/// file cut short is still refused, only one cut in the instant between the
+/// check and the mapping is not.
 
 #include <cstdint>
 #include <string>
