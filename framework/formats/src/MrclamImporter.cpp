@@ -14,6 +14,7 @@
 #include <esif/safeio/AtomicFile.h>
 #include <esif/safeio/OutputApart.h>
 
+#include <mrpt/core/format.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
@@ -115,17 +116,18 @@ void requireCommandsCover(
 	const std::vector<VelocityCommand>& commands, const std::vector<double>& times, const std::string& path)
 {
 	const double after = times.back() - commands.back().time_s, before = commands.front().time_s - times.front();
+	const auto seconds = [](double s) { return mrpt::format("%.1f s", s); };
 	const auto fail = [&](const std::string& what) {
 		throw InputError(
-			path + ": " + what + " (commands come at least every " + formatNumber(kMaxUncommandedTime_s) +
-			" s): the file is cut short");
+			path + ": " + what + ": the file is cut short (more than " + seconds(kMaxUncommandedTime_s) +
+			" without a command; a recording sends one at least every second or so)");
 	};
 	if (after > kMaxUncommandedTime_s)
 		fail("its last velocity command is at " + formatNumber(commands.back().time_s) +
-			 " s, the measurements go on for " + formatNumber(after) + " s more");
+			 " s, but the measurements go on for " + seconds(after) + " more");
 	if (before > kMaxUncommandedTime_s)
-		fail("its first velocity command is at " + formatNumber(commands.front().time_s) + " s, " +
-			 formatNumber(before) + " s after the first measurement");
+		fail("its first velocity command is at " + formatNumber(commands.front().time_s) + " s, " + seconds(before) +
+			 " after the first measurement");
 }
 
 /// The Vicon track, linearly interpolated (the heading along the shorter arc).

@@ -33,8 +33,11 @@ std::vector<std::string> namesIn(const fs::path& folder, const std::vector<std::
 	for (const auto& f : files)
 	{
 		const fs::path p = fs::path(f).lexically_normal();
-		if (folderOf(p) != folder || !isRecordableName(p.filename().string()))
-			throw InputError(f + ": not a file name esif can write beside " + files.front());
+		if (folderOf(p) != folder) throw InputError(f + ": not in the folder of " + files.front());
+		if (!isRecordableName(p.filename().string()))
+			throw InputError(
+				f + ": the file name holds a control character: esif's record of the files it wrote is one name "
+					"per line; choose another name");
 		if (std::find(names.begin(), names.end(), p.filename().string()) != names.end())
 			throw InputError(f + ": given twice as an output");
 		names.push_back(p.filename().string());
@@ -103,9 +106,10 @@ std::optional<std::string> claimProblem(
 {
 	const std::optional<FileStamp> stamp = stampOf(folder / name);
 	if (!stamp) return "is not a regular file (a folder, link, device or FIFO is never replaced)";
-	if (!record) return "has no record of esif's beside it (" + record_path.filename().string() + ")";
+	const std::string not_written = "is not a file esif wrote as " + kind + " (";
+	if (!record) return not_written + "no record " + record_path.filename().string() + " beside it)";
 	const RecordEntry* entry = record->file(name);
-	if (!entry || record->kind != kind) return "is not listed as " + kind + " in " + record_path.filename().string();
+	if (!entry || record->kind != kind) return not_written + record_path.filename().string() + " does not list it)";
 	if (!(entry->stamp == *stamp)) return "was changed after esif wrote it (its size or CRC differs from the record)";
 	return std::nullopt;
 }
