@@ -113,7 +113,8 @@ std::vector<BarcodeMeasurement> readMeasurements(const std::string& path)
 		if (t != before) read_now.clear();
 		const long barcode = row.integer(1, 0, kMaxBarcode);
 		if (const auto [first, fresh] = read_now.emplace(barcode, row.where()); !fresh)
-			row.fail(1, "read twice at the same time (first at " + first->second + "): a repeated line");
+			row.fail(1, "read twice at the same time (first on line " + first->second.substr(first->second.rfind(':') + 1) +
+							"): a repeated line");
 		out.push_back({t, barcode,
 					   row.bounded(2, 1e-3, kMaxRange_m, "m", "a camera's range; at 0 the bearing is undefined"),
 					   row.bounded(3, -M_PI, M_PI, "rad", "a bearing")});

@@ -77,8 +77,8 @@ class StepTable
 		if (const auto [first, fresh] = seen_[it->second].emplace(r.landmark, where); !fresh)
 			throw InputError(
 				where + ": LANDMARK " + std::to_string(r.pose) + " " + std::to_string(r.landmark) + ": landmark " +
-				std::to_string(r.landmark) + " is measured twice from pose " + std::to_string(r.pose) + " (first at " +
-				first->second + "): a repeated line");
+				std::to_string(r.landmark) + " is measured twice from pose " + std::to_string(r.pose) +
+				" (first on line " + first->second.substr(first->second.rfind(':') + 1) + "): a repeated line");
 		if (options_.keep_ids) m.id = static_cast<LandmarkId>(r.landmark);
 		ids_.insert(r.landmark);
 		steps_[it->second].scan->measurements.push_back(m);
