@@ -78,7 +78,8 @@ TEST(FileSet, AFileEsifDidNotWriteIsNeverReplaced)
 	const std::vector<std::string> files = {dir.file("a.log"), dir.file("a_truth.txt")};
 	put(files[1], "my notes");
 	EXPECT_NE(errorOf([&] { writeSet(files, {"one", "truth"}); })
-				  .find(files[1] + ": exists and has no record of esif's beside it (.a.log.esif-files)"),
+				  .find(files[1] + ": exists and is not a file esif wrote as a test set (no record .a.log.esif-files "
+								   "beside it)"),
 			  std::string::npos);
 	EXPECT_EQ(readText(files[1]), "my notes");
 	EXPECT_FALSE(fs::exists(files[0])) << "nothing written when one file is refused";
@@ -94,7 +95,9 @@ TEST(FileSet, AFileEsifDidNotWriteIsNeverReplaced)
 	// Another kind of output of esif's at that name: not replaced either.
 	const std::string other = dir.file("b.txt");
 	writeSet({other}, {"a job list"}, "another kind");
-	EXPECT_NE(errorOf([&] { writeSet({other}, {"x"}); }).find("is not listed as a test set"), std::string::npos);
+	EXPECT_NE(errorOf([&] { writeSet({other}, {"x"}); })
+				  .find("is not a file esif wrote as a test set (.b.txt.esif-files does not list it)"),
+			  std::string::npos);
 	EXPECT_EQ(readText(other), "a job list");
 
 	// A folder, a link or a FIFO at an output's name.
