@@ -97,6 +97,18 @@ int runOneJob(const std::string& dir, const std::string& id)
 	return outcome.exit_code;
 }
 
+/// One campaign at a time on a folder: a second would record the first
+/// one's runs as its own failures. (Jobs of a job list take no such lock:
+/// they run side by side, each job under a lock of its own.) The lock file
+/// is beside the folder, whose parent is made for it.
+FolderLock lockCampaign(const std::string& dir)
+{
+	fs::path folder = fs::absolute(dir).lexically_normal();
+	if (!folder.has_filename()) folder = folder.parent_path();
+	ensureDirectory(folder.parent_path().string());
+	return FolderLock(folder, LockWait::No, "this campaign");
+}
+
 /// The job list's text: built before anything is written, so a path no job
 /// line can carry is refused with the campaign folder untouched.
 std::string jobListText(const std::string& dir, const CampaignPlan& plan, const std::vector<CampaignJob>& jobs)
@@ -198,13 +210,7 @@ int monteCarloCommand(int argc, char** argv)
 	// Paths campaign.ini could not hold are refused before anything is written.
 	const CampaignPlan requested =
 		CampaignPlan::create(scenario.getValue(), config_list, seed0.getValue(), runs.getValue());
-	// One campaign at a time on a folder: a second would record the first
-	// one's runs as its own failures. (Jobs of a job list take no such lock:
-	// they run side by side, each job under a lock of its own.)
-	fs::path folder = fs::absolute(dir).lexically_normal();
-	if (!folder.has_filename()) folder = folder.parent_path();
-	ensureDirectory(folder.parent_path().string());
-	const FolderLock campaign_lock(folder, LockWait::No, "this campaign");
+	const FolderLock campaign_lock = lockCampaign(dir);
 	const CampaignPlan plan = planCampaign(dir, requested);
 	requireNoLinksInCampaign(dir);
 	const std::vector<CampaignJob> todo = unfinishedJobs(dir, plan);
