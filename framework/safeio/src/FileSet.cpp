@@ -13,6 +13,7 @@
 #include <esif/safeio/TerminationCleanup.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -57,6 +58,27 @@ void writeRecord(const fs::path& path, const FileSetRecord& record)
 		const int err = errno;
 		std::remove(tmp.c_str());
 		throw InputError(path.string() + ": cannot write: " + std::strerror(err));
+	}
+}
+
+/// Removes the temporary records a killed writer left (`RECORD.<pid>.tmp`);
+/// call under the set's lock. Never throws.
+void removeStaleRecordCopies(const fs::path& record_path)
+{
+	const std::string prefix = record_path.filename().string() + ".";
+	std::error_code ec;
+	for (fs::directory_iterator it(record_path.parent_path(), ec), end; !ec && it != end; it.increment(ec))
+	{
+		const std::string name = it->path().filename().string();
+		if (name.size() <= prefix.size() + 4 || name.compare(0, prefix.size(), prefix) != 0 ||
+			name.compare(name.size() - 4, 4, ".tmp") != 0)
+			continue;
+		const std::string pid = name.substr(prefix.size(), name.size() - prefix.size() - 4);
+		if (std::all_of(pid.begin(), pid.end(), [](unsigned char c) { return std::isdigit(c); }))
+		{
+			std::error_code ignored;
+			fs::remove(it->path(), ignored);
+		}
 	}
 }
 
@@ -129,6 +151,7 @@ FileSet::FileSet(std::string kind, const std::vector<std::string>& files, const 
 	std::optional<FileSetRecord> record = FileSetRecord::read(record_path);
 	if (record && !record->committing_from.empty()) record = finishKilledCommit(folder_, record_path, *record);
 	removeStalePartials(first_);
+	removeStaleRecordCopies(record_path);
 	for (const auto& name : names_)
 		if (pathPresent((folder_ / name).string()))
 			if (const auto problem = claimProblem(folder_, name, kind_, record, record_path))
