@@ -4,6 +4,7 @@
 #include "MonteCarloJobs.h"
 
 #include <esif/core/Errors.h>
+#include <esif/core/Text.h>
 #include <esif/safeio/ChildProcess.h>
 
 #include <esif/run/MonteCarloCollect.h>
@@ -109,7 +110,7 @@ JobOutcome runCampaignJobCaught(const std::string& dir, const CampaignPlan& plan
 /// its own. A word with a control character is refused, naming `what`.
 std::string quoted(const std::string& word, const std::string& what)
 {
-	if (std::any_of(word.begin(), word.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+	if (holdsControlCharacter(word))
 		throw ConfigError(
 			"esif montecarlo: " + what + " '" + printableToken(word) +
 			"' holds a line break or another control character: a job line cannot carry it (engines read one job "

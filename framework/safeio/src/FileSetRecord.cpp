@@ -6,6 +6,7 @@
 #include <esif/safeio/FileSet.h>
 
 #include <esif/core/Errors.h>
+#include <esif/core/Text.h>
 #include <esif/core/TextInput.h>
 
 #include <zlib.h>
@@ -81,7 +82,7 @@ std::optional<FileStamp> stampOf(const std::filesystem::path& path)
 bool isRecordableName(const std::string& name)
 {
 	return !name.empty() && name != "." && name != ".." && name.find('/') == std::string::npos &&
-		   std::none_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+		   !holdsControlCharacter(name);
 }
 
 const RecordEntry* FileSetRecord::file(const std::string& name) const

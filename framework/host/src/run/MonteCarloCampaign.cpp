@@ -5,6 +5,7 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/config/ConfigSection.h>
 #include <esif/core/Errors.h>
+#include <esif/core/Text.h>
 #include <esif/core/TextInput.h>
 #include <esif/run/MonteCarloCampaign.h>
 #include <esif/safeio/AtomicFile.h>
@@ -47,7 +48,7 @@ std::string absolute(const std::string& path) { return fs::absolute(path).lexica
 std::string manifestPath(const std::string& path, const std::string& what)
 {
 	const std::string p = absolute(path);
-	if (std::any_of(p.begin(), p.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == ','; }))
+	if (holdsControlCharacter(p) || p.find(',') != std::string::npos)
 		throw ConfigError(
 			"esif montecarlo: " + what + " '" + printableToken(p) +
 			"': a campaign cannot record a path with a line break, another control character or a comma "
