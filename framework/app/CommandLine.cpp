@@ -37,10 +37,45 @@ class OneLineOutput : public TCLAP::StdOutput
 		throw ConfigError(cmd.getProgramName() + ": " + printableWords(what) + " (see --help)");
 	}
 };
+/// The option of `cmd` that takes a value and is spelled `word` ("--robot",
+/// "-r"); null for any other word (switches, positional values).
+const TCLAP::Arg* valueOptionNamed(TCLAP::CmdLine& cmd, const std::string& word)
+{
+	for (const TCLAP::Arg* arg : cmd.getArgList())
+	{
+		// Positional arguments show as "<TYPE>": they have no spelling to match.
+		if (!arg->isValueRequired() || arg->shortID().rfind('<', 0) == 0) continue;
+		if (word == TCLAP::Arg::nameStartString() + arg->getName() ||
+			(!arg->getFlag().empty() && word == TCLAP::Arg::flagStartString() + arg->getFlag()))
+			return arg;
+	}
+	return nullptr;
+}
+
+/// TCLAP reads an empty value ("--robot ''", "--seed=") as no value and
+/// leaves the option at its default, so `--robot ''` imported robot 1 and
+/// `--out ''` was taken for the current folder: refused, naming the option.
+void refuseEmptyValues(TCLAP::CmdLine& cmd, int argc, char** argv)
+{
+	for (int i = 1; i < argc; ++i)
+	{
+		const std::string token = argv[i];
+		if (token == TCLAP::Arg::flagStartString() + TCLAP::Arg::flagStartString()) break;  // "--": no option after it
+		const auto equals = token.find('=');
+		const std::string word = token.substr(0, equals);
+		if (!valueOptionNamed(cmd, word)) continue;
+		const bool empty = equals != std::string::npos ? equals + 1 == token.size() : i + 1 < argc && !*argv[i + 1];
+		if (empty)
+			throw ConfigError(
+				std::string(argv[0]) + ": " + printableToken(word) +
+				": the value is empty (give one, or leave the option out to use its default; see --help)");
+	}
+}
 }  // namespace
 
 bool parseCommandLine(TCLAP::CmdLine& cmd, int argc, char** argv)
 {
+	refuseEmptyValues(cmd, argc, argv);
 	OneLineOutput output;
 	cmd.setOutput(&output);
 	const bool go_on = cmd.parse(argc, argv);

@@ -12,6 +12,7 @@
 #include <esif/eval/ComparisonTable.h>
 #include <esif/eval/RunDifference.h>
 #include <esif/formats/GroundTruth.h>
+#include <esif/formats/Markdown.h>
 #include <esif/formats/RunOutputReader.h>
 #include <esif/formats/StatsJson.h>
 #include <esif/render/MapOverlay.h>
@@ -71,8 +72,10 @@ std::string configLabel(const ConfigFile& config)
 	return label.empty() ? fs::path(config.origin()).stem().string() : label;
 }
 
-/// Index of the run `reference` names: by label, else (or among runs of
-/// one label) by run folder name.
+/// Index of the run `reference` names: the one run of that label, else the
+/// run of that folder name. A label several runs carry names none of them,
+/// even when one of their folders has that name too (which would be a
+/// silent pick): refused, listing the folder names that pick one.
 std::size_t referenceIndex(
 	const std::string& reference, const std::vector<std::string>& configs, const std::vector<std::string>& labels,
 	const std::vector<std::string>& dirs)
@@ -83,26 +86,26 @@ std::size_t referenceIndex(
 	if (hits.empty())
 		for (std::size_t i = 0; i < dirs.size(); ++i)
 			if (fs::path(dirs[i]).filename().string() == reference) hits.push_back(i);
-	if (hits.size() > 1)  // one label, several configs: their run folders still differ
-		for (const auto i : hits)
-			if (fs::path(dirs[i]).filename().string() == reference) return i;
 	if (hits.size() == 1) return hits.front();
 	std::string list;
 	if (hits.empty())
 	{
 		for (const auto& l : labels) list += (list.empty() ? "" : ", ") + l;
 		throw ConfigError(
-			"esif compare: --reference '" + reference + "': not the label of a compared run (labels: " + list + ")");
+			"esif compare: --reference '" + reference + "': not the label of a compared run (labels: " + list + ") nor a run folder");
 	}
 	std::string folders;
 	for (const auto i : hits)
 	{
 		list += (list.empty() ? "" : ", ") + configs[i];
-		folders += (folders.empty() ? "" : ", ") + fs::path(dirs[i]).filename().string();
+		const std::string folder = fs::path(dirs[i]).filename().string();
+		if (std::find(labels.begin(), labels.end(), folder) == labels.end())
+			folders += (folders.empty() ? "" : ", ") + folder;
 	}
 	throw ConfigError(
-		"esif compare: --reference '" + reference + "': several runs have this label (" + list +
-		"); name one of their run folders (" + folders + ") or give each config its own [esif] label");
+		"esif compare: --reference '" + reference + "': several runs have this label (" + list + "); " +
+		(folders.empty() ? "" : "name one of their run folders (" + folders + ") or ") +
+		"give each config its own [esif] label");
 }
 
 Stats readStats(const std::string& path)
@@ -218,15 +221,37 @@ std::string addReferenceColumns(std::vector<Stats>& runs, const std::vector<std:
 								const std::string& who, const std::string& out_dir)
 {
 	if (isFailedRun(runs[ref])) return "ref_*: none, " + who + " failed\n";
-	return addReferenceColumns(runs, dirs, ref, readRunOutputs(dirs[ref]), labelOf(runs[ref]), who, out_dir);
+	RunOutputs reference;
+	try
+	{
+		reference = readReferenceRun(dirs[ref]);
+	}
+	catch (const InputError& e)
+	{
+		return "ref_*: none, " + who + " is no reference: " + e.what() + "\n";
+	}
+	return addReferenceColumns(runs, dirs, ref, reference, labelOf(runs[ref]), who, out_dir);
 }
 
-/// A --reference that names no compared run but a run folder outside the
-/// comparison (e.g. another solver's solution made by `esif import g2o`).
-bool isOutsideRunFolder(const std::string& reference)
+/// A run folder outside the comparison is a reference only with a
+/// trajectory row per step, as every compared run has (differences pair
+/// rows by step: a shorter one would leave steps out silently).
+void requireRowPerStep(
+	const std::pair<std::string, RunOutputs>& reference, const std::vector<Stats>& runs,
+	const std::vector<std::string>& dirs)
 {
-	return fs::is_regular_file(fs::path(reference) / "trajectory.tum") &&
-		   fs::is_regular_file(fs::path(reference) / "landmarks.txt");
+	for (std::size_t i = 0; i < runs.size(); ++i)
+	{
+		if (isFailedRun(runs[i])) continue;
+		const std::size_t steps = readTrajectoryTum((fs::path(dirs[i]) / "trajectory.tum").string()).size();
+		const std::size_t rows = reference.second.trajectory.size();
+		if (rows != steps)
+			throw InputError(
+				(fs::path(reference.first) / "trajectory.tum").string() + ": " + std::to_string(rows) +
+				" rows, the compared runs have " + std::to_string(steps) +
+				" steps (a reference run must be of the same input, whole)");
+		return;
+	}
 }
 
 /// Every input of the comparison, for requireOutputApart: the configs, the
@@ -295,7 +320,7 @@ std::string failedBaselineNote(const std::vector<Stats>& runs, const std::vector
 std::string measureAgainstBaseline(
 	std::vector<Stats>& runs, const std::vector<std::string>& dirs, const std::vector<CheckedConfig>& checked,
 	const std::optional<std::pair<std::size_t, std::string>>& reference,
-	const std::optional<std::string>& outside_reference, const std::string& out_dir)
+	const std::optional<std::pair<std::string, RunOutputs>>& outside_reference, const std::string& out_dir)
 {
 	std::string note;
 	const BaselineChoice baseline = findBaseline(runs);
@@ -315,9 +340,12 @@ std::string measureAgainstBaseline(
 	else
 		note += failedBaselineNote(runs, checked);
 	if (outside_reference)
+	{
+		requireRowPerStep(*outside_reference, runs, dirs);
 		note += addReferenceColumns(
-			runs, dirs, std::nullopt, readRunOutputs(*outside_reference), fs::path(*outside_reference).filename().string(),
-			"the run folder " + *outside_reference, out_dir);
+			runs, dirs, std::nullopt, outside_reference->second, fs::path(outside_reference->first).filename().string(),
+			"the run folder " + outside_reference->first, out_dir);
+	}
 	else if (reference)
 		note += addReferenceColumns(runs, dirs, reference->first, "run '" + reference->second + "'", out_dir);
 	else if (baseline.index && !with_truth)
@@ -391,18 +419,20 @@ int compareCommand(int argc, char** argv)
 	const auto dirs = runFolders(config_list, out.getValue());
 	const auto planned = planRuns(config_list);
 	std::optional<std::size_t> ref;
-	std::optional<std::string> outside_reference;
+	std::optional<std::pair<std::string, RunOutputs>> outside_reference;
 	if (reference.isSet())
 	{
 		std::vector<std::string> labels;
 		for (const auto& p : planned) labels.push_back(p.label);
-		// A compared run's label or folder name first; else a run folder outside.
+		// A compared run's label or folder name first; else a run folder
+		// outside, read (and so checked, a missing file named) before any run.
 		const bool names_a_run =
 			std::count(labels.begin(), labels.end(), reference.getValue()) > 0 ||
 			std::any_of(dirs.begin(), dirs.end(),
 						[&](const std::string& d) { return fs::path(d).filename().string() == reference.getValue(); });
-		if (!names_a_run && isOutsideRunFolder(reference.getValue()))
-			outside_reference = reference.getValue();
+		std::error_code ec;
+		if (!names_a_run && fs::is_directory(reference.getValue(), ec))
+			outside_reference.emplace(reference.getValue(), readReferenceRun(reference.getValue()));
 		else
 			ref = referenceIndex(reference.getValue(), config_list, labels, dirs);
 	}
@@ -412,7 +442,7 @@ int compareCommand(int argc, char** argv)
 	requireOutputApart(
 		out.getValue(), compareInputs(
 							config_list, rawlog.getValue(), local_maps.getValue(), ground_truth.getValue(),
-							reference_result.getValue(), outside_reference.value_or("")));
+							reference_result.getValue(), outside_reference ? outside_reference->first : ""));
 
 	// The comparison's folder is all-or-nothing like a run's; the runs are
 	// written inside its partial folder.
@@ -443,8 +473,9 @@ int compareCommand(int argc, char** argv)
 		writeTextAtomically((fs::path(staging) / "comparison.csv").string(), comparisonCsv(runs));
 		const std::string title = "esif compare on " + input;
 		writeTextAtomically((fs::path(staging) / "comparison.md").string(),
-							"# " + title + "\n\n" + comparisonMarkdown(runs) + (note.empty() ? "" : "\n" + note) +
-								"\n" + bookTable51Markdown(succeeded));
+							"# " + markdown::text(title) + "\n\n" + comparisonMarkdown(runs) +
+								(note.empty() ? "" : "\n" + markdown::lines(note)) + "\n" +
+								bookTable51Markdown(succeeded));
 		writeComparisonPage((fs::path(staging) / "comparison.html").string(), {title, runs, run_dirs, note, staging});
 		return std::make_pair(comparisonExitCode(runs), text);
 	});

@@ -6,16 +6,15 @@
 
 #include "CommandList.h"
 #include "Commands.h"
+#include "TerminalStreams.h"
 
 #include <esif/core/Errors.h>
 #include <esif/safeio/TerminationCleanup.h>
 
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <iostream>
 #include <iterator>
-#include <new>
 #include <string>
 
 namespace
@@ -75,13 +74,6 @@ int dispatch(int argc, char** argv)
 		"unknown command '" + esif::printableToken(name) + "' (usage: esif <command> [options]; esif --help lists "
 		"the commands)");
 }
-/// Prints one error line (control characters escaped, whatever a path or
-/// token holds) and returns `code`.
-int report(const char* kind, const std::string& what, int code)
-{
-	std::cerr << kind << esif::withoutControlCharacters(what) << "\n";
-	return code;
-}
 }  // namespace
 
 int esif::app::runMain(int argc, char** argv)
@@ -90,32 +82,11 @@ int esif::app::runMain(int argc, char** argv)
 	{
 		return dispatch(argc, argv);
 	}
-	catch (const esif::ConfigError& e)
+	catch (...)
 	{
-		return report("esif: error: ", e.what(), 1);
-	}
-	catch (const esif::InputError& e)
-	{
-		return report("esif: error: ", e.what(), 1);
-	}
-	catch (const esif::NumericalError& e)
-	{
-		return report("esif: numerical failure: ", e.what(), 3);
-	}
-	catch (const std::filesystem::filesystem_error& e)
-	{
-		// A path esif could not stat, list or create that no reader checked
-		// first: the path and the system's reason, an input problem.
-		return report("esif: error: ", e.path1().string() + ": " + e.code().message(), 1);
-	}
-	catch (const std::bad_alloc&)
-	{
-		return report("esif: ", "out of memory", 3);
-	}
-	catch (const std::exception& e)
-	{
-		// MRPT exceptions carry a banner and a multi-line stack: one line of reason.
-		return report("esif: internal error: ", esif::oneLineReason(e.what()), 4);
+		const esif::FailureReport failure = esif::reportCurrentException();
+		std::cerr << failure.line << "\n";
+		return failure.exit_code;
 	}
 }
 
@@ -128,13 +99,13 @@ extern "C" __attribute__((visibility("default"))) int esif_app_main(int argc, ch
 	// partial output before exiting with 128 + the signal.
 	esif::termination::blockSignals();
 	esif::termination::startWatcher();
+	esif::app::filterTerminalStreams();
 	const int code = esif::app::runMain(argc, argv);
 	// Every output is written, synced and in place by now (AtomicFile.h):
 	// end without running the static destructors of the ~300 libraries the
 	// host loaded, which only free memory the kernel reclaims anyway (as
 	// clang's -disable-free does). Streams are flushed first.
-	std::cout.flush();
-	std::cerr.flush();
+	esif::app::finishTerminalStreams();
 	std::fflush(nullptr);
 	std::_Exit(code);
 }

@@ -4,6 +4,7 @@
 #include <esif/core/Errors.h>
 #include <esif/formats/MrclamImporter.h>
 #include <esif/formats/VictoriaParkImporter.h>
+#include <esif/run/RawlogOutput.h>
 
 #include <iostream>
 #include <memory>
@@ -68,7 +69,9 @@ int importMrclamCommand(int argc, char** argv)
 	sensor.applyTo(options);
 	for (std::size_t i = 0; i < noise_args.size(); ++i)
 		velocityNoiseParameters()[i].set(options.odometry_noise, noise_args[i]->getValue());
-	const auto s = importMrclam(dataset.getValue(), out.getValue(), options);
+	const auto s = writeRawlogOutput(
+		out.getValue(), {{"the MRCLAM recording", dataset.getValue()}},
+		[&](const std::string& rawlog) { return importMrclam(dataset.getValue(), rawlog, options); });
 	std::cout << "esif import: " << out.getValue() << ": robot " << options.robot << ", " << s.steps << " steps over "
 			  << static_cast<long>(s.duration_s) << " s (longest gap " << s.longest_gap_s << " s), " << s.measurements
 			  << " measurements of " << s.landmarks << " landmarks" << (options.keep_ids ? "" : " (IDs dropped)") << "; "
@@ -108,7 +111,9 @@ int importCommand(int argc, char** argv)
 	VictoriaParkImportOptions options;
 	sensor.applyTo(options);
 	options.dt_s = dt.getValue();
-	const auto s = importVictoriaPark(in.getValue(), out.getValue(), options);
+	const auto s = writeRawlogOutput(
+		out.getValue(), {{"the dataset", in.getValue()}},
+		[&](const std::string& rawlog) { return importVictoriaPark(in.getValue(), rawlog, options); });
 	std::cout << "esif import: " << out.getValue() << ": " << s.poses << " poses, " << s.measurements
 			  << " measurements of " << s.landmark_ids << " landmarks" << (options.keep_ids ? "" : " (IDs dropped)")
 			  << "\n";

@@ -15,6 +15,8 @@
 #include <esif/run/MonteCarloCollect.h>
 #include <esif/run/RunSetup.h>
 #include <esif/safeio/AtomicFile.h>
+#include <esif/safeio/FileSet.h>
+#include <esif/safeio/FolderLock.h>
 #include <esif/safeio/OutputApart.h>
 #include <esif/safeio/RunServer.h>
 #include <esif/sim/Scenario.h>
@@ -62,7 +64,7 @@ std::vector<CampaignJob> unfinishedJobs(const std::string& dir, const CampaignPl
 {
 	std::vector<CampaignJob> jobs;
 	for (const auto& job : campaignJobs(plan))
-		if (jobState(dir, plan, job) != JobState::Finished) jobs.push_back(job);
+		if (inspectJob(dir, plan, job).state != JobState::Finished) jobs.push_back(job);
 	return jobs;
 }
 
@@ -84,23 +86,45 @@ void collectAndReport(const std::string& dir, const CampaignPlan& plan)
 
 int runOneJob(const std::string& dir, const std::string& id)
 {
+	requireNoLinksInCampaign(dir);
 	const CampaignPlan plan = CampaignPlan::load(dir);
 	const JobOutcome outcome = runCampaignJob(dir, plan, campaign_layout::parseJobId(plan, id));
 	if (outcome.exit_code != 0)
 		std::cerr << "esif montecarlo: " << outcome.id << " failed (exit " << outcome.exit_code
 				  << "): " << outcome.error_line << "\n";
+	else if (outcome.skipped && !outcome.error_line.empty())
+		std::cerr << "esif montecarlo: " << outcome.id << ": " << outcome.error_line << ", left to it\n";
 	return outcome.exit_code;
 }
 
-void writeJobList(const std::string& path, const std::string& dir, const CampaignPlan& plan,
-				  const std::vector<CampaignJob>& jobs)
+/// One campaign at a time on a folder: a second would record the first
+/// one's runs as its own failures. (Jobs of a job list take no such lock:
+/// they run side by side, each job under a lock of its own.) The lock file
+/// is beside the folder, whose parent is made for it.
+FolderLock lockCampaign(const std::string& dir)
+{
+	fs::path folder = fs::absolute(dir).lexically_normal();
+	if (!folder.has_filename()) folder = folder.parent_path();
+	ensureDirectory(folder.parent_path().string());
+	return FolderLock(folder, LockWait::No, "this campaign");
+}
+
+/// The job list's text: built before anything is written, so a path no job
+/// line can carry is refused with the campaign folder untouched.
+std::string jobListText(const std::string& dir, const CampaignPlan& plan, const std::vector<CampaignJob>& jobs)
 {
 	std::string text;
 	for (const auto& job : jobs) text += jobCommandLine(dir, plan, job) + "\n";
-	writeTextAtomically(path, text);
-	std::cout << "esif montecarlo: " << jobs.size() << " jobs written to " << path << " ("
-			  << campaignJobs(plan).size() - jobs.size() << " finished already); then: esif montecarlo --collect "
-			  << dir << "\n";
+	return text;
+}
+
+void writeJobList(const std::string& path, const std::string& text)
+{
+	// A file set of its own kind: it replaces only a job list esif wrote.
+	writeFileSet("a job list", {path}, {}, [&](const FileSet& set) {
+		writeTextAtomically(set.staging(path), text);
+		return 0;
+	});
 }
 }  // namespace
 
@@ -146,6 +170,7 @@ int monteCarloCommand(int argc, char** argv)
 	{
 		if (planning || out.isSet() || job.isSet() || emit_jobs.isSet() || jobs.isSet())
 			throw ConfigError("esif montecarlo: --collect DIR takes no other option");
+		requireNoLinksInCampaign(collect.getValue());
 		collectAndReport(collect.getValue(), CampaignPlan::load(collect.getValue()));
 		return 0;
 	}
@@ -174,18 +199,30 @@ int monteCarloCommand(int argc, char** argv)
 	checkConfigs(config_list);
 
 	const std::string dir = out.getValue();
+	if (emit_jobs.isSet()) requireJobLinesPossible(dir);  // before anything is written
 	std::vector<NamedInput> inputs{{"the scenario", scenario.getValue()}};
 	for (const auto& c : config_list) inputs.push_back({"the config", c});
-	if (emit_jobs.isSet()) requireOutputApart(emit_jobs.getValue(), inputs, "--emit-jobs");
 	requireOutputApart(dir, inputs);
-	const CampaignPlan plan =
-		planCampaign(dir, CampaignPlan::create(scenario.getValue(), config_list, seed0.getValue(), runs.getValue()));
+	// The job list is not written into the campaign folder either: its files
+	// are the campaign's (campaign.ini, the runs' stats.json).
+	inputs.push_back({"the campaign folder", dir});
+	if (emit_jobs.isSet()) requireOutputApart(emit_jobs.getValue(), inputs, "--emit-jobs");
+	// Paths campaign.ini could not hold are refused before anything is written.
+	const CampaignPlan requested =
+		CampaignPlan::create(scenario.getValue(), config_list, seed0.getValue(), runs.getValue());
+	const FolderLock campaign_lock = lockCampaign(dir);
+	const CampaignPlan plan = planCampaign(dir, requested);
+	requireNoLinksInCampaign(dir);
+	const std::vector<CampaignJob> todo = unfinishedJobs(dir, plan);
+	const std::string job_list = emit_jobs.isSet() ? jobListText(dir, plan, todo) : "";
 	ensureDirectory(dir);
 	writeTextAtomically(campaign_layout::manifest(dir), plan.iniText());
-	const std::vector<CampaignJob> todo = unfinishedJobs(dir, plan);
 	if (emit_jobs.isSet())
 	{
-		writeJobList(emit_jobs.getValue(), dir, plan, todo);
+		writeJobList(emit_jobs.getValue(), job_list);
+		std::cout << "esif montecarlo: " << todo.size() << " jobs written to " << emit_jobs.getValue() << " ("
+				  << campaignJobs(plan).size() - todo.size() << " finished already); then: esif montecarlo --collect "
+				  << dir << "\n";
 		return 0;
 	}
 	const unsigned threads = jobs.isSet() ? static_cast<unsigned>(jobs.getValue())

@@ -3,8 +3,11 @@
 
 #include "MonteCarloJobs.h"
 
+#include <esif/core/Errors.h>
+#include <esif/core/Text.h>
 #include <esif/safeio/ChildProcess.h>
 
+#include <esif/run/MonteCarloCollect.h>
 #include <esif/run/ProgressBar.h>
 #include <esif/safeio/AtomicFile.h>
 #include <esif/safeio/FolderLock.h>
@@ -70,25 +73,79 @@ JobOutcome recordOutcome(
 	if (result.exit_code == 0)
 		fs::remove(failure, ec);
 	else
-		writeFailureRecord(failure, {result.exit_code, result.error_line, result.stderr_text});
+		try
+		{
+			writeFailureRecord(failure, {result.exit_code, result.error_line, result.stderr_text});
+		}
+		catch (...)
+		{
+			// A full disk: the run's own failure is the news; that it could not
+			// be recorded is said with it.
+			outcome.error_line += " (and its failure record could not be written: " +
+								  reportCurrentException().line + ")";
+		}
 	return outcome;
 }
 
-std::string quoted(const std::string& word)
+/// runCampaignJob, with anything it throws (a folder it cannot create, no
+/// descriptor left for a pipe, a full disk) made the job's failure: an
+/// exception leaving a worker thread would end esif with SIGABRT.
+JobOutcome runCampaignJobCaught(const std::string& dir, const CampaignPlan& plan, const CampaignJob& job)
 {
+	try
+	{
+		return runCampaignJob(dir, plan, job);
+	}
+	catch (...)
+	{
+		const FailureReport failure = reportCurrentException();
+		return recordOutcome(dir, plan, job, {failure.exit_code, failure.line, failure.line + "\n"});
+	}
+}
+
+/// `word` single-quoted for sh, bash and GNU parallel. A job line must stay
+/// one line whatever a path holds: the engines read one job per line
+/// (xargs -d '\n', parallel, `sed -n Np | bash`), so a line break inside
+/// quotes would still end the job there and run the rest as a command of
+/// its own. A word with a control character is refused, naming `what`.
+std::string quoted(const std::string& word, const std::string& what)
+{
+	if (holdsControlCharacter(word))
+		throw ConfigError(
+			"esif montecarlo: " + what + " '" + printableToken(word) +
+			"' holds a line break or another control character: a job line cannot carry it (engines read one job "
+			"per line); rename it");
 	std::string out = "'";
 	for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
 	return out + "'";
+}
+/// "'ESIF' montecarlo --out 'DIR' --job ", the part every job line shares.
+std::string jobLinePrefix(const std::string& dir)
+{
+	std::error_code ec;
+	const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
+	return quoted(self, "the esif binary") + " montecarlo --out " +
+		   quoted(fs::absolute(dir).lexically_normal().string(), "--out") + " --job ";
 }
 }  // namespace
 
 JobOutcome runCampaignJob(const std::string& dir, const CampaignPlan& plan, const CampaignJob& job)
 {
-	if (jobState(dir, plan, job) == JobState::Finished) return {campaign_layout::jobId(plan, job), true, 0, ""};
-	const ChildResult sim = ensureSimulation(dir, plan, job.noise_seed);
-	if (sim.exit_code != 0) return recordOutcome(dir, plan, job, sim);
+	const std::string id = campaign_layout::jobId(plan, job);
 	const std::string out = campaign_layout::runFolder(dir, plan.names[job.config], job.noise_seed);
 	ensureDirectory(fs::path(out).parent_path().string());
+	// A job another process runs (a worker of a job list, a campaign on the
+	// same folder) is left to it: its run is not this one's failure.
+	const FolderLock running(out + ".job", LockWait::Try);
+	if (!running.held()) return {id, true, 0, "running in another esif process"};
+	if (inspectJob(dir, plan, job).state == JobState::Finished)
+	{
+		std::error_code ec;
+		fs::remove(campaign_layout::failureFile(dir, plan.names[job.config], job.noise_seed), ec);  // a stale one
+		return {id, true, 0, ""};
+	}
+	const ChildResult sim = ensureSimulation(dir, plan, job.noise_seed);
+	if (sim.exit_code != 0) return recordOutcome(dir, plan, job, sim);
 	const ChildResult run = runEsifChild(
 		{"esif", "run", "--quiet", "--no-figures", "--config", plan.configs[job.config], "--rawlog",
 		 campaign_layout::simRawlog(dir, job.noise_seed), "--out", out},
@@ -107,7 +164,7 @@ std::vector<JobOutcome> runCampaignJobs(
 	const auto work = [&] {
 		for (std::size_t i; (i = next++) < jobs.size();)
 		{
-			outcomes[i] = runCampaignJob(dir, plan, jobs[i]);
+			outcomes[i] = runCampaignJobCaught(dir, plan, jobs[i]);
 			std::lock_guard<std::mutex> lock(report);
 			if (outcomes[i].exit_code != 0)
 			{
@@ -138,10 +195,9 @@ std::vector<JobOutcome> runCampaignJobs(
 
 std::string jobCommandLine(const std::string& dir, const CampaignPlan& plan, const CampaignJob& job)
 {
-	std::error_code ec;
-	const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
-	return quoted(self) + " montecarlo --out " + quoted(fs::absolute(dir).lexically_normal().string()) + " --job " +
-		   quoted(campaign_layout::jobId(plan, job));
+	return jobLinePrefix(dir) + quoted(campaign_layout::jobId(plan, job), "the job");
 }
+
+void requireJobLinesPossible(const std::string& dir) { jobLinePrefix(dir); }
 
 }  // namespace esif::app

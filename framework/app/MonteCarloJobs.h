@@ -16,7 +16,7 @@ namespace esif::app
 struct JobOutcome
 {
 	std::string id;	 ///< "ekf/seed_0007"
-	bool skipped = false;  ///< finished before: not run again
+	bool skipped = false;  ///< not run: finished before, or running in another esif process (error_line says so)
 	int exit_code = 0;	///< 0: finished
 	std::string error_line;
 };
@@ -36,7 +36,14 @@ std::vector<JobOutcome> runCampaignJobs(
 	const std::string& dir, const CampaignPlan& plan, const std::vector<CampaignJob>& jobs, unsigned threads);
 
 /// The shell command that runs `job` on its own: the absolute esif binary,
-/// `montecarlo --out DIR --job ID`, each word single-quoted.
+/// `montecarlo --out DIR --job ID`, each word single-quoted. ConfigError
+/// when a word holds a line break or another control character: the
+/// engines read one job per line, so no byte of a path may end one.
 std::string jobCommandLine(const std::string& dir, const CampaignPlan& plan, const CampaignJob& job);
+
+/// Throws that ConfigError now when a job line of the campaign in `dir`
+/// could not be written (the esif binary's path or `dir` holds a control
+/// character): checked before anything is written.
+void requireJobLinesPossible(const std::string& dir);
 
 }  // namespace esif::app

@@ -9,13 +9,15 @@
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 #include <esif/formats/GroundTruth.h>
-#include <esif/safeio/OutputApart.h>
+#include <esif/run/RawlogOutput.h>
 #include <esif/sim/MeasurementTruth.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>
 
+#include <mrpt/core/format.h>
+
 #include <chrono>
-#include <cstdio>
+#include <iostream>
 #include <string>
 
 namespace esif::app
@@ -26,7 +28,7 @@ namespace
 void printGaps(const SimulationSummary& s, const Scenario& scenario)
 {
 	const double metres_per_scan = scenario.speed_mps * scenario.dt_s;
-	std::printf(
+	std::cout << mrpt::format(
 		"Scans without any measurement: %zu, longest run %zu (%.1f m); longest run below two measurements %zu "
 		"(%.1f m).\n",
 		s.scans_without_measurements, s.longest_run_without_measurements,
@@ -41,16 +43,16 @@ void printOutliers(const SimulationSummary& s, const Scenario& scenario, const s
 {
 	const std::size_t true_returns = s.measurements - s.spurious_measurements;
 	if (scenario.wrong_id_rate > 0)
-		std::printf(
+		std::cout << mrpt::format(
 			"Wrong IDs: %zu of %zu landmark measurements carry another landmark's ID (%.3f %%, wrong_id_rate %g).\n",
 			s.wrong_id_measurements, true_returns, true_returns ? 100.0 * s.wrong_id_measurements / true_returns : 0.0,
 			scenario.wrong_id_rate);
 	if (scenario.spurious_rate > 0)
-		std::printf(
+		std::cout << mrpt::format(
 			"Clutter: %zu spurious returns (%.3f per scan, spurious_rate %g), IDs %lld and up (no landmark).\n",
 			s.spurious_measurements, s.steps ? double(s.spurious_measurements) / s.steps : 0.0, scenario.spurious_rate,
 			static_cast<long long>(scenario.clutterIdBase()));
-	std::printf("True landmark of every measurement in %s.\n", measurementTruthFileOf(prefix).c_str());
+	std::cout << mrpt::format("True landmark of every measurement in %s.\n", measurementTruthFileOf(prefix).c_str());
 }
 }  // namespace
 
@@ -88,19 +90,17 @@ int simulateCommand(int argc, char** argv)
 		throw ConfigError(config_arg.getValue() + ": " + e.what());
 	}
 
-	// The rawlog and the ground-truth files beside it: none may be the config.
+	// The rawlog and the ground-truth files beside it, one set: none may be
+	// the scenario, none replaces a file esif did not write.
 	const std::string prefix = groundTruthPrefixFor(out_arg.getValue());
-	std::vector<std::string> written = groundTruthFilesOf(prefix);
-	written.push_back(out_arg.getValue());
-	written.push_back(measurementTruthFileOf(prefix));
-	for (const auto& file : written) requireOutputApart(file, {{"the scenario", config_arg.getValue()}});
-
 	const auto start = std::chrono::steady_clock::now();
 	const Simulator simulator(scenario);
-	const SimulationSummary s = simulator.writeRawlog(out_arg.getValue());
+	const SimulationSummary s = writeRawlogOutput(
+		out_arg.getValue(), {{"the scenario", config_arg.getValue()}},
+		[&](const std::string& rawlog) { return simulator.writeRawlog(rawlog); });
 	const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-	std::printf(
+	std::cout << mrpt::format(
 		"Simulated %s (seed %d, noise seed %u) in %.1f s: %zu steps, %zu measurements, %zu of %zu features seen, "
 		"%.2f measurements per scan on average, true path length %.1f m. Ground truth in %s_ground_truth.txt "
 		"and %s_ground_truth_robot_path.txt.\n",

@@ -78,7 +78,7 @@ inline Verdict localMapVerdict(const std::string& input)
 	const bool reference = target.first.rfind("ref/", 0) == 0;
 	const Verdict verdict = verdictOf(path, [&] {
 		if (reference)
-			readReferenceResult(fileIn("ref"));
+			readReferenceResult(fileIn("ref"), 2);
 		else
 			readLocalMapFolder(fileIn("maps"));
 	});

@@ -78,13 +78,11 @@ std::string folderWithABrokenPlugin(const TempDir& dir)
 	return folder;
 }
 
-/// The warning for the garbage file named like a plugin: a text file is
-/// "too short" for the dynamic loader's ELF header, or has an "invalid ELF
-/// header" when longer; both are dlerror() texts.
+/// The warning for the garbage file named like a plugin: esif checks the
+/// ELF header of its sealed copy before the dynamic loader maps it.
 std::string brokenWarning(const std::string& folder)
 {
-	return "esif: warning: " + folder + "/libesif_plugin_broken.so: cannot load plugin, skipped (dlerror: " +
-		"file too short)\n";
+	return "esif: warning: " + folder + "/libesif_plugin_broken.so: cannot load plugin, skipped (not an ELF file)\n";
 }
 
 TEST(BorderChecks, PluginsListsTheGoodPluginsAndWarnsAboutTheBrokenFile)
@@ -125,7 +123,7 @@ TEST(BorderChecks, ARunStillFindsItsPluginBesideABrokenFileAndAMissingOneNamesIt
 	EXPECT_EQ(warning + "\n", brokenWarning(folder));
 	EXPECT_EQ(error.rfind("esif: error: unknown plugin 'test::NoSuchFilter' (available: ", 0), 0u) << error;
 	const std::string tail = "; files that failed to load, one may be it: " + folder +
-		"/libesif_plugin_broken.so (dlerror: file too short)";
+		"/libesif_plugin_broken.so (not an ELF file)";
 	ASSERT_GE(error.size(), tail.size());
 	EXPECT_EQ(error.substr(error.size() - tail.size()), tail);
 }

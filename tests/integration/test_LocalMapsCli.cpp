@@ -343,4 +343,29 @@ TEST_F(LocalMapsCli, RawlogRunOfAJoinerDrawsLocalMapTimesAndScoresTheFinalReport
 		}
 }
 
+/// A reference result is held to its documented layout and bounds: without
+/// pose.txt, with a pose of a map the folder does not have, or a feature ID
+/// no rawlog carries, it is refused naming the file, never measured against
+/// in part with refres_pose_* left null.
+TEST_F(LocalMapsCli, AReferenceResultMissingPosesOrOutOfBoundsIsRefusedNamingTheFile)
+{
+	const std::string ref = dir_->file("ref_bounds");
+	fs::create_directories(ref);
+	const std::map<esif::LandmarkId, Eigen::Vector2d> features = {{1, {1, 1}}, {2, {3, -1}}, {3, {2, 2}}};
+	esif::test::writeReferenceResult(ref, features, {{1, esif::Pose2(2, 0, 0.1)}, {2, esif::Pose2(4, 0.5, 0.1)}});
+	const auto ok = runOnMaps("joiner.ini", tinyMaps(), "ref_ok", "--reference-result " + quoted(ref));
+	ASSERT_EQ(ok.exit_code, 0) << ok.out;
+
+	fs::remove(ref + "/pose.txt");
+	expectOneErrorLine(runOnMaps("joiner.ini", tinyMaps(), "ref_no_poses", "--reference-result " + quoted(ref)),
+					   ref + "/pose.txt: reference end poses not found");
+	esif::test::writeReferenceResult(ref, features, {{1, esif::Pose2(2, 0, 0.1)}, {999, esif::Pose2(1, 1, 0)}});
+	expectOneErrorLine(runOnMaps("joiner.ini", tinyMaps(), "ref_map_999", "--reference-result " + quoted(ref)),
+					   ref + "/pose.txt:2: map index 999 but the folder has maps 1..2");
+	esif::test::writeReferenceResult(ref, {{1, {1, 1}}, {99999999999, {3, -1}}}, {{1, esif::Pose2(2, 0, 0.1)}});
+	expectOneErrorLine(runOnMaps("joiner.ini", tinyMaps(), "ref_big_id", "--reference-result " + quoted(ref)),
+					   ref + "/feature.txt:2: id 99999999999 is beyond 2147483647");
+	EXPECT_FALSE(fs::exists(dir_->file("ref_no_poses")));
+}
+
 }  // namespace

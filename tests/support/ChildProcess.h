@@ -23,10 +23,20 @@ struct Spawned
 	int output_fd = -1;	 ///< stdout and stderr of the child
 };
 
-/// Starts `esif ARGS...`; with `file_size_limit`, RLIMIT_FSIZE is set to it
-/// and SIGXFSZ ignored, so a write beyond it fails with EFBIG, as on a full
-/// disk, instead of killing the process.
-inline Spawned spawnEsif(const std::vector<std::string>& args, std::optional<rlim_t> file_size_limit = std::nullopt)
+/// Resource limits for a spawned esif.
+struct SpawnLimits
+{
+	/// RLIMIT_FSIZE, with SIGXFSZ ignored: a write beyond it fails with EFBIG,
+	/// as on a full disk, instead of killing the process.
+	std::optional<rlim_t> file_size;
+	/// RLIMIT_AS: an allocation beyond it fails (std::bad_alloc).
+	std::optional<rlim_t> address_space;
+	/// RLIMIT_NOFILE: no descriptor beyond it (pipes and locks fail).
+	std::optional<rlim_t> open_files;
+};
+
+/// Starts `esif ARGS...` under `limits`.
+inline Spawned spawnEsif(const std::vector<std::string>& args, const SpawnLimits& limits)
 {
 	std::vector<std::string> all = {ESIF_BINARY};
 	all.insert(all.end(), args.begin(), args.end());
@@ -42,17 +52,26 @@ inline Spawned spawnEsif(const std::vector<std::string>& args, std::optional<rli
 		::dup2(fds[1], STDERR_FILENO);
 		::close(fds[0]);
 		::close(fds[1]);
-		if (file_size_limit)
-		{
-			::signal(SIGXFSZ, SIG_IGN);	 // kept across exec
-			const rlimit limit{*file_size_limit, *file_size_limit};
-			::setrlimit(RLIMIT_FSIZE, &limit);
-		}
+		if (limits.file_size) ::signal(SIGXFSZ, SIG_IGN);	// kept across exec
+		for (const auto& [resource, value] : {std::pair{RLIMIT_FSIZE, limits.file_size},
+											  std::pair{RLIMIT_AS, limits.address_space},
+											  std::pair{RLIMIT_NOFILE, limits.open_files}})
+			if (value)
+			{
+				const rlimit limit{*value, *value};
+				::setrlimit(resource, &limit);
+			}
 		::execv(argv[0], argv.data());
 		::_exit(127);
 	}
 	::close(fds[1]);
 	return {pid, fds[0]};
+}
+
+/// Starts `esif ARGS...`; with `file_size_limit`, as SpawnLimits::file_size.
+inline Spawned spawnEsif(const std::vector<std::string>& args, std::optional<rlim_t> file_size_limit = std::nullopt)
+{
+	return spawnEsif(args, SpawnLimits{file_size_limit, std::nullopt, std::nullopt});
 }
 
 /// Output until the child closes it, then its exit code (128 + N when

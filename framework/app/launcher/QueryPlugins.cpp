@@ -31,8 +31,11 @@ int main(int argc, char** argv)
 			std::cerr << "esif_query_plugins: the libraries in " << lib << " changed while they were listed\n";
 			return 1;
 		}
+		// Every other library the plugins brought in: the listing holds only while they load.
+		const auto dependencies = esif::launcher::stampDependencies(lib);
 		// Checked, synced and renamed into place like every esif output.
-		esif::writeTextAtomically(esif::launcher::cacheFileIn(lib), esif::launcher::cacheText(lib, before, listing));
+		esif::writeTextAtomically(
+			esif::launcher::cacheFileIn(lib), esif::launcher::cacheText(lib, before, dependencies, listing));
 		return 0;
 	}
 	catch (const std::exception& e)

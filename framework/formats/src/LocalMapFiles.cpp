@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <new>
 #include <set>
 #include <sstream>
 #include <system_error>
@@ -302,6 +303,8 @@ std::map<LandmarkId, Eigen::Vector2d> readPointRows(const std::string& path, con
 	std::map<long, std::size_t> seen;
 	forEachRow(f, 3, "'id x y'", [&](const auto& t, std::size_t line) {
 		const long id = freshPositive(f, line, t[0], "id", seen);
+		if (id > kMaxLandmarkId)
+			f.fail(line, "id " + t[0] + " is beyond " + std::to_string(kMaxLandmarkId) + " (MRPT's landmark IDs)");
 		out[id] = {f.coordinate(line, t[1], "x"), f.coordinate(line, t[2], "y")};
 	});
 	return out;
@@ -445,6 +448,10 @@ void writeInto(const fs::path& dir, const std::string& name, const std::function
 	{
 		write(path);
 	}
+	catch (const std::bad_alloc&)
+	{
+		throw;
+	}
 	catch (const std::exception& e)
 	{
 		const std::string what = e.what();
@@ -539,14 +546,13 @@ void writeLocalMapFiles(const LocalMapFolder& folder, const std::string& dir)
 	writeContents(folder, dir);
 }
 
-ReferenceResult readReferenceResult(const std::string& dir)
+ReferenceResult readReferenceResult(const std::string& dir, std::size_t maps)
 {
 	std::error_code ec;
 	if (!fs::is_directory(dir, ec)) throw InputError(dir + ": no such folder");
 	ReferenceResult out;
 	out.features = readPointRows((fs::path(dir) / "feature.txt").string(), "reference features");
-	if (const auto p = (fs::path(dir) / "pose.txt").string(); pathPresent(p))
-		out.end_poses = readPoseRows(p, "reference end poses", 0);
+	out.end_poses = readPoseRows((fs::path(dir) / "pose.txt").string(), "reference end poses", maps);
 	return out;
 }
 

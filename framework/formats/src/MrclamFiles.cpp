@@ -8,6 +8,7 @@
 #include "NumberRow.h"
 
 #include <cmath>
+#include <map>
 #include <set>
 
 namespace esif::mrclam
@@ -103,9 +104,18 @@ std::vector<BarcodeMeasurement> readMeasurements(const std::string& path)
 {
 	std::vector<BarcodeMeasurement> out;
 	double previous = kMinTime_s;
+	// The barcodes read at the current time, with where each was: one image
+	// shows a barcode once, and a scan cannot hold one landmark twice.
+	std::map<long, std::string> read_now;
 	forEachRow(path, "MRCLAM measurements", kMeasurementColumns, [&](const NumberRow& row) {
+		const double before = previous;
 		const double t = timeOf(row, previous);
-		out.push_back({t, row.integer(1, 0, kMaxBarcode),
+		if (t != before) read_now.clear();
+		const long barcode = row.integer(1, 0, kMaxBarcode);
+		if (const auto [first, fresh] = read_now.emplace(barcode, row.where()); !fresh)
+			row.fail(1, "read twice at the same time (first on line " + first->second.substr(first->second.rfind(':') + 1) +
+							"): a repeated line");
+		out.push_back({t, barcode,
 					   row.bounded(2, 1e-3, kMaxRange_m, "m", "a camera's range; at 0 the bearing is undefined"),
 					   row.bounded(3, -M_PI, M_PI, "rad", "a bearing")});
 	});

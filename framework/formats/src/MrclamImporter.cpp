@@ -1,6 +1,7 @@
 /// \file MrclamImporter.cpp
 /// One MRCLAM robot into a rawlog and its ground truth; see MrclamImporter.h.
 
+#include "ImportOptions.h"
 #include "MrclamFiles.h"
 
 #include <esif/config/ParamBinder.h>
@@ -13,6 +14,7 @@
 #include <esif/safeio/AtomicFile.h>
 #include <esif/safeio/OutputApart.h>
 
+#include <mrpt/core/format.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
@@ -101,6 +103,33 @@ class CommandTrack
 	std::size_t next_ = 0;
 };
 
+/// Longest time the measurements may go on past the last velocity command,
+/// or start before the first [s]. The robots send a command at least every
+/// 1.03 s in all of dataset 6; measurements far beyond the commands are an
+/// odometry file cut short, whose last command would otherwise be driven on
+/// (or the robot taken to stand) for the rest of the recording.
+constexpr double kMaxUncommandedTime_s = 5.0;
+
+/// Throws InputError naming the odometry file unless its commands cover the
+/// measurement times `times` (increasing) to within kMaxUncommandedTime_s.
+void requireCommandsCover(
+	const std::vector<VelocityCommand>& commands, const std::vector<double>& times, const std::string& path)
+{
+	const double after = times.back() - commands.back().time_s, before = commands.front().time_s - times.front();
+	const auto seconds = [](double s) { return mrpt::format("%.1f s", s); };
+	const auto fail = [&](const std::string& what) {
+		throw InputError(
+			path + ": " + what + ": the file is cut short (more than " + seconds(kMaxUncommandedTime_s) +
+			" without a command; a recording sends one at least every second or so)");
+	};
+	if (after > kMaxUncommandedTime_s)
+		fail("its last velocity command is at " + formatNumber(commands.back().time_s) +
+			 " s, but the measurements go on for " + seconds(after) + " more");
+	if (before > kMaxUncommandedTime_s)
+		fail("its first velocity command is at " + formatNumber(commands.front().time_s) + " s, " + seconds(before) +
+			 " after the first measurement");
+}
+
 /// The Vicon track, linearly interpolated (the heading along the shorter arc).
 class TruthTrack
 {
@@ -131,18 +160,13 @@ class TruthTrack
 
 void validateOptions(const MrclamImportOptions& o)
 {
-	const auto check = [](const char* flag, double value, double hi, const std::string& why) {
-		if (!(value > 0 && value <= hi))
-			throw ConfigError(std::string("import mrclam: ") + flag + " = " + formatNumber(value) + ": must be in (0, " +
-							  formatNumber(hi) + "] (" + why + ")");
-	};
+	const std::string who = "import mrclam";
 	if (o.robot < 1 || o.robot > 5)
-		throw ConfigError("import mrclam: --robot " + std::to_string(o.robot) + ": must be 1 to 5");
-	check("--std-range-m", o.std_range_m, 100.0, "beyond it a measurement carries no information");
-	check("--std-bearing-deg", o.std_bearing_deg, 180.0, "beyond it a bearing carries no information");
-	check("--max-range-m", o.max_range_m, 1000.0, "farthest plausible landmark");
-	check("--fov-deg", o.fov_deg, 360.0, "a full circle");
-	o.odometry_noise.validate("import mrclam");
+		throw ConfigError(who + ": --robot " + std::to_string(o.robot) + ": must be 1 to 5");
+	checkSensorNoise(who, o.std_range_m, o.std_bearing_deg);
+	checkImportOption(who, "--max-range-m", o.max_range_m, 0, 1000.0, "farthest plausible landmark");
+	checkImportOption(who, "--fov-deg", o.fov_deg, 0, 360.0, "a full circle");
+	o.odometry_noise.validate(who);
 }
 
 /// The truth in the frame of the first step's true pose.
@@ -180,6 +204,7 @@ MrclamImportSummary importMrclam(
 	Scan scan_template;
 	scan_template.max_range_m = options.max_range_m;
 	scan_template.fov_rad = options.fov_deg * kDeg;
+	requireCommandsCover(commands, scans.times, odometryFile(dataset_dir, robot));
 	CommandTrack drive(commands);
 	std::vector<StepInput> steps(scans.times.size());
 	MrclamImportSummary summary;

@@ -33,6 +33,9 @@ class NumberRow
 	/// Column `i` as a landmark ID: an integer in [0, kMaxLandmarkId].
 	LandmarkId landmarkId(std::size_t i) const;
 
+	/// "FILE:LINE" of the row.
+	const std::string& where() const { return where_; }
+
 	/// Throws InputError "FILE:LINE: column K (NAME) = VALUE: rule".
 	[[noreturn]] void fail(std::size_t i, const std::string& rule) const;
 

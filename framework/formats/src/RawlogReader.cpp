@@ -5,9 +5,11 @@
 #include <esif/models/Se2.h>
 
 #include "GzipInflate.h"
+#include "RawlogDigest.h"
+#include "WholeReadStream.h"
+#include <esif/safeio/FileSet.h>
 #include <esif/safeio/Sandbox.h>
 
-#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -315,7 +317,7 @@ void normaliseTimes(std::vector<StepInput>& steps)
 Rawlog parseRawlog(const std::string& path, const InflatedFile& file, const RawlogReadOptions& options,
 				   SandboxProgress* progress)
 {
-	mrpt::io::CMemoryStream stream;
+	WholeReadStream stream;
 	stream.assignMemoryNotOwn(file.bytes.data(), file.bytes.size());
 	auto archive = mrpt::serialization::archiveFrom(stream);
 
@@ -350,7 +352,7 @@ Rawlog parseRawlog(const std::string& path, const InflatedFile& file, const Rawl
 			// MRPT wraps an end of data met inside a nested object in its own
 			// exception: a failure that consumed every byte left is a cut file,
 			// one that stopped before the end is a corrupt entry.
-			if (stream.getPosition() < file.bytes.size())
+			if (stream.getPosition() < file.bytes.size() && !stream.endedInsideValue())
 				throw InputError(path + ": entry " + std::to_string(entry) + " is corrupt: " + oneLineReason(e.what()));
 			out.truncation_warning = path + ": file ends inside entry " + std::to_string(entry) +
 				"; read up to step " + std::to_string(out.steps.size());
@@ -400,17 +402,19 @@ SandboxLimits readLimitsFor(std::size_t bytes)
 }
 
 /// Reads the rawlog once in a sandboxed child. A fault there becomes one
-/// line naming the entry; success proves the same bytes read safely here.
-void checkInSandbox(const std::string& path, const InflatedFile& file, const RawlogReadOptions& options)
+/// line naming the entry; success proves the same bytes read safely here,
+/// and returns the digest (RawlogDigest.h) of what the child read.
+std::uint32_t checkInSandbox(const std::string& path, const InflatedFile& file, const RawlogReadOptions& options)
 {
 	const SandboxLimits limits = readLimitsFor(file.bytes.size());
 	const SandboxOutcome outcome = runInSandbox(
-		[&](SandboxProgress& progress) { parseRawlog(path, file, options, &progress); }, limits);
+		[&](SandboxProgress& progress) { progress.result = digestOf(parseRawlog(path, file, options, &progress)); },
+		limits);
 	const std::string entry = path + ": entry " + std::to_string(outcome.position);
 	switch (outcome.kind)
 	{
 		case SandboxOutcome::Kind::kSucceeded:
-			return;
+			return static_cast<std::uint32_t>(outcome.result);
 		case SandboxOutcome::Kind::kFailed:
 			throw InputError(oneLineReason(outcome.message));
 		case SandboxOutcome::Kind::kOutOfMemory:
@@ -428,22 +432,34 @@ void checkInSandbox(const std::string& path, const InflatedFile& file, const Raw
 	throw InputError(entry + " is corrupt: MRPT's deserialiser crashed on it (" +
 					 (outcome.signal_number ? std::string(strsignal(outcome.signal_number)) : outcome.message) + ")");
 }
+
+/// The read the sandboxed child vouched for, done again here: both must
+/// come to the same (the child decides what the file holds), or the file is
+/// refused rather than read one way here and another way there.
+Rawlog readVouchedFor(const std::string& path, const InflatedFile& file, const RawlogReadOptions& options)
+{
+	const std::uint32_t vouched = checkInSandbox(path, file, options);
+	Rawlog log = parseRawlog(path, file, options, nullptr);
+	if (digestOf(log) != vouched)
+		throw InputError(
+			path + ": read two different ways (MRPT took a value from memory it had not read into): a corrupt entry");
+	return log;
+}
 }  // namespace
 
 Rawlog readRawlogFromMemory(const std::string& name, std::string bytes, const RawlogReadOptions& options)
 {
 	if (bytes.empty()) throw InputError(name + ": file holds no data");
-	const InflatedFile file{std::move(bytes), false};
-	checkInSandbox(name, file, options);
-	return parseRawlog(name, file, options, nullptr);
+	return readVouchedFor(name, InflatedFile{std::move(bytes), false}, options);
 }
 
 Rawlog readRawlog(const std::string& path, const RawlogReadOptions& options)
 {
 	requireRegularFile(path, "rawlog file");
-	const InflatedFile file = inflateFile(path);
-	checkInSandbox(path, file, options);
-	return parseRawlog(path, file, options, nullptr);
+	// A rawlog whose replacement (with its ground truth) was cut in two by a
+	// kill is not read beside a ground truth that is not its own.
+	requireCompleteFileSet(path);
+	return readVouchedFor(path, inflateFile(path), options);
 }
 
 }  // namespace esif

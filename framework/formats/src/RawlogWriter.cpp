@@ -1,3 +1,4 @@
+#include <esif/core/Errors.h>
 #include <esif/formats/RawlogWriter.h>
 
 #include <mrpt/obs/CActionCollection.h>
@@ -6,6 +7,8 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
+
+#include <set>
 
 namespace esif
 {
@@ -51,8 +54,16 @@ mrpt::obs::CSensoryFrame scanFrame(const StepInput& step, const SensorNoise& noi
 	obs->sensor_std_yaw = static_cast<float>(noise.std_bearing_rad);
 	obs->sensor_std_pitch = 0;
 	obs->sensedData.reserve(scan.measurements.size());
+	std::set<LandmarkId> ids;
 	for (const RangeBearing& m : scan.measurements)
 	{
+		// MRPT refuses to serialise a scan that measures a landmark twice, in
+		// an exception naming neither step nor file: the readers of datasets
+		// refuse such input at its line, and this says which step it was.
+		if (m.id && !ids.insert(*m.id).second)
+			throw InputError(
+				"step " + std::to_string(step.index) + ": landmark ID " + std::to_string(*m.id) +
+				" is measured twice in one scan (a rawlog scan holds each landmark once)");
 		CObservationBearingRange::TMeasurement t;
 		t.range = static_cast<float>(m.range_m);
 		t.yaw = static_cast<float>(m.bearing_rad);

@@ -4,6 +4,7 @@
 /// std::to_chars), so a damaged file is reported at its line, never misread.
 
 #include <esif/core/Errors.h>
+#include <esif/core/InputBounds.h>
 #include <esif/core/TextInput.h>
 #include <esif/formats/NumberText.h>
 #include <esif/formats/RunOutputReader.h>
@@ -61,9 +62,19 @@ double yawOf(double qx, double qy, double qz, double qw, const std::string& path
 	const Eigen::Matrix3d r = q.normalized().toRotationMatrix();
 	return wrapAngle(std::atan2(r(1, 0), r(0, 0)));
 }
+/// For a reference: (x, y) finite and within kMaxCoordinate_m.
+void requireBoundedPosition(double x, double y, const std::string& path, std::size_t lineno)
+{
+	for (const double v : {x, y})
+		if (!std::isfinite(v) || std::abs(v) > kMaxCoordinate_m)
+			failAt(
+				path, lineno,
+				"position (" + number_text::text(x) + ", " + number_text::text(y) + ") is not finite or beyond " +
+					number_text::text(kMaxCoordinate_m) + " m (a reference must be a run that did not diverge)");
+}
 }  // namespace
 
-std::vector<TimedPose2D> readTrajectoryTum(const std::string& path)
+std::vector<TimedPose2D> readTrajectoryTum(const std::string& path, RunRole role)
 {
 	static const std::string kColumns = "8 numbers 'timestamp x y z qx qy qz qw'";
 	TextLineReader in(path, "trajectory");
@@ -83,12 +94,17 @@ std::vector<TimedPose2D> readTrajectoryTum(const std::string& path)
 		TimedPose2D p;
 		p.time_s = v[0];
 		p.pose = mrpt::math::TPose2D(v[1], v[2], yawOf(v[4], v[5], v[6], v[7], path, lineno));
+		if (role == RunRole::Reference)
+		{
+			requireBoundedPosition(p.pose.x, p.pose.y, path, lineno);
+			if (!std::isfinite(p.pose.phi)) failAt(path, lineno, "the rotation (qx qy qz qw) is not finite");
+		}
 		out.push_back(p);
 	}
 	return out;
 }
 
-std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path)
+std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path, RunRole role)
 {
 	static const std::string kColumns = "'id x y cxx cxy cyy' (an integer ID and 5 numbers)";
 	TextLineReader in(path, "landmark map");
@@ -112,6 +128,13 @@ std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path)
 					")");
 		lm.mean << v[0], v[1];
 		lm.cov << v[2], v[3], v[3], v[4];
+		if (role == RunRole::Reference)
+		{
+			if (lm.id < 0 || lm.id > kMaxLandmarkId)
+				failAt(path, lineno, "landmark ID " + id + " is outside 0.." + std::to_string(kMaxLandmarkId) +
+										 " (MRPT's landmark IDs)");
+			requireBoundedPosition(v[0], v[1], path, lineno);
+		}
 		out.push_back(lm);
 	}
 	return out;
@@ -145,6 +168,21 @@ RunOutputs readRunOutputs(const std::string& dir)
 	out.trajectory = readTrajectoryTum((d / "trajectory.tum").string());
 	out.landmarks = readLandmarksTxt((d / "landmarks.txt").string());
 	const std::string identities = (d / kLandmarkIdentityFileName).string();
+	if (pathPresent(identities)) out.identities = identitiesOfMap(identities, out.landmarks);
+	return out;
+}
+
+RunOutputs readReferenceRun(const std::string& dir, std::optional<std::size_t> steps)
+{
+	const std::string trajectory = (std::filesystem::path(dir) / "trajectory.tum").string();
+	RunOutputs out;
+	out.trajectory = readTrajectoryTum(trajectory, RunRole::Reference);
+	out.landmarks = readLandmarksTxt((std::filesystem::path(dir) / "landmarks.txt").string(), RunRole::Reference);
+	if (steps && out.trajectory.size() != *steps)
+		throw InputError(
+			trajectory + ": " + std::to_string(out.trajectory.size()) + " rows, the rawlog has " +
+			std::to_string(*steps) + " steps (a reference run must be of the same rawlog, whole)");
+	const std::string identities = (std::filesystem::path(dir) / kLandmarkIdentityFileName).string();
 	if (pathPresent(identities)) out.identities = identitiesOfMap(identities, out.landmarks);
 	return out;
 }

@@ -1,3 +1,4 @@
+#include "ImportOptions.h"
 #include "VictoriaParkRecord.h"
 
 #include <esif/config/ParamBinder.h>
@@ -14,6 +15,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <unordered_map>
 #include <vector>
@@ -72,6 +74,11 @@ class StepTable
 				formatNumber(m.range_m) + " m beyond the sensor range --max-range-m = " +
 				formatNumber(options_.max_range_m) + " m");
 		m.bearing_rad = std::atan2(r.point.y(), r.point.x());
+		if (const auto [first, fresh] = seen_[it->second].emplace(r.landmark, where); !fresh)
+			throw InputError(
+				where + ": LANDMARK " + std::to_string(r.pose) + " " + std::to_string(r.landmark) + ": landmark " +
+				std::to_string(r.landmark) + " is measured twice from pose " + std::to_string(r.pose) +
+				" (first on line " + first->second.substr(first->second.rfind(':') + 1) + "): a repeated line");
 		if (options_.keep_ids) m.id = static_cast<LandmarkId>(r.landmark);
 		ids_.insert(r.landmark);
 		steps_[it->second].scan->measurements.push_back(m);
@@ -94,31 +101,23 @@ class StepTable
 	const VictoriaParkImportOptions& options_;
 	std::vector<StepInput> steps_;
 	std::unordered_map<long, std::size_t> step_of_node_;
+	/// The landmarks each step's scan holds, with where each was read: one
+	/// scan cannot measure a landmark twice.
+	std::unordered_map<std::size_t, std::map<long, std::string>> seen_;
 	std::set<long> ids_;
 	long last_node_ = 0;
 	std::size_t measurements_ = 0;
 };
 
-/// Each option in (0, hi]: `hi` is the plausibility bound said in `why`.
-void checkOption(const char* flag, double value, double hi, const std::string& why)
-{
-	if (!(value > 0 && value <= hi))
-		throw ConfigError(
-			std::string("import victoria-park: ") + flag + " = " + formatNumber(value) + ": must be in (0, " +
-			formatNumber(hi) + "] (" + why + ")");
-}
-
 void validateOptions(const VictoriaParkImportOptions& o)
 {
 	using namespace victoria_park;
-	// A 100 m range noise (or 180 deg bearing noise) is no measurement: the
-	// tree positions would carry no information.
-	checkOption("--std-range-m", o.std_range_m, 100.0, "beyond it a measurement carries no information");
-	checkOption("--std-bearing-deg", o.std_bearing_deg, 180.0, "beyond it a bearing carries no information");
-	checkOption("--max-range-m", o.max_range_m, kMaxLandmarkRange_m, "farthest plausible landmark");
-	checkOption("--fov-deg", o.fov_deg, 360.0, "a full circle");
+	const std::string who = "import victoria-park";
+	checkSensorNoise(who, o.std_range_m, o.std_bearing_deg);
+	checkImportOption(who, "--max-range-m", o.max_range_m, 0, kMaxLandmarkRange_m, "farthest plausible landmark");
+	checkImportOption(who, "--fov-deg", o.fov_deg, 0, 360.0, "a full circle");
 	// One hour between poses: slower than any logged vehicle run.
-	checkOption("--dt-s", o.dt_s, 3600.0, "one hour between poses");
+	checkImportOption(who, "--dt-s", o.dt_s, 0, 3600.0, "one hour between poses");
 }
 }  // namespace
 

@@ -5,6 +5,7 @@
 #include <EsifTestSupport.h>
 #include <G2oInput.h>
 #include <GroundTruthInput.h>
+#include <ImporterInput.h>
 #include <LocalMapInput.h>
 
 #include <esif/config/ConfigFile.h>
@@ -65,6 +66,30 @@ TEST(FuzzRegressions, G2oSeedsReadAndKeptInputsAreRefusedInOneLine) { checkTextR
 TEST(FuzzRegressions, GroundTruthSeedsReadAndKeptInputsAreRefusedInOneLine)
 {
 	checkTextReader("ground_truth", fuzz::groundTruthVerdict);
+}
+
+/// The importers' seeds import, and every kept input (none found yet) is
+/// refused in one line.
+TEST(FuzzRegressions, ImporterSeedsImportAndKeptInputsAreRefusedInOneLine)
+{
+	for (const auto& [reader, judge] : {std::pair<std::string, Judge>{"vicpark", fuzz::victoriaParkVerdict},
+										std::pair<std::string, Judge>{"mrclam", fuzz::mrclamVerdict}})
+	{
+		const auto seeds = keptInputs(reader, "seeds");
+		ASSERT_FALSE(seeds.empty()) << reader;
+		for (const auto& path : seeds)
+		{
+			const auto verdict = judge(test::readText(path));
+			EXPECT_FALSE(verdict.refused) << path << " is a valid file";
+			EXPECT_FALSE(verdict.finding) << path << ": " << verdict.finding.value_or("");
+		}
+		for (const auto& path : keptInputs(reader))
+		{
+			const auto verdict = judge(test::readText(path));
+			EXPECT_TRUE(verdict.refused) << path << " must be refused";
+			EXPECT_FALSE(verdict.finding) << path << ": " << verdict.finding.value_or("");
+		}
+	}
 }
 
 TEST(FuzzRegressions, RawlogInputsAreReadOrRefusedInOneLine)

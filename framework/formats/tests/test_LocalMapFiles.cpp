@@ -354,18 +354,26 @@ TEST(LocalMapFiles, BadLinksAndGroundTruth)
 TEST(LocalMapFiles, BadReferenceResult)
 {
 	test::TempDir dir;
-	expectErrorAt([&] { readReferenceResult(dir.path()); }, dir.file("feature.txt"), "reference features not found");
+	const auto read = [&] { return readReferenceResult(dir.path(), 2); };
+	expectErrorAt(read, dir.file("feature.txt"), "reference features not found");
 	writeLines(dir.file("feature.txt"), {"1  19.5  -12.4", "2  29.0  -15.0"});
-	const auto ok = readReferenceResult(dir.path());
+	// The poses are part of a reference: without them refres_pose_* would be null unnoticed.
+	expectErrorAt(read, dir.file("pose.txt"), "reference end poses not found");
+	writeLines(dir.file("pose.txt"), {"1 1 2 16.9", "2 1 2 -4.75 7"});
+	expectErrorAt(read, "pose.txt:2", "extra values");
+	writeLines(dir.file("pose.txt"), {"1 1 2 16.9"});
+	const auto ok = read();
 	EXPECT_EQ(ok.features.size(), 2u);
 	EXPECT_EQ(ok.features.at(2), Eigen::Vector2d(29.0, -15.0));
-	EXPECT_TRUE(ok.end_poses.empty());
-	writeLines(dir.file("pose.txt"), {"1 1 2 16.9", "2 1 2 -4.75 7"});
-	expectErrorAt([&] { readReferenceResult(dir.path()); }, "pose.txt:2", "extra values");
+	EXPECT_EQ(ok.end_poses.at(1), Pose2(1, 2, 16.9));  // phi kept unwrapped
+	// A pose of a map the folder does not have, a feature ID no rawlog can carry: refused, not dropped.
+	writeLines(dir.file("pose.txt"), {"1 1 2 16.9", "3 0 0 0"});
+	expectErrorAt(read, "pose.txt:2", "maps 1..2");
 	writeLines(dir.file("pose.txt"), {"1 1 2 16.9"});
-	EXPECT_EQ(readReferenceResult(dir.path()).end_poses.at(1), Pose2(1, 2, 16.9));	// phi kept unwrapped
+	writeLines(dir.file("feature.txt"), {"1 0 0", "99999999999 0 0"});
+	expectErrorAt(read, "feature.txt:2", "id 99999999999 is beyond 2147483647");
 	writeLines(dir.file("feature.txt"), {"1 0 0", "1 0 0"});
-	expectErrorAt([&] { readReferenceResult(dir.path()); }, "feature.txt:2", "duplicate id 1");
+	expectErrorAt(read, "feature.txt:2", "duplicate id 1");
 }
 
 // ------------------------------------------------------------------ failed writes
@@ -448,7 +456,7 @@ TEST(LocalMapFiles, VictoriaParkLocalMaps)
 	EXPECT_EQ(folder.maps[1].end_pose.x(), 9.058080766467171);	 // the example in ../shared/data/localmaps/README.md
 	EXPECT_FALSE(folder.truth_landmarks);
 
-	const auto ref = readReferenceResult(path + "/linear_slam_result");
+	const auto ref = readReferenceResult(path + "/linear_slam_result", folder.maps.size());
 	EXPECT_EQ(ref.features.size(), 299u);
 	ASSERT_EQ(ref.end_poses.size(), 200u);
 	std::set<LandmarkId> ref_ids;

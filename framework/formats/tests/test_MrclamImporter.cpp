@@ -170,6 +170,9 @@ TEST_F(SyntheticRecording, EveryMalformedLineIsOneErrorNamingFileAndLine)
 		{"Barcodes.dat", "1 5\n21 14\n", ":2: column 1 (subject) = 21: must be in [1, 20]"},
 		{"Landmark_Groundtruth.dat", "6 1e9 2.0 0 0\n", ":1: column 2 (x) = 1e+09: must be within +-1e+07 m"},
 		{"Robot1_Groundtruth.dat", "99.0 0 0 0\n100.5 0 0 1e300\n", ":2: column 4 (theta) = 1e+300: must be within"},
+		// A repeated line: one barcode read twice in one image.
+		{"Robot1_Measurement.dat", "101.0 63 2.0 0.5\n101.0 63 2.0 0.5\n",
+		 ":2: column 2 (barcode) = 63: read twice at the same time (first on line 1): a repeated line"},
 	};
 	for (const auto& [name, text, expected] : cases)
 	{
@@ -192,6 +195,25 @@ TEST_F(SyntheticRecording, EveryMalformedLineIsOneErrorNamingFileAndLine)
 	EXPECT_FALSE(fs::exists(out_.file("r.rawlog"))) << "nothing written by a failed import";
 }
 
+/// An odometry file cut short: its last command would be held for the rest
+/// of the recording, as if the robot had been told to keep driving.
+TEST_F(SyntheticRecording, AnOdometryFileThatEndsLongBeforeTheMeasurementsIsRefused)
+{
+	write("Robot1_Odometry.dat", "# Time v w\n100.0 0.1 0.0\n100.5 0.1 0.0\n");
+	write("Robot1_Measurement.dat", "101.0 63 2.0 0.5\n110.0 81 3.0 -0.2\n");
+	EXPECT_EQ(importError().rfind(
+				  file("Robot1_Odometry.dat") + ": its last velocity command is at 100.5 s, but the measurements go on "
+												"for 9.5 s more: the file is cut short",
+				  0),
+			  0u)
+		<< importError();
+	SetUp();
+	write("Robot1_Odometry.dat", "# Time v w\n108.0 0.1 0.0\n110.0 0.0 0.0\n");
+	EXPECT_NE(importError().find("its first velocity command is at 108 s, 7.0 s after the first measurement"),
+			  std::string::npos)
+		<< importError();
+}
+
 TEST_F(SyntheticRecording, TheCommandChecksItsOptionsAndNeverWritesIntoTheRecording)
 {
 	const std::string base = "import mrclam --dataset " + test::quoted(dir_.path()) + " ";
@@ -200,6 +222,13 @@ TEST_F(SyntheticRecording, TheCommandChecksItsOptionsAndNeverWritesIntoTheRecord
 	test::expectOneErrorLine(
 		test::runEsif(base + "--robot 1 --odometry-speed-scale -1 --out " + test::quoted(out_.file("r.rawlog"))),
 		"--odometry-speed-scale = -1: must be in [0, 1000]");
+	// Subnormal noise passes "> 0" and becomes a zero variance in the rawlog.
+	test::expectOneErrorLine(
+		test::runEsif(base + "--robot 1 --std-range-m 1e-320 --out " + test::quoted(out_.file("r.rawlog"))),
+		"--std-range-m = ");
+	test::expectOneErrorLine(
+		test::runEsif(base + "--robot 1 --odometry-floor-m 1e-320 --out " + test::quoted(out_.file("r.rawlog"))),
+		"--odometry-floor-m = ");
 	test::expectOneErrorLine(test::runEsif(base + "--robot 1 --out " + test::quoted(file("r.rawlog"))),
 							 "--out lies inside the MRCLAM recording");
 	const auto ok = test::runEsif(base + "--robot 1 --out " + test::quoted(out_.file("r.rawlog")));

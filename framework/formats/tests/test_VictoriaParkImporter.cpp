@@ -108,6 +108,11 @@ TEST(VictoriaParkImporter, MalformedLinesNameFileAndLine)
 	EXPECT_EQ(errorFrom(kFirst + "ODOMETRY 1 1 0.1 0 0 1 0 0 1 0 1\n"), "vp.txt:2: ODOMETRY j = 1: pose already exists");
 	EXPECT_EQ(errorFrom("ODOMETRY 0 1 nan 0 0 1 0 0 1 0 1\n"), "vp.txt:1: ODOMETRY dx = 'nan': not a finite number");
 	EXPECT_EQ(errorFrom(""), "vp.txt: no ODOMETRY records");
+	// A LANDMARK line repeated: one scan cannot hold a landmark twice (MRPT
+	// would refuse to write it, naming neither file nor line).
+	EXPECT_EQ(
+		errorFrom(kFirst + "LANDMARK 1 5 3 1 0.4 0 0.4\nLANDMARK 1 5 3 1 0.4 0 0.4\n"),
+		"vp.txt:3: LANDMARK 1 5: landmark 5 is measured twice from pose 1 (first on line 2): a repeated line");
 }
 
 TEST(VictoriaParkImporter, ImplausibleNumbersAreRejectedAtTheBorder)
@@ -168,9 +173,15 @@ TEST(VictoriaParkImporter, ImplausibleOptionsNameTheOption)
 	{
 		EXPECT_STREQ(
 			e.what(),
-			"import victoria-park: --std-range-m = 1e+300: must be in (0, 100] (beyond it a measurement carries no "
-			"information)");
+			"import victoria-park: --std-range-m = 1e+300: must be in [1e-06, 100] (below a micrometre no sensor "
+			"measures; beyond 100 m a measurement carries no information)");
 	}
+	// A subnormal noise passes "> 0" and squares to a zero variance in the rawlog.
+	options.std_range_m = 1e-320;
+	EXPECT_THROW(importVictoriaPark(dir.file("vp.txt"), dir.file("vp.rawlog"), options), ConfigError);
+	options.std_range_m = 0.5;
+	options.std_bearing_deg = 1e-7;
+	EXPECT_THROW(importVictoriaPark(dir.file("vp.txt"), dir.file("vp.rawlog"), options), ConfigError);
 	// A valid file still imports (the bounds leave the dataset's values alone).
 	const auto summary = importVictoriaPark(dir.file("vp.txt"), dir.file("vp.rawlog"), {});
 	EXPECT_EQ(summary.poses, 2u);

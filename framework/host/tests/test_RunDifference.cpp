@@ -103,6 +103,45 @@ TEST(RunOutputReader, ReadsWhatTheWritersWrite)
 	EXPECT_TRUE(std::isnan(back.landmarks[1].mean.x()));
 }
 
+/// The same files read as a reference: a diverged landmark, a position out
+/// of bounds, an ID MRPT cannot carry or a trajectory of another length are
+/// refused at their line instead of being dropped or averaged.
+TEST(RunOutputReader, AReferenceIsHeldToTheBounds)
+{
+	test::TempDir dir;
+	const auto write = [&](const std::string& name, const std::string& text) { std::ofstream(dir.file(name)) << text; };
+	const auto errorOf = [&](std::optional<std::size_t> steps) {
+		try
+		{
+			readReferenceRun(dir.path(), steps);
+		}
+		catch (const InputError& e)
+		{
+			return std::string(e.what());
+		}
+		return std::string();
+	};
+	write("trajectory.tum", "0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n");
+	write("landmarks.txt", "7 1 2 0.1 0 0.1\n");
+	EXPECT_EQ(errorOf(2), "");
+	EXPECT_EQ(errorOf(3), dir.file("trajectory.tum") + ": 2 rows, the rawlog has 3 steps (a reference run must be of the "
+													   "same rawlog, whole)");
+	write("landmarks.txt", "7 nan 2 0.1 0 0.1\n");
+	EXPECT_EQ(errorOf(2).rfind(dir.file("landmarks.txt") + ":1: position (nan, 2) is not finite or beyond 1e+07 m", 0), 0u)
+		<< errorOf(2);
+	EXPECT_NO_THROW(readRunOutputs(dir.path())) << "a compared run may hold it";
+	write("landmarks.txt", "-7 1 2 0.1 0 0.1\n");
+	EXPECT_EQ(errorOf(2), dir.file("landmarks.txt") + ":1: landmark ID -7 is outside 0..2147483647 (MRPT's landmark IDs)");
+	write("landmarks.txt", "2147483648 1 2 0.1 0 0.1\n");
+	EXPECT_NE(errorOf(2).find(":1: landmark ID 2147483648 is outside"), std::string::npos);
+	write("landmarks.txt", "7 1 2 0.1 0 0.1\n");
+	write("trajectory.tum", "0 0 0 0 0 0 0 1\n1 1e308 0 0 0 0 0 1\n");
+	EXPECT_EQ(errorOf(2).rfind(dir.file("trajectory.tum") + ":2: position (1e+308, 0) is not finite", 0), 0u)
+		<< errorOf(2);
+	write("trajectory.tum", "0 0 0 0 0 0 0 1\n1 1 0 0 0 0 nan 1\n");
+	EXPECT_EQ(errorOf(2), dir.file("trajectory.tum") + ":2: the rotation (qx qy qz qw) is not finite");
+}
+
 TEST(RunDifference, LandmarksOfRunsWithTheRawlogsIdsPairedByThemWithKnownRmsAndMax)
 {
 	RunOutputs ref, run;

@@ -4,6 +4,7 @@
 #include <esif/safeio/TerminationCleanup.h>
 
 #include <filesystem>
+#include <new>
 #include <system_error>
 #include <unistd.h>
 
@@ -63,6 +64,11 @@ void writeAtomically(const std::string& path, const std::function<void(const std
 	{
 		discard(tmp);
 		throw;
+	}
+	catch (const std::bad_alloc&)
+	{
+		discard(tmp);
+		throw;	// out of memory, not a file that cannot be written
 	}
 	catch (const std::exception& e)
 	{

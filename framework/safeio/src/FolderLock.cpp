@@ -32,7 +32,8 @@ std::filesystem::path FolderLock::lockFileOf(const std::filesystem::path& folder
 	return folder.parent_path() / ("." + folder.filename().string() + ".lock");
 }
 
-FolderLock::FolderLock(const std::filesystem::path& folder, LockWait wait) : path_(lockFileOf(folder).string())
+FolderLock::FolderLock(const std::filesystem::path& folder, LockWait wait, const std::string& what)
+	: path_(lockFileOf(folder).string())
 {
 	for (;;)
 	{
@@ -41,14 +42,16 @@ FolderLock::FolderLock(const std::filesystem::path& folder, LockWait wait) : pat
 			throw InputError(folder.string() + ": cannot create the lock file " + path_ + ": " + std::strerror(errno));
 		int locked;
 		do
-			locked = ::flock(fd_, LOCK_EX | (wait == LockWait::No ? LOCK_NB : 0));
+			locked = ::flock(fd_, LOCK_EX | (wait == LockWait::Yes ? 0 : LOCK_NB));
 		while (locked != 0 && errno == EINTR);
 		if (locked != 0)
 		{
 			const int err = errno;
 			::close(fd_);
+			fd_ = -1;
+			if (err == EWOULDBLOCK && wait == LockWait::Try) return;
 			if (err == EWOULDBLOCK)
-				throw InputError(folder.string() + ": another esif process is writing this folder (lock " + path_ +
+				throw InputError(folder.string() + ": another esif process is writing " + what + " (lock " + path_ +
 								 " is held); wait for it or choose another --out");
 			throw InputError(folder.string() + ": cannot lock " + path_ + ": " + std::strerror(err));
 		}
@@ -60,6 +63,7 @@ FolderLock::FolderLock(const std::filesystem::path& folder, LockWait wait) : pat
 
 FolderLock::~FolderLock()
 {
+	if (fd_ < 0) return;
 	// Unlinked while still held, so a process waiting for it finds the file
 	// gone (stillNamed) and starts again on a fresh one.
 	termination::removePath(path_);

@@ -2,7 +2,6 @@
 /// The all-or-nothing output folder; see RunFolder.h.
 
 #include <esif/core/Errors.h>
-#include <esif/core/Text.h>
 #include <esif/core/TextInput.h>
 #include "CheckedWrite.h"
 #include <esif/safeio/RunFolder.h>
@@ -232,29 +231,6 @@ void RunFolder::commit(const std::vector<std::string>& required)
 				  << ec.message() << "); the next run into " << target_.string() << " removes it\n";
 }
 
-void RunFolder::rethrowNamingTarget() const
-{
-	const std::string from = staging_.string(), to = target_.string();
-	try
-	{
-		throw;
-	}
-	catch (const ConfigError& e)
-	{
-		throw ConfigError(replaceAll(e.what(), from, to));
-	}
-	catch (const InputError& e)
-	{
-		throw InputError(replaceAll(e.what(), from, to));
-	}
-	catch (const NumericalError& e)
-	{
-		throw NumericalError(replaceAll(e.what(), from, to));
-	}
-	catch (const std::exception& e)
-	{
-		throw std::runtime_error(replaceAll(e.what(), from, to));
-	}
-}
+void RunFolder::rethrowNamingTarget() const { rethrowWithPathReplaced(staging_.string(), target_.string()); }
 
 }  // namespace esif

@@ -128,6 +128,7 @@ SandboxOutcome outcomeOf(int status, const SharedReport& shared)
 {
 	SandboxOutcome out;
 	out.position = shared.progress.position;
+	out.result = shared.progress.result;
 	if (status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
 	{
 		out.kind = shared.kind;

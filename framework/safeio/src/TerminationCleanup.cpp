@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <csignal>
 #include <filesystem>
+#include <system_error>
 #include <thread>
 #include <vector>
 #include <poll.h>
@@ -127,10 +128,29 @@ void unblockSignals()
 	pthread_sigmask(SIG_SETMASK, &none, nullptr);
 }
 
+namespace
+{
+/// The watcher thread; when none can be started (the system's thread limit)
+/// the signals are unblocked instead, so that they end the process by their
+/// default action rather than stay pending: a partial output is then left
+/// for the next writer to sweep, as after SIGKILL.
+void launchWatcher()
+{
+	try
+	{
+		std::thread(watch).detach();
+	}
+	catch (const std::system_error&)
+	{
+		unblockSignals();
+	}
+}
+}  // namespace
+
 void startWatcher()
 {
 	static std::once_flag once;
-	std::call_once(once, [] { std::thread(watch).detach(); });
+	std::call_once(once, launchWatcher);
 }
 
 void restartInForkedChild()
@@ -139,7 +159,7 @@ void restartInForkedChild()
 	r.paths.clear();
 	r.children.clear();
 	r.servers.clear();
-	std::thread(watch).detach();
+	launchWatcher();
 }
 
 void addPath(const std::string& path)

@@ -143,6 +143,16 @@ TEST(VelocityOdometry, BadParametersNameTheFlag)
 	EXPECT_THROW(n.validate("x"), ConfigError);
 	n.floor_m = std::nan("");
 	EXPECT_THROW(n.validate("x"), ConfigError);
+	// A subnormal floor passes "> 0" but squares to zero: a singular covariance.
+	n.floor_m = 1e-320;
+	EXPECT_THROW(n.validate("x"), ConfigError);
+	n = VelocityNoise{};
+	// Without white turn-rate noise a straight step has no heading variance at all.
+	n.turn_psd = 0;
+	EXPECT_THROW(n.validate("x"), ConfigError);
+	n.turn_psd = kMinTurnPsd;
+	n.floor_m = kMinOdometryFloor_m;
+	EXPECT_NO_THROW(n.validate("x"));
 }
 
 }  // namespace

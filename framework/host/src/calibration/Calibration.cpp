@@ -43,7 +43,7 @@ PreparedInput prepare(const CalibrationInput& input)
 		if (!std::filesystem::is_directory(dir)) throw InputError(dir + ": reference run folder not found");
 		const std::string associations = (std::filesystem::path(dir) / "associations.txt").string();
 		applyAssociations(log, readAssociationFile(associations, log.steps.size()), associations);
-		reference = runAsGroundTruth(readRunOutputs(dir));
+		reference = runAsGroundTruth(readReferenceRun(dir, log.steps.size()));
 		out.reference_name = dir;
 		out.log.fitted_reference = true;
 	}

@@ -1,5 +1,6 @@
 #include <esif/eval/BaselineComparison.h>
 #include <esif/eval/BookTable.h>
+#include <esif/formats/Markdown.h>
 
 #include <algorithm>
 #include <cmath>
@@ -119,14 +120,14 @@ std::string bookTable51Markdown(const std::vector<Stats>& runs)
 	const auto rows = bookTable51Grid(runs);
 	std::ostringstream out;
 	out << "## " << bookTable51Title() << "\n\n|";
-	for (const auto& h : rows[0]) out << (h.empty() ? "" : " " + h) << " |";
+	for (const auto& h : rows[0]) out << (h.empty() ? "" : " " + markdown::text(h)) << " |";
 	out << "\n|---|";
 	for (std::size_t c = 1; c < rows[0].size(); ++c) out << "---:|";
 	out << "\n";
 	for (std::size_t r = 1; r < rows.size(); ++r)
 	{
 		out << "|";
-		for (const auto& cell : rows[r]) out << " " << cell << " |";
+		for (const auto& cell : rows[r]) out << " " << markdown::text(cell) << " |";
 		out << "\n";
 	}
 	return out.str();

@@ -3,6 +3,7 @@
 #include <esif/eval/ReferenceResultDifference.h>
 #include <esif/eval/RunDifference.h>
 #include <esif/eval/SuspectResult.h>
+#include <esif/formats/Markdown.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -198,14 +199,14 @@ std::string comparisonMarkdown(const std::vector<Stats>& runs)
 	const ComparisonGrid g = comparisonGrid(runs);
 	std::ostringstream out;
 	out << "| metric |";
-	for (const auto& l : g.labels) out << " " << l << " |";
+	for (const auto& l : g.labels) out << " " << markdown::text(l) << " |";
 	out << "\n|---|";
 	for (std::size_t i = 0; i < runs.size(); ++i) out << "---:|";
 	out << "\n";
 	for (std::size_t k = 0; k < g.keys.size(); ++k)
 	{
 		out << "| " << g.keys[k] << " |";
-		for (const auto& c : g.cells[k]) out << " " << c << " |";
+		for (const auto& c : g.cells[k]) out << " " << markdown::text(c) << " |";
 		out << "\n";
 	}
 	return out.str();

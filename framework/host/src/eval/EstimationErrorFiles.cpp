@@ -2,14 +2,15 @@
 /// pose_errors.csv and landmark_errors.csv; see EstimationErrorFiles.h.
 
 #include <esif/core/Errors.h>
+#include <esif/core/InputBounds.h>
 #include <esif/core/TextInput.h>
 #include <esif/eval/EstimationErrorFiles.h>
 #include <esif/safeio/AtomicFile.h>
 
 #include <esif/formats/NumberText.h>
 
+#include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 
 namespace esif
@@ -51,6 +52,17 @@ double parseNumber(const std::string& field, const std::string& where)
 	return *v;
 }
 
+/// An error of a position [m] or heading [rad]: finite and within the bound
+/// of every coordinate esif reads (InputBounds.h); a NaN would be averaged
+/// into a campaign's summary as "nan".
+double parseError(const std::string& field, const std::string& where)
+{
+	const double v = parseNumber(field, where);
+	if (!std::isfinite(v) || std::abs(v) > kMaxCoordinate_m)
+		throw InputError(where + ": error '" + field + "' is not finite or beyond " + number_text::text(kMaxCoordinate_m));
+	return v;
+}
+
 long long parseInteger(const std::string& field, const std::string& where)
 {
 	const auto v = wholeToken<long long>(field);
@@ -61,7 +73,9 @@ long long parseInteger(const std::string& field, const std::string& where)
 std::optional<double> parseNees(const std::string& field, const std::string& where)
 {
 	if (field.empty()) return std::nullopt;
-	return parseNumber(field, where);
+	const double v = parseNumber(field, where);
+	if (!std::isfinite(v) || v < 0) throw InputError(where + ": NEES '" + field + "' is not a finite number >= 0");
+	return v;
 }
 
 /// Calls `row(fields, where)` for every line after the header, which must
@@ -73,17 +87,17 @@ void readCsv(
 	const std::function<void(const std::vector<std::string>&, const std::string&)>& row,
 	const char* older_header = nullptr)
 {
-	std::ifstream in(path);
-	if (!in) throw InputError(path + ": cannot open (missing: was the run given ground truth?)");
+	if (!pathPresent(path)) throw InputError(path + ": missing (was the run given ground truth?)");
+	TextLineReader in(path, "estimation errors");
 	std::string line;
-	if (!std::getline(in, line) ||
+	if (!in.next(line) ||
 		(fieldsOf(line) != fieldsOf(header) && (!older_header || fieldsOf(line) != fieldsOf(older_header))))
 		throw InputError(path + ":1: expected the header '" + header + "'");
 	const std::size_t columns = fieldsOf(line).size();
-	for (std::size_t number = 2; std::getline(in, line); ++number)
+	while (in.next(line))
 	{
 		if (line.empty()) continue;
-		const std::string where = path + ":" + std::to_string(number);
+		const std::string where = in.where();
 		const auto fields = fieldsOf(line);
 		if (fields.size() != columns)
 			throw InputError(
@@ -134,7 +148,7 @@ std::vector<PoseError> readPoseErrors(const std::string& path)
 	const auto parse = [&](const std::vector<std::string>& f, const std::string& where) {
 		PoseError r;
 		r.step = static_cast<std::size_t>(parseInteger(f[0], where));
-		for (int i = 0; i < 3; ++i) r.error(i) = parseNumber(f[1 + i], where);
+		for (int i = 0; i < 3; ++i) r.error(i) = parseError(f[1 + i], where);
 		r.nees = parseNees(f[4], where);
 		if (f.size() > 5)
 		{
@@ -153,7 +167,7 @@ std::vector<LandmarkError> readLandmarkErrors(const std::string& path)
 	readCsv(path, kLandmarkHeader, [&](const std::vector<std::string>& f, const std::string& where) {
 		LandmarkError r;
 		r.true_id = static_cast<LandmarkId>(parseInteger(f[0], where));
-		for (int i = 0; i < 2; ++i) r.error(i) = parseNumber(f[1 + i], where);
+		for (int i = 0; i < 2; ++i) r.error(i) = parseError(f[1 + i], where);
 		r.nees = parseNees(f[3], where);
 		rows.push_back(r);
 	});

@@ -3,6 +3,7 @@
 
 #include <esif/eval/ColumnMeanings.h>
 #include <esif/eval/MonteCarloTables.h>
+#include <esif/formats/Markdown.h>
 
 #include <cmath>
 #include <cstdio>
@@ -147,13 +148,13 @@ std::string monteCarloSummaryMarkdown(
 	if (!gaps.failed.empty() || !gaps.pending.empty())
 	{
 		out += "\n## Runs not aggregated\n\n";
-		for (const auto& line : gaps.failed) out += "- " + line + "\n";
-		for (const auto& line : gaps.pending) out += "- " + line + "\n";
+		for (const auto& line : gaps.failed) out += "- " + markdown::text(line) + "\n";
+		for (const auto& line : gaps.pending) out += "- " + markdown::text(line) + "\n";
 	}
 	if (!gaps.suspect.empty())
 	{
 		out += "\n## Suspect runs (aggregated)\n\n";
-		for (const auto& line : gaps.suspect) out += "- " + line + "\n";
+		for (const auto& line : gaps.suspect) out += "- " + markdown::text(line) + "\n";
 	}
 	return out;
 }

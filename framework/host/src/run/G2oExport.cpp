@@ -7,15 +7,16 @@
 #include <esif/formats/RunOutputReader.h>
 #include <esif/run/G2oExport.h>
 #include <esif/run/RunSetup.h>
-#include <esif/safeio/OutputApart.h>
+#include <esif/safeio/FileSet.h>
 
 #include <filesystem>
 
 namespace esif
 {
-G2oExportSummary exportG2o(const G2oExportRequest& request)
+namespace
 {
-	requireOutputApart(request.out_path, {{"the rawlog", request.rawlog_path}, {"the run folder", request.run_dir.value_or("")}});
+G2oExportSummary exportInto(const G2oExportRequest& request, const std::string& out_path)
+{
 	Rawlog log = readRawlog(request.rawlog_path);
 	std::optional<RunOutputs> initial;
 	if (request.run_dir)
@@ -32,9 +33,20 @@ G2oExportSummary exportG2o(const G2oExportRequest& request)
 		throw InputError(
 			request.rawlog_path + ": no measurement carries a landmark ID: give --associations-from a run folder "
 								  "of this rawlog (its associations.txt gives the IDs)");
-	writeG2oFile(request.out_path, problem, request.landmark_edge, request.rawlog_path);
+	writeG2oFile(out_path, problem, request.landmark_edge, request.rawlog_path);
 	return {problem.poses.size(), problem.landmarks.size(), problem.odometry.size(), problem.observations.size(),
 			problem.measurements_without_id};
+}
+}  // namespace
+
+G2oExportSummary exportG2o(const G2oExportRequest& request)
+{
+	// A file set of its own kind, claimed before anything is read: it
+	// replaces only a g2o file esif wrote, never an input.
+	return writeFileSet(
+		"a g2o file", {request.out_path},
+		{{"the rawlog", request.rawlog_path}, {"the run folder", request.run_dir.value_or("")}},
+		[&](const FileSet& set) { return exportInto(request, set.staging(request.out_path)); });
 }
 
 }  // namespace esif

@@ -23,12 +23,7 @@ const std::vector<std::string> kCheckOutputFiles = {"local_maps_nees.csv", "fusi
 /// path, one row per step (a row per step is what places the maps on it).
 GroundTruth referenceRunAsTruth(const std::string& dir, std::size_t steps)
 {
-	const RunOutputs run = readRunOutputs(dir);
-	if (run.trajectory.size() != steps)
-		throw InputError(dir + "/trajectory.tum: " + std::to_string(run.trajectory.size()) +
-						 " rows, the rawlog has " + std::to_string(steps) +
-						 " steps (the reference run must be of the same rawlog)");
-	return runAsGroundTruth(run);
+	return runAsGroundTruth(readReferenceRun(dir, steps));
 }
 
 /// The reference start pose of `map`: the pose its first step starts from,

@@ -36,7 +36,8 @@ LocalMapInput readInput(const LocalMapRunRequest& request)
 {
 	LocalMapInput in;
 	in.folder = readLocalMapFolder(request.local_maps_dir);
-	if (request.reference_result_dir) in.reference = readReferenceResult(*request.reference_result_dir);
+	if (request.reference_result_dir)
+		in.reference = readReferenceResult(*request.reference_result_dir, in.folder.maps.size());
 	for (const auto& map : in.folder.maps)
 	{
 		in.steps += map.steps;

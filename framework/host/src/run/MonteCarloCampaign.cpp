@@ -5,6 +5,8 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/config/ConfigSection.h>
 #include <esif/core/Errors.h>
+#include <esif/core/Text.h>
+#include <esif/core/TextInput.h>
 #include <esif/run/MonteCarloCampaign.h>
 #include <esif/safeio/AtomicFile.h>
 
@@ -13,7 +15,6 @@
 #include <climits>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -41,6 +42,20 @@ std::string joinList(const std::vector<std::string>& items)
 
 std::string absolute(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
 
+/// A path campaign.ini can hold: one line, no control character (a line
+/// break would end the value and start a line of its own), no comma (the
+/// list separator).
+std::string manifestPath(const std::string& path, const std::string& what)
+{
+	const std::string p = absolute(path);
+	if (holdsControlCharacter(p) || p.find(',') != std::string::npos)
+		throw ConfigError(
+			"esif montecarlo: " + what + " '" + printableToken(p) +
+			"': a campaign cannot record a path with a line break, another control character or a comma "
+			"(campaign.ini holds one per line, separated by commas); rename it");
+	return p;
+}
+
 bool isNameCharacter(unsigned char c) { return std::isalnum(c) || c == '_' || c == '-' || c == '+' || c == '.'; }
 
 /// A folder name for `config` not among `used`: its file name with every
@@ -67,13 +82,13 @@ CampaignPlan CampaignPlan::create(
 	const std::string& scenario, const std::vector<std::string>& configs, int seed0, int runs)
 {
 	CampaignPlan plan;
-	plan.scenario = absolute(scenario);
+	plan.scenario = manifestPath(scenario, "the scenario");
 	plan.seed0 = seed0;
 	plan.runs = runs;
 	std::set<std::string> used;
 	for (const auto& c : configs)
 	{
-		plan.configs.push_back(absolute(c));
+		plan.configs.push_back(manifestPath(c, "the config"));
 		plan.names.push_back(uniqueName(c, used));
 		used.insert(plan.names.back());
 	}
@@ -220,6 +235,19 @@ CampaignJob parseJobId(const CampaignPlan& plan, const std::string& id)
 }
 }  // namespace campaign_layout
 
+void requireNoLinksInCampaign(const std::string& dir)
+{
+	std::error_code ec;
+	for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+		if (std::error_code type_ec; it->is_symlink(type_ec))
+			throw InputError(
+				it->path().string() + ": a symbolic link inside the campaign folder: esif writes only inside --out "
+									  "and never through a link there; replace it by what it points to");
+	// A folder that does not exist (yet) holds no link; any other failure to list it is an error.
+	if (ec && ec != std::errc::no_such_file_or_directory)
+		throw InputError(dir + ": cannot list the campaign folder: " + ec.message());
+}
+
 JobState jobState(const std::string& dir, const CampaignPlan& plan, const CampaignJob& job)
 {
 	const std::string name = plan.names.at(job.config);
@@ -240,18 +268,15 @@ void writeFailureRecord(const std::string& path, const FailureRecord& record)
 
 FailureRecord readFailureRecord(const std::string& path)
 {
-	std::ifstream in(path);
-	if (!in) throw InputError(path + ": cannot open");
+	TextLineReader in(path, "failure record");
 	FailureRecord record;
 	std::string line;
-	if (!std::getline(in, line) || std::sscanf(line.c_str(), "exit_code = %d", &record.exit_code) != 1)
-		throw InputError(path + ":1: expected 'exit_code = N'");
-	if (!std::getline(in, line) || line.rfind("error = ", 0) != 0) throw InputError(path + ":2: expected 'error = ...'");
+	if (!in.next(line) || std::sscanf(line.c_str(), "exit_code = %d", &record.exit_code) != 1)
+		in.fail("expected 'exit_code = N'");
+	if (!in.next(line) || line.rfind("error = ", 0) != 0) in.fail("expected 'error = ...'");
 	record.error_line = line.substr(8);
-	std::getline(in, line);	 // the "--- stderr ---" separator
-	std::stringstream rest;
-	rest << in.rdbuf();
-	record.stderr_text = rest.str();
+	in.next(line);	// the "--- stderr ---" separator
+	while (in.next(line)) record.stderr_text += line + "\n";
 	return record;
 }
 

@@ -1,8 +1,9 @@
 #include <esif/core/Errors.h>
 #include <esif/run/PluginLoader.h>
 
+#include "SealedLibrary.h"
+
 #include <mrpt/rtti/CObject.h>
-#include <mrpt/system/os.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -47,17 +48,12 @@ std::vector<fs::path> pluginFilesIn(const std::string& dir)
 	return files;
 }
 
-/// The dynamic loader's reason on one line. MRPT's message is "Error loading
-/// 'PATH':" followed by dlerror()'s "PATH: reason" on the next line(s).
-std::string dlerrorText(const std::string& mrpt_message, const std::string& path)
+/// `reason` on one line.
+std::string oneLine(std::string reason)
 {
-	std::string text = mrpt_message;
-	const auto first_break = text.find('\n');
-	if (text.rfind("Error loading", 0) == 0 && first_break != std::string::npos) text.erase(0, first_break + 1);
-	if (text.rfind(path + ": ", 0) == 0) text.erase(0, path.size() + 2);
-	std::replace(text.begin(), text.end(), '\n', ' ');
-	while (!text.empty() && text.back() == ' ') text.pop_back();
-	return "dlerror: " + (text.empty() ? std::string("no reason given") : text);
+	std::replace(reason.begin(), reason.end(), '\n', ' ');
+	while (!reason.empty() && reason.back() == ' ') reason.pop_back();
+	return reason;
 }
 
 std::vector<std::string> splitColons(const char* text)
@@ -96,14 +92,16 @@ void PluginLoader::loadAll(std::ostream& warnings)
 			if (loaded_names.count(file.filename().string())) continue;
 			const auto path = fs::absolute(file).string();
 			if (isBroken(path)) continue;  // reported once, not on every call
-			std::string err;
-			if (mrpt::system::loadPluginModule(path, err))
+			// Copied, sealed and checked before it is mapped (SealedLibrary.h):
+			// a FIFO or a file cut short is a warning, not a hang or SIGBUS.
+			const LibraryLoad load = loadSealedLibrary(path);
+			if (load.handle)
 			{
 				loaded_.push_back(path);
 				loaded_names.insert(file.filename().string());
 				continue;
 			}
-			broken_.push_back({path, dlerrorText(err, path)});
+			broken_.push_back({path, oneLine(load.problem)});
 			warnings << "esif: warning: " << path << ": cannot load plugin, skipped (" << broken_.back().reason
 					 << ")\n";
 		}

@@ -107,7 +107,8 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 			truth.reset();
 		}
 	const auto reference_run =
-		request.reference_run ? std::optional<RunOutputs>(readRunOutputs(*request.reference_run)) : std::nullopt;
+		request.reference_run ? std::optional<RunOutputs>(readReferenceRun(*request.reference_run, log.steps.size()))
+							  : std::nullopt;
 	ReplayResult result = replay(*plugin, log, {host.keyframe_min_distance_m, request.progress_bar});
 	const std::map<LandmarkId, LandmarkId> filter_to_true = result.audit.filterToTrue();
 	const LandmarkIdentities identities = landmarkIdentities(result.audit, result.record.final_estimate.landmarks);

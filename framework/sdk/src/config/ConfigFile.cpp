@@ -6,6 +6,7 @@
 
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <new>
 
 namespace esif
 {
@@ -54,6 +55,10 @@ ConfigFile ConfigFile::fromText(const std::string& text, const std::string& orig
 	{
 		mrpt::config::CConfigFileMemory cfg(text);
 		out.values_ = readAll(cfg);
+	}
+	catch (const std::bad_alloc&)
+	{
+		throw;
 	}
 	catch (const std::exception& e)
 	{

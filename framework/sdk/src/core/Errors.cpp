@@ -1,4 +1,9 @@
 #include <esif/core/Errors.h>
+#include <esif/core/TerminalText.h>
+#include <esif/core/Text.h>
+
+#include <filesystem>
+#include <new>
 
 #include <cstdio>
 #include <sstream>
@@ -42,15 +47,78 @@ std::string printableToken(const std::string& token, std::size_t max_chars)
 	return out;
 }
 
-std::string withoutControlCharacters(const std::string& text)
+void rethrowWithPathReplaced(const std::string& from, const std::string& to)
 {
-	std::string out;
-	for (const char ch : text)
+	try
 	{
-		const auto c = static_cast<unsigned char>(ch);
-		out += c < 0x20 || c == 0x7f ? hexByte(c) : std::string(1, ch);
+		throw;
 	}
-	return out;
+	catch (const ConfigError& e)
+	{
+		throw ConfigError(replaceAll(e.what(), from, to));
+	}
+	catch (const InputError& e)
+	{
+		throw InputError(replaceAll(e.what(), from, to));
+	}
+	catch (const NumericalError& e)
+	{
+		throw NumericalError(replaceAll(e.what(), from, to));
+	}
+	catch (const std::bad_alloc&)
+	{
+		throw;	// out of memory stays out of memory (exit 3), whatever it names
+	}
+	catch (const std::filesystem::filesystem_error&)
+	{
+		throw;
+	}
+	catch (const std::exception& e)
+	{
+		throw std::runtime_error(replaceAll(e.what(), from, to));
+	}
+}
+
+FailureReport reportCurrentException()
+{
+	const auto report = [](int code, const std::string& kind, const std::string& what) {
+		return FailureReport{code, kind + escapedForTerminal(what)};
+	};
+	try
+	{
+		throw;
+	}
+	catch (const ConfigError& e)
+	{
+		return report(1, "esif: error: ", e.what());
+	}
+	catch (const InputError& e)
+	{
+		return report(1, "esif: error: ", e.what());
+	}
+	catch (const NumericalError& e)
+	{
+		return report(3, "esif: numerical failure: ", e.what());
+	}
+	catch (const std::filesystem::filesystem_error& e)
+	{
+		// A path esif could not stat, list or create that no reader checked
+		// first: the path and the system's reason, an input problem.
+		return report(1, "esif: error: ", e.path1().string() + ": " + e.code().message());
+	}
+	catch (const std::bad_alloc&)
+	{
+		return report(3, "esif: ", "out of memory");
+	}
+	catch (const std::exception& e)
+	{
+		// MRPT exceptions carry a banner and a multi-line stack: one line of reason.
+		return report(4, "esif: internal error: ", oneLineReason(e.what()));
+	}
+	catch (...)
+	{
+		return report(4, "esif: internal error: ", "an exception of unknown type");
+	}
 }
 
 }  // namespace esif

@@ -88,7 +88,18 @@ void VelocityNoise::validate(const std::string& who) const
 		if (!(std::isfinite(v) && v >= 0 && v <= 1e3))
 			throw ConfigError(who + ": --" + p.flag + " = " + formatNumber(v) + ": must be in [0, 1000]");
 	}
-	if (!(floor_m > 0)) throw ConfigError(who + ": --odometry-floor-m must be positive (a singular covariance otherwise)");
+	// The floor alone keeps the position variances positive and the turn-rate
+	// noise the heading's (on a straight stretch nothing else adds to it);
+	// below these a variance rounds to nothing next to the others, and a
+	// subnormal one squares to zero: a singular covariance in the rawlog.
+	if (!(floor_m >= kMinOdometryFloor_m))
+		throw ConfigError(
+			who + ": --odometry-floor-m = " + formatNumber(floor_m) + ": must be at least " +
+			formatNumber(kMinOdometryFloor_m) + " m (the position covariance is singular otherwise)");
+	if (!(turn_psd >= kMinTurnPsd))
+		throw ConfigError(
+			who + ": --odometry-turn-psd = " + formatNumber(turn_psd) + ": must be at least " +
+			formatNumber(kMinTurnPsd) + " rad^2/s (the heading covariance of a straight step is singular otherwise)");
 }
 
 Pose2 integrateVelocity(const std::vector<VelocitySegment>& segments)

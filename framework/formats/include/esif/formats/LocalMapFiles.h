@@ -82,7 +82,10 @@ struct ReferenceResult
 	std::map<std::size_t, Pose2> end_poses;
 };
 
-/// Reads DIR/feature.txt and DIR/pose.txt (pose.txt optional); strict, InputError naming file:line.
-ReferenceResult readReferenceResult(const std::string& dir);
+/// Reads DIR/feature.txt and DIR/pose.txt (both required: a reference
+/// without its poses would leave refres_pose_* null unnoticed) for a folder
+/// of `maps` local maps: feature IDs are MRPT's (1 to 2^31 - 1), a pose row
+/// names one of the maps 1..`maps`; strict, InputError naming file:line.
+ReferenceResult readReferenceResult(const std::string& dir, std::size_t maps);
 
 }  // namespace esif

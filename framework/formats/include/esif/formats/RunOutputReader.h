@@ -15,7 +15,6 @@
 #include <mrpt/math/TPose2D.h>
 
 #include <optional>
-
 #include <string>
 #include <vector>
 
@@ -38,20 +37,39 @@ struct RunOutputs
 	std::optional<LandmarkIdentities> identities;
 };
 
+/// How a run folder is read back: as a run being compared, whose rows may
+/// be NaN where it diverged, or as the reference others are measured
+/// against, held to the bounds of every reference input (InputBounds.h):
+/// positions finite and within kMaxCoordinate_m, headings finite, landmark
+/// IDs in [0, kMaxLandmarkId].
+enum class RunRole
+{
+	Compared,
+	Reference
+};
+
 /// Reads a TUM trajectory. Each data line holds 8 numbers; the timestamp must
 /// be finite and strictly increasing; the yaw is taken from the quaternion
 /// (qx, qy, qz, qw), which must not be zero. Throws InputError naming the file
-/// (missing, unreadable) or "file:line" (malformed row).
-std::vector<TimedPose2D> readTrajectoryTum(const std::string& path);
+/// (missing, unreadable) or "file:line" (malformed row, or out of bounds for
+/// a reference).
+std::vector<TimedPose2D> readTrajectoryTum(const std::string& path, RunRole role = RunRole::Compared);
 
 /// Reads landmarks.txt: an integer ID and 5 numbers per data line, IDs
 /// distinct. Throws InputError naming the file or "file:line".
-std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path);
+std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path, RunRole role = RunRole::Compared);
 
 /// Reads DIR/trajectory.tum, DIR/landmarks.txt and, when present,
-/// DIR/landmark_identities.txt, which must list exactly the landmarks of
-/// landmarks.txt (InputError naming it otherwise).
+/// DIR/landmark_identities.txt (which must list exactly the landmarks of
+/// landmarks.txt, InputError naming it otherwise) of a run being compared.
 RunOutputs readRunOutputs(const std::string& dir);
+
+/// Reads them as the reference of other runs (compare --reference DIR, run
+/// and localmaps check --reference-run DIR, export g2o --associations-from
+/// DIR): RunRole::Reference, and, when `steps` is given, one trajectory row
+/// per step of the rawlog (InputError naming the file otherwise). A diverged
+/// run may be compared, never measured against.
+RunOutputs readReferenceRun(const std::string& dir, std::optional<std::size_t> steps = std::nullopt);
 
 /// A run's estimate as a reference in ground-truth form: its landmarks by
 /// ID, its trajectory rows in order as the path.

@@ -85,6 +85,12 @@ std::string jobId(const CampaignPlan& plan, const CampaignJob& job);
 CampaignJob parseJobId(const CampaignPlan& plan, const std::string& id);
 }  // namespace campaign_layout
 
+/// Throws InputError naming the first symbolic link found under the
+/// campaign folder `dir` (links are not followed): a run, simulation or
+/// failure record written through one would land outside --out, and a run
+/// read through one would be another folder's.
+void requireNoLinksInCampaign(const std::string& dir);
+
 enum class JobState
 {
 	Finished,  ///< run folder with stats.json

@@ -9,6 +9,7 @@
 #include <esif/eval/MonteCarloTables.h>
 #include <esif/run/MonteCarloCampaign.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,12 +23,28 @@ struct CampaignCollection
 	std::size_t total = 0;
 };
 
-/// Reads every finished run of `plan` in `dir`. A finished run folder with
-/// a missing or malformed file is an InputError naming the file.
+/// Reads every finished run of `plan` in `dir`. A finished run folder whose
+/// files cannot be read back (cut, changed, out of bounds) is damaged: it is
+/// listed among the runs not aggregated, naming the file, and the next run
+/// of the campaign redoes it (inspectJob).
 CampaignCollection collectCampaign(const std::string& dir, const CampaignPlan& plan);
 
-/// The run's errors and figures from its finished run folder.
+/// The run's errors and figures from its finished run folder; InputError
+/// naming the file when one is missing or malformed.
 CampaignRunErrors readCampaignRun(const std::string& run_folder, std::size_t seed_index);
+
+/// A job as the campaign folder holds it. A run folder with stats.json is
+/// finished only when its files read back; otherwise it is damaged, and
+/// counts as not run: one damaged file must not stop the resume or
+/// --collect, nor be aggregated.
+struct JobInspection
+{
+	JobState state = JobState::Pending;
+	std::optional<CampaignRunErrors> run;  ///< a finished run, read
+	std::optional<std::string> damage;	///< why a run folder with stats.json is not a finished run
+};
+
+JobInspection inspectJob(const std::string& dir, const CampaignPlan& plan, const CampaignJob& job);
 
 /// summary.csv, summary.md, per_step.csv, landmarks.csv and the figures
 /// (MonteCarloFigures.h), then summary.html (MonteCarloPage.h), into `dir`,

@@ -1,7 +1,8 @@
 #pragma once
 /// \file PluginLoader.h
 /// Finds plugin libraries (libesif_plugin_*.so) in the plugin folders, loads
-/// them with mrpt::system::loadPluginModule and creates filters by class name.
+/// them from sealed, checked copies (run/SealedLibrary.h: no file at a
+/// plugin's name can hang or crash esif) and creates filters by class name.
 
 #include <esif/plugin/FilterPlugin.h>
 
@@ -22,10 +23,11 @@ class PluginLoader
 	static PluginLoader withExtraFolder(const std::optional<std::string>& extra_dir);
 
 	/// Loads every libesif_plugin_*.so once. A file that fails to load (not a
-	/// library, missing symbols, another architecture) is skipped with a
-	/// warning line on `warnings` naming it and the dynamic loader's reason,
-	/// and kept in brokenFiles(); the others are still loaded. Only asking
-	/// for a plugin that is then not found is an error (create()).
+	/// regular file, cut short, not a library, missing symbols, another
+	/// architecture) is skipped with a warning line on `warnings` naming it
+	/// and the reason, and kept in brokenFiles(); the others are still
+	/// loaded. Only asking for a plugin that is then not found is an error
+	/// (create()).
 	void loadAll(std::ostream& warnings = std::cerr);
 
 	/// Class names of all registered FilterPlugin classes (without "esif::").
@@ -39,7 +41,7 @@ class PluginLoader
 	/// Library files loaded so far.
 	const std::vector<std::string>& loadedFiles() const { return loaded_; }
 
-	/// A plugin file that failed to load, and why (dlerror's text).
+	/// A plugin file that failed to load, and why (esif's check or dlerror's text).
 	struct BrokenPlugin
 	{
 		std::string path;

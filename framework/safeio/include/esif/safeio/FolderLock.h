@@ -14,23 +14,30 @@ namespace esif
 /// Whether to wait for a lock another process holds.
 enum class LockWait
 {
-	No,	 ///< fail at once (a second run into the same --out)
-	Yes	 ///< wait (jobs of a campaign that need the same simulation)
+	No,	  ///< fail at once (a second run into the same --out)
+	Yes,  ///< wait (jobs of a campaign that need the same simulation)
+	Try	  ///< take it if it is free; held() says whether it was (a campaign job another process runs)
 };
 
 class FolderLock
 {
    public:
 	/// Takes the lock of `folder`. Throws InputError naming `folder` when
-	/// another process holds it and `wait` is No, or naming the lock file
-	/// and the system's reason when it cannot be created (e.g. a read-only
-	/// parent).
-	explicit FolderLock(const std::filesystem::path& folder, LockWait wait = LockWait::No);
+	/// another process holds it and `wait` is No ("another esif process is
+	/// writing `what`"), or naming the lock file and the system's reason
+	/// when it cannot be created (e.g. a read-only parent). The lock of a
+	/// file set (FileSet.h) is that of its first file.
+	explicit FolderLock(
+		const std::filesystem::path& folder, LockWait wait = LockWait::No, const std::string& what = "this folder");
 	/// Removes the lock file and releases the lock; never throws.
 	~FolderLock();
 
 	FolderLock(const FolderLock&) = delete;
 	FolderLock& operator=(const FolderLock&) = delete;
+
+	/// Whether this object holds the lock (false only after LockWait::Try
+	/// found it held by another process).
+	bool held() const { return fd_ >= 0; }
 
 	/// `<parent>/.<name>.lock` for `folder`.
 	static std::filesystem::path lockFileOf(const std::filesystem::path& folder);

@@ -6,6 +6,7 @@
 /// loop) ends the child, not the caller, and can be reported as one line.
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -17,10 +18,13 @@ struct SandboxLimits
 	unsigned cpu_seconds = 0;			  ///< CPU time the child may use
 };
 
-/// Shared with the child: it writes where it is so the parent can say where it stopped.
+/// Shared with the child: it writes where it is so the parent can say where
+/// it stopped, and what it produced (a digest) so the parent can hold its
+/// own result against the one the child vouched for.
 struct SandboxProgress
 {
 	volatile std::size_t position = 0;
+	volatile std::uint64_t result = 0;
 };
 
 struct SandboxOutcome
@@ -38,6 +42,7 @@ struct SandboxOutcome
 	std::string message;
 	int signal_number = 0;
 	std::size_t position = 0;  ///< the last SandboxProgress::position the child wrote
+	std::uint64_t result = 0;  ///< the SandboxProgress::result it wrote
 };
 
 /// Calls `work(progress)` in a forked child under `limits` and waits for it.

@@ -40,9 +40,27 @@ std::string oneLineReason(const std::string& exception_text);
 /// characters with "...".
 std::string printableToken(const std::string& token, std::size_t max_chars = 80);
 
-/// `text` with its control characters (bytes below 0x20, and 0x7f) as \xNN,
-/// so an error stays one line on a terminal whatever a path holds; other
-/// bytes (UTF-8 names) are kept.
-std::string withoutControlCharacters(const std::string& text);
+/// Rethrows the exception being handled (call it inside a catch block
+/// only) as the same esif type with `from` replaced by `to` in its message,
+/// e.g. a partial folder by the output the user will look for; out of
+/// memory and other non-esif exceptions keep their class (exit code).
+[[noreturn]] void rethrowWithPathReplaced(const std::string& from, const std::string& to);
+
+/// How esif reports a failure: its exit code and the one line it prints.
+struct FailureReport
+{
+	int exit_code = 4;
+	std::string line;  ///< "esif: error: ...", without a newline, control characters escaped
+};
+
+/// The report of the exception being handled (call it inside a catch block
+/// only): ConfigError and InputError exit 1 ("esif: error: "), a
+/// filesystem_error 1 naming its path and the system's reason,
+/// NumericalError 3 ("esif: numerical failure: "), std::bad_alloc 3
+/// ("esif: out of memory"), anything else 4 ("esif: internal error: " and
+/// one line of reason). Control characters in the line are escaped
+/// (TerminalText.h). The one mapping of the exit codes of robustness.md,
+/// for the command's main thread and for every worker thread alike.
+FailureReport reportCurrentException();
 
 }  // namespace esif

@@ -15,4 +15,14 @@ inline std::string replaceAll(std::string text, const std::string& from, const s
 	return text;
 }
 
+/// Whether `text` holds a C0 control character or DEL, a line break among
+/// them: such a text cannot be one value of a line-based file (a job list,
+/// campaign.ini, the record of a file set).
+inline bool holdsControlCharacter(const std::string& text)
+{
+	for (const char c : text)
+		if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return true;
+	return false;
+}
+
 }  // namespace esif

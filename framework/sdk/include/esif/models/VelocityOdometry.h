@@ -48,10 +48,18 @@ struct VelocityNoise
 	double turn_psd_per_rate = 0.0176;	///< r1 [rad/s per rad/s]: more of it while turning
 
 	/// Throws ConfigError "`who`: --FLAG = V: ..." unless every value is
-	/// finite and non-negative (and the floor positive, so the covariance is
-	/// never singular).
+	/// finite and non-negative, the floor at least kMinOdometryFloor_m and
+	/// the turn-rate noise at least kMinTurnPsd, so that no step's
+	/// covariance is singular.
 	void validate(const std::string& who) const;
 };
+
+/// Smallest odometry floor [m]: a micrometre; its square still adds to the
+/// position variance of a step (a subnormal floor squares to zero).
+inline constexpr double kMinOdometryFloor_m = 1e-6;
+/// Smallest white turn-rate noise [rad^2/s]: on a straight step it is all
+/// of the heading's variance.
+inline constexpr double kMinTurnPsd = 1e-12;
 
 /// One parameter of VelocityNoise, for command lines and listings.
 struct VelocityNoiseParameter

@@ -1,0 +1,75 @@
+/// \file RawlogDigest.cpp
+/// See RawlogDigest.h.
+
+#include "RawlogDigest.h"
+
+#include <zlib.h>
+
+namespace esif
+{
+namespace
+{
+/// Feeds values to a running CRC-32 as their bytes.
+class Crc
+{
+   public:
+	template <class T>
+	void add(const T& value)
+	{
+		crc_ = ::crc32(crc_, reinterpret_cast<const Bytef*>(&value), sizeof(T));
+	}
+	void addMatrix(const double* data, std::size_t count)
+	{
+		crc_ = ::crc32(crc_, reinterpret_cast<const Bytef*>(data), static_cast<uInt>(count * sizeof(double)));
+	}
+	std::uint32_t value() const { return static_cast<std::uint32_t>(crc_); }
+
+   private:
+	uLong crc_ = ::crc32(0L, Z_NULL, 0);
+};
+
+void addScan(Crc& crc, const Scan& scan)
+{
+	crc.add(scan.sensor_on_robot.x);
+	crc.add(scan.sensor_on_robot.y);
+	crc.add(scan.sensor_on_robot.phi);
+	crc.add(scan.max_range_m);
+	crc.add(scan.fov_rad);
+	crc.add(scan.measurements.size());
+	for (const RangeBearing& m : scan.measurements)
+	{
+		crc.add(m.range_m);
+		crc.add(m.bearing_rad);
+		crc.addMatrix(m.cov.data(), 4);
+		crc.add(m.id.value_or(-1));
+	}
+}
+}  // namespace
+
+std::uint32_t digestOf(const Rawlog& log)
+{
+	Crc crc;
+	crc.add(log.steps.size());
+	for (const StepInput& step : log.steps)
+	{
+		crc.add(step.index);
+		crc.add(step.time_s);
+		crc.add(step.odometry.has_value());
+		if (step.odometry)
+		{
+			crc.add(step.odometry->delta.x);
+			crc.add(step.odometry->delta.y);
+			crc.add(step.odometry->delta.phi);
+			crc.addMatrix(step.odometry->cov.data(), 9);
+		}
+		crc.add(step.scan.has_value());
+		if (step.scan) addScan(crc, *step.scan);
+	}
+	for (const auto& ids : log.true_ids)
+		for (const auto& id : ids) crc.add(id.value_or(-1));
+	crc.add(log.truncation_warning.has_value());
+	crc.add(log.measurement_count);
+	return crc.value();
+}
+
+}  // namespace esif

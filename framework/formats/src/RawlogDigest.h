@@ -1,0 +1,17 @@
+#pragma once
+/// \file RawlogDigest.h
+/// A checksum of what a rawlog was read into: the sandboxed child reports it
+/// for the read it vouches for, and the reader in esif must come to the same
+/// (RawlogReader.cpp), so one read decides what the file holds.
+
+#include <esif/formats/RawlogReader.h>
+
+#include <cstdint>
+
+namespace esif
+{
+/// CRC-32 (zlib) over every step (index, time, odometry, scan with each
+/// measurement and its ID), the IDs as stored and whether the file was cut.
+std::uint32_t digestOf(const Rawlog& log);
+
+}  // namespace esif
