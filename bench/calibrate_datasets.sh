@@ -19,6 +19,11 @@ source bench/vicpark_data.sh
 datasets=("$@")
 [ ${#datasets[@]} -gt 0 ] || datasets=(vicpark mrclam)
 
+# esif calibrate writes into out/bench/calibration/ (its own files there);
+# the committed copy in configs/calibration/ is replaced by this script,
+# git holding the previous one.
+install_calibration() { cp "$bench_out/calibration/$1.ini" "configs/calibration/$1.ini"; echo "bench/$bench_script: wrote configs/calibration/$1.ini" >&2; }
+
 calibrate_vicpark() {
   local log
   log=$(vicpark_rawlog)
@@ -27,7 +32,8 @@ calibrate_vicpark() {
   optimum=$(realpath -m --relative-to="$root" "$bench_out/calibration/vicpark_optimum_rawlog_noise")
   mkdir -p "$(dirname "$optimum")"
   "$esif" run -q --no-figures --config configs/calibration/vicpark_reference.ini --rawlog "$log" --out "$optimum"
-  "$esif" calibrate -r "$log" --reference-run "$optimum" -o configs/calibration/vicpark.ini
+  "$esif" calibrate -r "$log" --reference-run "$optimum" -o "$bench_out/calibration/vicpark.ini"
+  install_calibration vicpark
 }
 
 calibrate_mrclam() {
@@ -38,7 +44,9 @@ calibrate_mrclam() {
     [ -f "$log" ] || "$esif" import mrclam --dataset "$dir" --robot "$r" --out "$log" >&2
     args+=(-r "$log")
   done
-  "$esif" calibrate "${args[@]}" --sensor-horizon "${MRCLAM_SENSOR_HORIZON:-16}" -o configs/calibration/mrclam.ini
+  mkdir -p "$bench_out/calibration"
+  "$esif" calibrate "${args[@]}" --sensor-horizon "${MRCLAM_SENSOR_HORIZON:-16}" -o "$bench_out/calibration/mrclam.ini"
+  install_calibration mrclam
 }
 
 for d in "${datasets[@]}"; do

@@ -73,3 +73,15 @@ TEST(Calibrate, RefusesWhatItCannotFitOrMustNotWrite)
 					   "one --reference-run per --rawlog");
 	EXPECT_FALSE(std::filesystem::exists(dir.file("c.ini")));
 }
+
+TEST(Calibrate, ReplacesItsOwnFileButNeverOneItDidNotWrite)
+{
+	TempDir dir;
+	const std::string out = dir.file("calibration.ini");
+	const std::string command = "calibrate -r " + quoted(kRawlog) + " -o " + quoted(out);
+	ASSERT_EQ(runEsif(command).exit_code, 0);
+	EXPECT_EQ(runEsif(command).exit_code, 0) << "its own file is replaced";
+	writeFile(dir.file("mine.ini"), "[calibration]\nrange_std_m = 0.3\n");
+	expectOneErrorLine(runEsif("calibrate -r " + quoted(kRawlog) + " -o " + quoted(dir.file("mine.ini"))), "mine.ini");
+	EXPECT_EQ(readText(dir.file("mine.ini")), "[calibration]\nrange_std_m = 0.3\n");
+}

@@ -7,7 +7,7 @@
 #include <esif/formats/RawlogReader.h>
 #include <esif/formats/RunOutputReader.h>
 #include <esif/safeio/AtomicFile.h>
-#include <esif/safeio/OutputApart.h>
+#include <esif/safeio/FileSet.h>
 #include <esif/sim/MeasurementTruth.h>
 
 #include <filesystem>
@@ -102,21 +102,24 @@ std::vector<NamedInput> inputsOf(const CalibrationRequest& request)
 CalibrationReport calibrateNoise(const CalibrationRequest& request)
 {
 	if (request.inputs.empty()) throw ConfigError("esif calibrate: no rawlog to calibrate");
-	requireOutputApart(request.out_path, inputsOf(request));
-	std::vector<PreparedInput> prepared;
-	std::vector<ReferencedLog> logs;
-	for (const auto& input : request.inputs)
-	{
-		prepared.push_back(prepare(input));
-		logs.push_back(prepared.back().log);
-	}
-	CalibrationReport report;
-	report.fit = fitNoise(logs, rawlogNoise(logs), request.settings);
-	for (const auto& in : prepared)
-		report.checks.push_back(checksOf(in, report.fit.start, report.fit.fitted, request));
-	report.text = calibrationReportText(report, request.settings);
-	writeTextAtomically(request.out_path, noiseCalibrationText(report.fit.fitted, report.text));
-	return report;
+	// A file set of its own kind, claimed before anything is read: it
+	// replaces only a calibration file esif wrote, never an input (FileSet.h).
+	return writeFileSet("a calibration file", {request.out_path}, inputsOf(request), [&](const FileSet& set) {
+		std::vector<PreparedInput> prepared;
+		std::vector<ReferencedLog> logs;
+		for (const auto& input : request.inputs)
+		{
+			prepared.push_back(prepare(input));
+			logs.push_back(prepared.back().log);
+		}
+		CalibrationReport report;
+		report.fit = fitNoise(logs, rawlogNoise(logs), request.settings);
+		for (const auto& in : prepared)
+			report.checks.push_back(checksOf(in, report.fit.start, report.fit.fitted, request));
+		report.text = calibrationReportText(report, request.settings);
+		writeTextAtomically(set.staging(request.out_path), noiseCalibrationText(report.fit.fitted, report.text));
+		return report;
+	});
 }
 
 }  // namespace esif

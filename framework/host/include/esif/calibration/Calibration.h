@@ -58,8 +58,9 @@ struct CalibrationReport
 	std::string text;  ///< the human-readable report (also the file's comment)
 };
 
-/// Reads, fits, checks and writes request.out_path (atomically; it must not
-/// be one of the inputs). Throws ConfigError/InputError naming the file.
+/// Reads, fits, checks and writes request.out_path as a file set of its own
+/// (FileSet.h: it replaces only a calibration file esif wrote, never an
+/// input). Throws ConfigError/InputError naming the file.
 CalibrationReport calibrateNoise(const CalibrationRequest& request);
 
 }  // namespace esif
