@@ -3,6 +3,7 @@
 #include "PairFrame.h"
 #include "ReferenceChoice.h"
 
+#include <esif/localmap/MapLevelDecisions.h>
 #include <esif/association/Chi2.h>
 #include <esif/association/PointSetAssociation.h>
 #include <esif/models/LocalMapObservation.h>
@@ -245,20 +246,16 @@ std::optional<UpperLevelOutcome> associateInPairFrame(
 	for (std::size_t c = 0; c < candidates.size(); ++c) moved[c] = static_cast<int>(c + 2);
 	intoPairFrame(global_xy, global.covariance(global_ids), 0, 1, moved, sets.candidates, sets.candidates_cov);
 
-	const auto method = params.association == MapAssociationMethod::NearestNeighbor ? AssociationMethod::NearestNeighbor
-																				 : AssociationMethod::Jcbb;
-	const auto result =
-		associatePointSets(sets, method, params.gate_chi2_quantile, params.joint_chi2_quantile, params.search);
+	const MapLevelDecisions result = decideMapFeatures(sets, params);
 	out.pairs_dropped = result.pairs_dropped;
 	out.jcbb_nodes = result.jcbb_nodes;
 	out.jcbb_fallbacks = result.fell_back;
-	const double new_gate = chi2Quantile(params.new_feature_chi2_quantile, 2);
 	for (std::size_t u = 0; u < unknown_indices.size(); ++u)
 	{
 		auto& decision = out.decisions.associations[unknown_indices[u]];
-		if (const int c = result.candidate_of[u]; c >= 0)
-			decision = {Association::Kind::Matched, candidates[c]};
-		else if (result.min_distance2[u] <= new_gate)
+		if (result.outcome[u] == MapFeatureOutcome::Matched)
+			decision = {Association::Kind::Matched, candidates[result.candidate_of[u]]};
+		else if (result.outcome[u] == MapFeatureOutcome::PoorlyObserved)
 			decision = {Association::Kind::Rejected, -1};
 	}
 	return out;

@@ -2,6 +2,7 @@
 
 #include <esif/association/Chi2.h>
 #include <esif/association/PointSetAssociation.h>
+#include <esif/localmap/MapLevelDecisions.h>
 #include <esif/models/LocalMapObservation.h>
 
 #include <Eigen/Cholesky>
@@ -145,20 +146,16 @@ MapAssociationOutcome associateGeometrically(
 	sets.observed_cov = local_cov.bottomRightCorner(2 * M, 2 * M);
 	candidatesInLocalFrame(global, *start, candidates, sets);
 
-	const auto method = params.association == MapAssociationMethod::NearestNeighbor ? AssociationMethod::NearestNeighbor
-																				  : AssociationMethod::Jcbb;
-	const auto result =
-		associatePointSets(sets, method, params.gate_chi2_quantile, params.joint_chi2_quantile, params.search);
+	const MapLevelDecisions result = decideMapFeatures(sets, params);
 	out.pairs_dropped = result.pairs_dropped;
 	out.jcbb_nodes = result.jcbb_nodes;
 	out.jcbb_fallbacks = result.fell_back;
-	const double new_gate = chi2Quantile(params.new_feature_chi2_quantile, 2);
 	for (Eigen::Index i = 0; i < M; ++i)
 	{
 		auto& a = out.decisions.associations[i];
-		if (const int c = result.candidate_of[i]; c >= 0)
-			a = {Association::Kind::Matched, global.featureId(candidates[c])};
-		else if (result.min_distance2[i] <= new_gate)
+		if (result.outcome[i] == MapFeatureOutcome::Matched)
+			a = {Association::Kind::Matched, global.featureId(candidates[result.candidate_of[i]])};
+		else if (result.outcome[i] == MapFeatureOutcome::PoorlyObserved)
 			a = {Association::Kind::Rejected, -1};
 	}
 	return out;

@@ -1,0 +1,62 @@
+// The three outcomes of a local map's features against the global map
+// (MapLevelDecisions.h) on a constructed map: features that are global
+// ones are matched, one far from every candidate is new, and one between
+// the gates, too close to a candidate to be new yet not it, is left out.
+
+#include <esif/localmap/MapLevelDecisions.h>
+
+#include <gtest/gtest.h>
+
+namespace
+{
+using namespace esif;
+
+/// Candidates on a 5 m grid with 0.1 m sigma; observed points with 0.1 m sigma.
+PointSets grid(const std::vector<Eigen::Vector2d>& observed)
+{
+	PointSets s;
+	const std::vector<Eigen::Vector2d> candidates = {{0, 0}, {5, 0}, {0, 5}, {5, 5}};
+	s.candidates.resize(static_cast<Eigen::Index>(candidates.size()), 2);
+	for (std::size_t c = 0; c < candidates.size(); ++c) s.candidates.row(static_cast<Eigen::Index>(c)) = candidates[c].transpose();
+	s.candidates_cov = 0.01 * Eigen::MatrixXd::Identity(2 * s.candidates.rows(), 2 * s.candidates.rows());
+	s.observed.resize(static_cast<Eigen::Index>(observed.size()), 2);
+	for (std::size_t i = 0; i < observed.size(); ++i) s.observed.row(static_cast<Eigen::Index>(i)) = observed[i].transpose();
+	s.observed_cov = 0.01 * Eigen::MatrixXd::Identity(2 * s.observed.rows(), 2 * s.observed.rows());
+	return s;
+}
+
+TEST(MapLevelDecisions, MatchedNewAndPoorlyObserved)
+{
+	// Pair sigma 0.14 m per axis. Gates (2 dof): 0.99 -> d2 9.21 (0.43 m),
+	// 0.9999 -> 18.4 (0.61 m).
+	const auto d = decideMapFeatures(grid({{0.05, 0.0},	 // candidate 0, d2 0.125: matched
+										   {5.0, 0.1},	// candidate 1: matched
+										   {20, 20},  // far from all: new
+										   {0.0, 5.5}}),  // 0.5 m from candidate 2, d2 12.5: neither
+									 MapLevelAssociationParams{});
+	ASSERT_EQ(d.outcome.size(), 4u);
+	EXPECT_EQ(d.outcome[0], MapFeatureOutcome::Matched);
+	EXPECT_EQ(d.candidate_of[0], 0);
+	EXPECT_EQ(d.outcome[1], MapFeatureOutcome::Matched);
+	EXPECT_EQ(d.candidate_of[1], 1);
+	EXPECT_EQ(d.outcome[2], MapFeatureOutcome::New);
+	EXPECT_EQ(d.outcome[3], MapFeatureOutcome::PoorlyObserved);
+}
+
+TEST(MapLevelDecisions, AJointlyIncompatibleShiftIsNotMatched)
+{
+	// Every feature shifted by 0.3 m the same way: each pair passes its
+	// individual gate (d2 4.5), and JCBB keeps the largest jointly
+	// compatible set, which a common shift passes too (the sets are
+	// independent, so the joint test sums the pairs: 4 x 4.5 = 18 < chi2_8(0.99) = 20.1).
+	// Shifted 0.4 m (d2 8 each, 32 in all) it fails jointly: some pairs are dropped.
+	const auto shifted = [](double dx) {
+		return grid({{dx, 0}, {5 + dx, 0}, {dx, 5}, {5 + dx, 5}});
+	};
+	const auto near = decideMapFeatures(shifted(0.3), MapLevelAssociationParams{});
+	for (auto o : near.outcome) EXPECT_EQ(o, MapFeatureOutcome::Matched);
+	const auto far = decideMapFeatures(shifted(0.4), MapLevelAssociationParams{});
+	EXPECT_GT(far.pairs_dropped, 0u);
+	EXPECT_NE(std::count(far.outcome.begin(), far.outcome.end(), MapFeatureOutcome::Matched), 4);
+}
+}  // namespace
