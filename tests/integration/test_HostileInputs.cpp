@@ -227,6 +227,9 @@ TEST_F(HostileInputs, AReferenceRunBeyondItsBoundsIsRefusedNamingFileAndLine)
 	expectOneErrorLine(runEsif("localmaps check -q --config " + slsjf + " --rawlog " + quoted(rawlog()) +
 							   " --reference-run " + quoted(far) + " --out " + quoted(dir_->file("ld"))),
 					   far + "/trajectory.tum:5: position (1e+308");
+	expectOneErrorLine(runEsif("export g2o --rawlog " + quoted(rawlog()) + " --associations-from " + quoted(far) +
+							   " --out " + quoted(dir_->file("far.g2o"))),
+					   far + "/trajectory.tum:5: position (1e+308");
 	compareWith(reference());  // the intact one is a reference
 	EXPECT_TRUE(fs::exists(dir_->file("cmp_ref/comparison.md")));
 }

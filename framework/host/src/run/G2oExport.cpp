@@ -25,7 +25,7 @@ G2oExportSummary exportInto(const G2oExportRequest& request, const std::string& 
 		if (!std::filesystem::is_directory(dir)) throw InputError(dir + ": run folder not found");
 		const std::string associations = (std::filesystem::path(dir) / kAssociationFileName).string();
 		applyAssociations(log, readAssociationFile(associations, log.steps.size()), associations);
-		initial = readRunOutputs(dir);
+		initial = readReferenceRun(dir, log.steps.size());
 	}
 	const FullSlamProblem problem =
 		buildFullSlamProblem(log, initial ? &*initial : nullptr, request.run_dir.value_or(""));
