@@ -8,7 +8,9 @@
 # Builds build-fuzz/ (only the fuzz targets), runs every kept regression input
 # once, then fuzzes each target from its seed corpus with a 1 GiB memory
 # limit. Exit non-zero on any finding; findings are written to
-# build-fuzz/findings/ (add each to tests/fuzz/regressions/ once fixed).
+# build-fuzz/findings/ (add each to tests/fuzz/regressions/ once fixed), the
+# logs to build-fuzz/logs/ (bash scripts/fuzz_report.sh makes
+# docs/results/fuzz.md of them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Each target is fuzz_<name>_reader or fuzz_<name>_importer; its seeds and
@@ -46,6 +48,13 @@ for target in "${targets[@]}"; do
 done
 for f in configs/*.ini configs/*/*.ini; do cp "$f" build-fuzz/corpus/ini/"${f//\//_}"; done
 
+rm -rf build-fuzz/logs
+mkdir -p build-fuzz/logs
+{
+  echo "commit:  $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD 2>/dev/null || echo ' (with uncommitted changes)')"
+  echo "started: $(date -u '+%Y-%m-%d %H:%M UTC')"
+  echo "command: bash scripts/fuzz.sh $*"
+} > build-fuzz/logs/campaign.txt
 for target in "${targets[@]}"; do
   bin="build-fuzz/bin/fuzz_${target}_${binary[$target]}"
   regressions=(tests/fuzz/regressions/"$target"/*)
@@ -58,10 +67,15 @@ for target in "${targets[@]}"; do
   # corrupt entry before it is stopped (RawlogReader.cpp): its timeout is
   # above that, so an input the reader bounds by design is no finding.
   timeout=30; [ "$target" = rawlog ] && timeout=120
+  # The whole log is kept for scripts/fuzz_report.sh, which ends each with libFuzzer's exit status.
+  log=build-fuzz/logs/"$target".log
+  status=0
   # shellcheck disable=SC2086  # the budget is several options
   "$bin" ${budget[$target]} -rss_limit_mb=1024 -max_len=65536 -timeout=$timeout \
     -artifact_prefix=build-fuzz/findings/"$target"- -print_final_stats=1 \
-    build-fuzz/corpus/"$target" 2>&1 | grep -E '^(#[0-9]+ *DONE|stat::number_of_executed_units|stat::peak_rss_mb|==|SUMMARY|ERROR)' || true
+    build-fuzz/corpus/"$target" >"$log" 2>&1 || status=$?
+  echo "exit $status" >>"$log"
+  grep -E '^(#[0-9]+ *DONE|stat::number_of_executed_units|stat::peak_rss_mb|==|SUMMARY|ERROR)' "$log" || true
   # libFuzzer exits non-zero on a finding; pipefail is bypassed above so say it here.
   if ls build-fuzz/findings/"$target"-* >/dev/null 2>&1; then
     echo "esif fuzz: findings for the ${target} reader in build-fuzz/findings/" >&2
