@@ -2,12 +2,14 @@
 /// POSIX write loop with every result checked; see CheckedWrite.h.
 
 #include <esif/core/Errors.h>
+#include <esif/safeio/CheckedFileWriter.h>
 #include "CheckedWrite.h"
 
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
 #include <unistd.h>
+#include <utility>
 
 namespace esif
 {
@@ -20,38 +22,56 @@ namespace
 
 /// write() until every byte is out: it may write less than asked (signals,
 /// pipes, quotas) and that is not an error by itself, only -1 is.
-void writeAll(int fd, const std::string& bytes, const std::string& shown_name)
+void writeAll(int fd, const char* data, std::size_t size, const std::string& shown_name)
 {
 	std::size_t done = 0;
-	while (done < bytes.size())
+	while (done < size)
 	{
-		const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+		const ssize_t n = ::write(fd, data + done, size - done);
 		if (n < 0 && errno == EINTR) continue;
-		if (n < 0)
-		{
-			const int err = errno;
-			::close(fd);
-			fail(shown_name, "write", err);
-		}
+		if (n < 0) fail(shown_name, "write", errno);
 		done += static_cast<std::size_t>(n);
 	}
 }
 }  // namespace
 
-void writeBytesChecked(const std::string& path, const std::string& bytes, const std::string& shown_name)
+CheckedFileWriter::CheckedFileWriter(const std::string& path, std::string shown_name)
+	: shown_name_(std::move(shown_name))
 {
-	const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-	if (fd < 0) fail(shown_name, "open", errno);
-	writeAll(fd, bytes, shown_name);
+	fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+	if (fd_ < 0) fail(shown_name_, "open", errno);
+}
+
+CheckedFileWriter::~CheckedFileWriter()
+{
+	if (fd_ >= 0) ::close(fd_);
+}
+
+void CheckedFileWriter::write(const void* data, std::size_t size)
+{
+	writeAll(fd_, static_cast<const char*>(data), size, shown_name_);
+}
+
+void CheckedFileWriter::finish()
+{
 	// Delayed allocation (ext4, xfs, NFS) may report ENOSPC or EDQUOT only at
 	// fsync or close: both are checked, not just the writes.
+	const int fd = fd_;
+	fd_ = -1;
 	if (::fsync(fd) != 0)
 	{
 		const int err = errno;
 		::close(fd);
-		fail(shown_name, "fsync", err);
+		fail(shown_name_, "fsync", err);
 	}
-	if (::close(fd) != 0) fail(shown_name, "close", errno);
+	if (::close(fd) != 0) fail(shown_name_, "close", errno);
+}
+
+void writeBytesChecked(const std::string& path, const std::string& bytes, const std::string& shown_name)
+{
+	CheckedFileWriter file(path, shown_name);
+	file.write(bytes.data(), bytes.size());
+	file.finish();
 }
 
 void syncFolder(const std::string& dir)

@@ -1,8 +1,8 @@
 #pragma once
 /// \file GzArchive.h
 /// MRPT serialization written as a gzip file without MRPT's gz streams:
-/// objects are serialized to memory, compressed with zlib in memory, and the
-/// bytes go through the checked writer (CheckedWrite.h). CFileGZOutputStream
+/// objects are serialized, compressed with zlib and written as they come
+/// through the checked writer (CheckedFileWriter.h), in constant memory. CFileGZOutputStream
 /// reports success on a full disk, so a truncated map would otherwise be
 /// renamed into place. The files are ordinary gzip, as MRPT writes them, so
 /// CFileGZInputStream, loadFromFile() and MRPT's tools read them unchanged.
