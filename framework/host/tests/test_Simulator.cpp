@@ -108,13 +108,30 @@ Reloaded reload(const std::string& path)
 TEST(Simulator, DefaultsAndCommittedConfigsAreValid)
 {
 	EXPECT_NO_THROW(Simulator(Scenario{}));
-	for (const char* name : {"small", "grid196", "grid1225", "grid1225_large"})
+	for (const char* name : {"small", "grid196", "grid1225", "grid1225_large", "city", "city_10k", "city_1k"})
 	{
 		SCOPED_TRACE(name);
 		Scenario s;
 		ASSERT_NO_THROW(s = loadScenario(std::string(ESIF_SOURCE_DIR) + "/configs/sim/" + name + ".ini"));
 		EXPECT_NO_THROW(s.validate());
 	}
+}
+
+/// The city family is one world and one tour cut at different lengths (the
+/// growth curves of docs/results compare them): every key but `steps` equal.
+TEST(Simulator, CityConfigsDifferOnlyInTheirSteps)
+{
+	const auto keysButSteps = [](const std::string& name) {
+		std::ifstream in(std::string(ESIF_SOURCE_DIR) + "/configs/sim/" + name + ".ini");
+		std::string line, kept;
+		while (std::getline(in, line))
+			if (!line.empty() && line[0] != ';' && line[0] != '#' && line.rfind("steps", 0) != 0) kept += line + "\n";
+		return kept;
+	};
+	const std::string city = keysButSteps("city");
+	EXPECT_NE(city.find("features_per_side"), std::string::npos);
+	EXPECT_EQ(keysButSteps("city_10k"), city);
+	EXPECT_EQ(keysButSteps("city_1k"), city);
 }
 
 TEST(Simulator, BadValuesAreConfigErrors)
