@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 namespace esif
@@ -60,22 +61,17 @@ GridBounds gridBounds(const Estimate& estimate)
 	return b;
 }
 
-/// Throws InputError naming `path` when the 0.2 m grid a reader of the file
-/// builds (MRPT's tools, CLandmarksMap::serializeFrom) would exceed kMaxGridCells.
-void checkGridSize(const GridBounds& b, const std::string& path)
+/// Why the 0.2 m grid a reader of the file builds (MRPT's tools,
+/// CLandmarksMap::serializeFrom) would exceed kMaxGridCells, if it would.
+std::optional<std::string> gridRefusal(const GridBounds& b)
 {
-	const double x0 = b.x0, x1 = b.x1, y0 = b.y0, y1 = b.y1;
-	const double cells = ((x1 - x0) / kGridCellM + 2) * ((y1 - y0) / kGridCellM + 2);
-	if (cells > kMaxGridCells)
-	{
-		char msg[256];
-		std::snprintf(
-			msg, sizeof(msg),
-			": landmarks span %.6g x %.6g m, too large for CLandmarksMap's 0.2 m grid (%.3g cells, limit %.3g); "
-			"landmarks.txt holds the map",
-			x1 - x0, y1 - y0, cells, kMaxGridCells);
-		throw InputError(path + msg);
-	}
+	const double cells = ((b.x1 - b.x0) / kGridCellM + 2) * ((b.y1 - b.y0) / kGridCellM + 2);
+	if (cells <= kMaxGridCells) return std::nullopt;
+	char msg[256];
+	std::snprintf(msg, sizeof(msg),
+				  "landmarks span %.6g x %.6g m, too large for CLandmarksMap's 0.2 m grid (%.3g cells, limit %.3g)",
+				  b.x1 - b.x0, b.y1 - b.y0, cells, kMaxGridCells);
+	return std::string(msg);
 }
 }  // namespace
 
@@ -88,10 +84,12 @@ void checkGridSize(const GridBounds& b, const std::string& path)
 /// byte for byte the same.
 constexpr double kWriterGridCellsPerSide = 16;
 
+std::optional<std::string> landmarksGzRefusal(const Estimate& estimate) { return gridRefusal(gridBounds(estimate)); }
+
 void writeLandmarksGz(const Estimate& estimate, const std::string& path)
 {
 	const GridBounds b = gridBounds(estimate);
-	checkGridSize(b, path);
+	if (const auto refusal = gridRefusal(b)) throw InputError(path + ": " + *refusal + "; landmarks.txt holds the map");
 	mrpt::maps::CLandmarksMap map;
 	// push_back() resizes the grid only to cover a landmark outside it. The
 	// bounds set here hold every landmark with a cell to spare (setSize

@@ -493,17 +493,26 @@ TEST(MapWriter, NonFiniteLandmarkIsKeptInTextAndLeftOutOfMrptMap)
 	EXPECT_TRUE(scene.loadFromFile(dir.file("scene.3Dscene")));
 }
 
-TEST(MapWriter, MapTooLargeForCLandmarksMapIsRefusedAfterTheOtherOutputs)
+TEST(MapWriter, MapTooWideForCLandmarksMapHasNoLandmarksGzAndAWarning)
 {
-	// CLandmarksMap indexes landmarks on a dense 0.2 m grid: one landmark
-	// diverged 100 km away must not exhaust memory.
+	// CLandmarksMap indexes landmarks on a dense 0.2 m grid: a city-sized map
+	// (or one landmark diverged 100 km away) would exhaust a reader's memory.
+	// The file is left out with one warning line; the other outputs stand.
 	TempDir dir;
 	esif::RunRecord run = makeRun();
 	run.final_estimate.landmarks[0].mean = Eigen::Vector2d(1e5, 0);
-	EXPECT_THROW(esif::writeMapOutputs(run, dir.str()), esif::InputError);
+	ASSERT_TRUE(esif::landmarksGzRefusal(run.final_estimate));
+	testing::internal::CaptureStderr();
+	EXPECT_NO_THROW(esif::writeMapOutputs(run, dir.str()));
+	const std::string warning = testing::internal::GetCapturedStderr();
+	EXPECT_EQ(warning.rfind("esif: warning: landmarks.gz not written: landmarks span 100010 x 20 m", 0), 0u) << warning;
+	EXPECT_EQ(std::count(warning.begin(), warning.end(), '\n'), 1) << warning;
 	std::set<std::string> others = kOutputs;
 	others.erase("landmarks.gz");
 	EXPECT_EQ(dir.entries(), others);
+	// The writer itself still refuses it, naming the file.
+	EXPECT_THROW(esif::writeLandmarksGz(run.final_estimate, dir.file("landmarks.gz")), esif::InputError);
+	EXPECT_FALSE(esif::landmarksGzRefusal(makeRun().final_estimate));
 }
 
 TEST(MapWriter, MissingFolderThrowsInputErrorAndCreatesNothing)

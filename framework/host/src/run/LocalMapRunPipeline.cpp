@@ -17,10 +17,11 @@ namespace esif
 {
 namespace
 {
-/// What every local-map run writes, checked before the folder is put in place.
+/// What every local-map run writes, checked before the folder is put in place
+/// (landmarks.gz too, unless the map is too wide for it: MapOutputs.cpp).
 const std::vector<std::string> kLocalMapRunOutputFiles = {
 	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "map.svg",
-	"landmarks.gz", "localmap_times.png", "localmap_times.svg", "params.ini", kAssociationFileName,
+	"localmap_times.png", "localmap_times.svg", "params.ini", kAssociationFileName,
 	kLandmarkIdentityFileName, "stats.json"};
 
 /// What the run was given, read before any output is written.

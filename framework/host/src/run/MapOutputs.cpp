@@ -6,6 +6,7 @@
 #include <esif/run/MapOutputs.h>
 
 #include <filesystem>
+#include <iostream>
 
 namespace fs = std::filesystem;
 
@@ -26,9 +27,13 @@ void addMapOutputJobs(OutputJobs& jobs, const RunRecord& run, const std::string&
 	jobs.add("map_simplemap", [&run, d] { writeSimpleMap(run, (d / "map.simplemap").string()); });
 	jobs.add("scene_3dscene", [&run, d, options] { writeScene(run, (d / "scene.3Dscene").string(), options); });
 	jobs.addFigure("map_png", [&run, d, options] { writeMapImage(run, (d / "map.png").string(), options); });
-	// landmarks.gz is the one output that can be refused for a map too
-	// large for CLandmarksMap; the jobs finish the others even then.
-	jobs.add("landmarks_gz", [&run, d] { writeLandmarksGz(run.final_estimate, (d / "landmarks.gz").string()); });
+	// A map too wide for CLandmarksMap's 0.2 m grid (a city; a landmark
+	// diverged far away) has no landmarks.gz: MRPT's tools could not load
+	// it. The run and its other outputs stand; landmarks.txt holds the map.
+	if (const auto refusal = landmarksGzRefusal(run.final_estimate))
+		std::cerr << "esif: warning: landmarks.gz not written: " << *refusal << "; landmarks.txt holds the map\n";
+	else
+		jobs.add("landmarks_gz", [&run, d] { writeLandmarksGz(run.final_estimate, (d / "landmarks.gz").string()); });
 }
 
 void writeMapOutputs(const RunRecord& run, const std::string& dir, const MapWriterOptions& options, PhaseTimes* times)

@@ -26,10 +26,11 @@ namespace esif
 {
 namespace
 {
-/// What every run writes, checked before the folder is put in place.
+/// What every run writes, checked before the folder is put in place
+/// (landmarks.gz too, unless the map is too wide for it: MapOutputs.cpp).
 const std::vector<std::string> kRunOutputFiles = {
 	"landmarks.txt", "trajectory.tum", "map.simplemap", "scene.3Dscene", "map.png", "map.svg",
-	"landmarks.gz", "step_times.png", "step_times.svg", "params.ini", kAssociationFileName, kLandmarkIdentityFileName,
+	"step_times.png", "step_times.svg", "params.ini", kAssociationFileName, kLandmarkIdentityFileName,
 	"stats.json"};
 
 /// `files` but the figures (PNG and SVG).

@@ -7,15 +7,19 @@
 
 #include <esif/formats/RunRecord.h>
 
+#include <optional>
 #include <string>
 
 namespace esif
 {
 void writeSimpleMap(const RunRecord& run, const std::string& path);
 /// MRPT's CLandmarksMap keeps a 0.2 m grid over the whole map, so a map wider
-/// than about 630 m (e.g. a diverged landmark) is refused with an InputError.
-/// Non-finite landmarks are left out.
+/// than about 630 m (a city, or a diverged landmark) is refused with an
+/// InputError (landmarksGzRefusal says so beforehand). Non-finite landmarks
+/// are left out.
 void writeLandmarksGz(const Estimate& estimate, const std::string& path);
+/// Why writeLandmarksGz would refuse `estimate` (its span), or nullopt.
+std::optional<std::string> landmarksGzRefusal(const Estimate& estimate);
 /// Non-finite landmarks are written as `nan`.
 void writeLandmarksTxt(const Estimate& estimate, const std::string& path);
 void writeTrajectoryTum(const std::vector<TrajectoryPoint>& trajectory, const std::string& path);
