@@ -25,6 +25,15 @@ class EkfSlam : public FilterPlugin
 	Estimate estimate() const override { return filter_.estimate(); }
 	CostFigures costFigures() const override;
 	Formulation formulation() const override { return Formulation::EkfSlam; }
+	/// The covariance P of the robot and `landmarks` landmarks (Sec. 1.2.1),
+	/// (3 + 2N)^2 doubles: the one part of the filter that grows as N^2, so
+	/// for a large map the rest is small beside it (the update works on P in
+	/// place, as a rank update).
+	std::optional<double> bytesForLandmarks(std::size_t landmarks) const override
+	{
+		const double n = 3.0 + 2.0 * static_cast<double>(landmarks);
+		return n * n * sizeof(double);
+	}
 
    private:
 	EkfSlamParams params_;

@@ -23,6 +23,8 @@ class FakePlugin : public FilterPlugin
 	/// Returned by finalReports() after finish() (none: reports are final online).
 	std::optional<std::vector<StepReport>> final_reports;
 	bool needs_ids = false;	 ///< returned by needsLandmarkIds()
+	/// bytesForLandmarks(N) = N x this (none: the default, no memory model).
+	std::optional<double> bytes_per_landmark;
 	bool finished = false;	///< set by finish()
 
 	std::string sectionName() const override { return "fake"; }
@@ -34,6 +36,11 @@ class FakePlugin : public FilterPlugin
 	Estimate estimate() const override { return {pose_, {}}; }
 	CostFigures costFigures() const override { return {}; }
 	bool needsLandmarkIds() const override { return needs_ids; }
+	std::optional<double> bytesForLandmarks(std::size_t landmarks) const override
+	{
+		if (!bytes_per_landmark) return std::nullopt;
+		return static_cast<double>(landmarks) * *bytes_per_landmark;
+	}
 	std::optional<std::vector<PoseEstimate>> smoothedTrajectory() const override
 	{
 		// Like a real smoother: nothing before finish().

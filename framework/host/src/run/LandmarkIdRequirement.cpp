@@ -1,4 +1,5 @@
 #include <esif/core/Errors.h>
+#include <esif/run/PluginName.h>
 #include <esif/run/LandmarkIdRequirement.h>
 
 namespace esif
@@ -11,17 +12,6 @@ bool hasAnyLandmarkId(const Rawlog& log)
 				if (m.id) return true;
 	return false;
 }
-
-namespace
-{
-/// The class name as the INI file gives it ("EkfSlam", not "esif::EkfSlam").
-std::string iniClassName(const FilterPlugin& plugin)
-{
-	const std::string name = plugin.GetRuntimeClass()->className;
-	const std::string prefix = "esif::";
-	return name.rfind(prefix, 0) == 0 ? name.substr(prefix.size()) : name;
-}
-}  // namespace
 
 void requireLandmarkIds(const FilterPlugin& plugin, const Rawlog& log, const LandmarkIdSource& source)
 {

@@ -13,6 +13,7 @@
 #include <esif/render/FigureWriter.h>
 #include <esif/run/HostParams.h>
 #include <esif/run/LandmarkIdRequirement.h>
+#include <esif/run/MemoryRequirement.h>
 #include <esif/run/Replay.h>
 #include <esif/run/RunPipeline.h>
 #include <esif/run/RunSetup.h>
@@ -100,6 +101,7 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 	scoreAgainstMeasurementTruth(
 		log, request.ground_truth_prefix.value_or(groundTruthPrefixFor(request.rawlog_path)));
 	requireLandmarkIds(*plugin, log, {cfg.origin(), host.hide_landmark_ids, associations.value_or("")});
+	requireMemory(*plugin, log, cfg.origin(), memoryBudget());
 	auto truth = findGroundTruth(request.ground_truth_prefix, request.rawlog_path);
 	if (truth)
 		if (const auto problem = groundTruthProblem(*truth, log.steps.size(), log.truncation_warning.has_value()))

@@ -68,6 +68,13 @@ class FilterPlugin : public mrpt::rtti::CObject
 	/// The host refuses to start such a plugin on input without any ID.
 	virtual bool needsLandmarkIds() const { return false; }
 
+	/// The memory [bytes] the plugin's estimate of `landmarks` landmarks
+	/// takes, for a plugin whose memory is dominated by one dense matrix (the
+	/// EKF's covariance): the host refuses, before the replay, a run that
+	/// this machine could not hold (MemoryRequirement.h). Nullopt (the
+	/// default): grows with the map in a way that needs no such check.
+	virtual std::optional<double> bytesForLandmarks(std::size_t /*landmarks*/) const { return std::nullopt; }
+
 	/// For smoothers: the pose after every step, re-estimated with all data,
 	/// available after finish() (index k = step k). The host then reports
 	/// this trajectory instead of the online robotPose() of each step.

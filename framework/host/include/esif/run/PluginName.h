@@ -1,0 +1,14 @@
+#pragma once
+/// \file PluginName.h
+/// A plugin's class as an INI file names it in `[esif] plugin`.
+
+#include <esif/plugin/FilterPlugin.h>
+
+#include <string>
+
+namespace esif
+{
+/// "EkfSlam", not "esif::EkfSlam".
+std::string iniClassName(const FilterPlugin& plugin);
+
+}  // namespace esif

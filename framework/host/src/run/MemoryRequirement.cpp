@@ -1,0 +1,82 @@
+#include <esif/core/Errors.h>
+#include <esif/run/PluginName.h>
+#include <esif/run/MemoryRequirement.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sys/resource.h>
+#include <unistd.h>
+
+namespace esif
+{
+namespace
+{
+std::string gibibytes(double bytes)
+{
+	char text[64];
+	std::snprintf(text, sizeof(text), "%.3g GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+	return text;
+}
+
+void lowerTo(MemoryBudget& budget, double bytes, const char* set_by)
+{
+	if (bytes > 0 && bytes < budget.bytes) budget = {bytes, set_by};
+}
+
+/// The cgroup v2 limit of this process's group, if there is one: a number,
+/// or "max" for none. Read as a short line of a regular file.
+std::optional<double> cgroupLimit()
+{
+	std::ifstream in("/sys/fs/cgroup/memory.max");
+	std::string word;
+	if (!(in >> word) || word == "max" || word.size() > 20 ||
+		!std::all_of(word.begin(), word.end(), [](char c) { return c >= '0' && c <= '9'; }))
+		return std::nullopt;
+	return std::stod(word);
+}
+}  // namespace
+
+std::optional<std::size_t> landmarksInLog(const Rawlog& log)
+{
+	std::set<LandmarkId> ids;
+	for (const auto& step : log.true_ids)
+		for (const auto& id : step)
+			if (id) ids.insert(*id);
+	if (ids.empty())
+		for (const auto& step : log.steps)
+			if (step.scan)
+				for (const auto& m : step.scan->measurements)
+					if (m.id) ids.insert(*m.id);
+	return ids.empty() ? std::nullopt : std::optional<std::size_t>(ids.size());
+}
+
+MemoryBudget memoryBudget()
+{
+	MemoryBudget budget{static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE)),
+						"physical memory"};
+	for (const auto& [resource, name] : {std::pair{RLIMIT_AS, "RLIMIT_AS"}, std::pair{RLIMIT_DATA, "RLIMIT_DATA"}})
+	{
+		rlimit limit{};
+		if (::getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+			lowerTo(budget, static_cast<double>(limit.rlim_cur), name);
+	}
+	if (const auto cgroup = cgroupLimit()) lowerTo(budget, *cgroup, "cgroup memory.max");
+	return budget;
+}
+
+void requireMemory(const FilterPlugin& plugin, const Rawlog& log, const std::string& config_path,
+				   const MemoryBudget& budget)
+{
+	const auto landmarks = landmarksInLog(log);
+	if (!landmarks) return;
+	const auto bytes = plugin.bytesForLandmarks(*landmarks);
+	if (!bytes || *bytes <= budget.bytes) return;
+	throw ConfigError(config_path + ": plugin " + iniClassName(plugin) + " would need " + gibibytes(*bytes) +
+					  " for its estimate of the " + std::to_string(*landmarks) + " landmarks of " + log.path +
+					  ", more than the " + gibibytes(budget.bytes) + " this process may use (" + budget.set_by +
+					  "): choose a sparse information filter for a map this size");
+}
+
+}  // namespace esif
