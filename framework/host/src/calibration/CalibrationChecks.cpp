@@ -67,6 +67,26 @@ std::vector<OdometryWindowCheck> odometryWindowChecks(
 	return out;
 }
 
+void forEachSensorResidual(
+	const std::vector<StepInput>& steps, const std::vector<Pose2>& path,
+	const std::map<LandmarkId, Eigen::Vector2d>& landmarks,
+	const std::function<void(const Scan&, const RangeBearing&, double, double)>& visit)
+{
+	for (std::size_t k = 0; k < steps.size() && k < path.size(); ++k)
+	{
+		if (!steps[k].scan) continue;
+		const Scan& scan = *steps[k].scan;
+		const Pose2 sensor = compose(path[k], toPose2(scan.sensor_on_robot));
+		for (const auto& m : scan.measurements)
+		{
+			const auto it = m.id ? landmarks.find(*m.id) : landmarks.end();
+			if (it == landmarks.end()) continue;
+			const Eigen::Vector2d d = it->second - sensor.head<2>();
+			visit(scan, m, m.range_m - d.norm(), wrapAngle(m.bearing_rad - std::atan2(d.y(), d.x()) + sensor(2)));
+		}
+	}
+}
+
 namespace
 {
 /// Normalised residuals (range, bearing) of every measurement, per landmark in step order.
@@ -75,19 +95,9 @@ std::map<LandmarkId, std::vector<Eigen::Vector2d>> normalisedResidualsByLandmark
 	const std::map<LandmarkId, Eigen::Vector2d>& landmarks)
 {
 	std::map<LandmarkId, std::vector<Eigen::Vector2d>> out;
-	for (std::size_t k = 0; k < steps.size() && k < path.size(); ++k)
-	{
-		if (!steps[k].scan) continue;
-		const Pose2 sensor = compose(path[k], toPose2(steps[k].scan->sensor_on_robot));
-		for (const auto& m : steps[k].scan->measurements)
-		{
-			const auto it = m.id ? landmarks.find(*m.id) : landmarks.end();
-			if (it == landmarks.end()) continue;
-			const Eigen::Vector2d d = it->second - sensor.head<2>();
-			out[*m.id].emplace_back((m.range_m - d.norm()) / std::sqrt(m.cov(0, 0)),
-									wrapAngle(m.bearing_rad - std::atan2(d.y(), d.x()) + sensor(2)) / std::sqrt(m.cov(1, 1)));
-		}
-	}
+	forEachSensorResidual(steps, path, landmarks, [&](const Scan&, const RangeBearing& m, double range, double bearing) {
+		out[*m.id].emplace_back(range / std::sqrt(m.cov(0, 0)), bearing / std::sqrt(m.cov(1, 1)));
+	});
 	return out;
 }
 }  // namespace
@@ -130,26 +140,15 @@ SensorResidualCheck sensorResidualCheck(
 	const std::map<LandmarkId, Eigen::Vector2d>& landmarks)
 {
 	SensorResidualCheck c;
-	for (std::size_t k = 0; k < steps.size() && k < path.size(); ++k)
-	{
-		if (!steps[k].scan) continue;
-		const Pose2 sensor = compose(path[k], toPose2(steps[k].scan->sensor_on_robot));
-		for (const auto& m : steps[k].scan->measurements)
-		{
-			const auto it = m.id ? landmarks.find(*m.id) : landmarks.end();
-			if (it == landmarks.end()) continue;
-			const Eigen::Vector2d d = it->second - sensor.head<2>();
-			const double range = m.range_m - d.norm();
-			const double bearing = wrapAngle(m.bearing_rad - std::atan2(d.y(), d.x()) + sensor(2));
-			c.range_mean_m += range;
-			c.range_rms_m += range * range;
-			c.bearing_mean_rad += bearing;
-			c.bearing_rms_rad += bearing * bearing;
-			c.range_normalised += range * range / m.cov(0, 0);
-			c.bearing_normalised += bearing * bearing / m.cov(1, 1);
-			++c.measurements;
-		}
-	}
+	forEachSensorResidual(steps, path, landmarks, [&](const Scan&, const RangeBearing& m, double range, double bearing) {
+		c.range_mean_m += range;
+		c.range_rms_m += range * range;
+		c.bearing_mean_rad += bearing;
+		c.bearing_rms_rad += bearing * bearing;
+		c.range_normalised += range * range / m.cov(0, 0);
+		c.bearing_normalised += bearing * bearing / m.cov(1, 1);
+		++c.measurements;
+	});
 	if (c.measurements == 0) return c;
 	const double n = static_cast<double>(c.measurements);
 	c.range_mean_m /= n;

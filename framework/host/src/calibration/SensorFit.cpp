@@ -20,21 +20,12 @@ std::vector<Residual> residualsOf(const std::vector<ReferencedLog>& logs)
 {
 	std::vector<Residual> out;
 	for (const auto& ref : logs)
-		for (std::size_t k = 0; k < ref.log.steps.size() && k < ref.path.size(); ++k)
-		{
-			const auto& scan = ref.log.steps[k].scan;
-			if (!scan) continue;
-			const Pose2 sensor = compose(ref.path[k], toPose2(scan->sensor_on_robot));
-			const double area = (scan->max_range_m > 0 ? scan->max_range_m : 100.0) * (scan->fov_rad > 0 ? scan->fov_rad : 2 * M_PI);
-			for (const auto& m : scan->measurements)
-			{
-				const auto it = m.id ? ref.landmarks.find(*m.id) : ref.landmarks.end();
-				if (it == ref.landmarks.end()) continue;
-				const Eigen::Vector2d d = it->second - sensor.head<2>();
-				out.push_back({m.range_m - d.norm(), wrapAngle(m.bearing_rad - std::atan2(d.y(), d.x()) + sensor(2)),
-							   -std::log(area), *m.id});
-			}
-		}
+		forEachSensorResidual(ref.log.steps, ref.path, ref.landmarks,
+							  [&](const Scan& scan, const RangeBearing& m, double range, double bearing) {
+								  const double area = (scan.max_range_m > 0 ? scan.max_range_m : 100.0) *
+									  (scan.fov_rad > 0 ? scan.fov_rad : 2 * M_PI);
+								  out.push_back({range, bearing, -std::log(area), *m.id});
+							  });
 	return out;
 }
 

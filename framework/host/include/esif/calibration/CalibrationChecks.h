@@ -15,6 +15,7 @@
 #include <esif/models/Se2.h>
 
 #include <Eigen/Core>
+#include <functional>
 #include <map>
 #include <vector>
 
@@ -50,6 +51,15 @@ struct SensorResidualCheck
 	/// its residuals being shrunk by the fit).
 	double range_normalised = 0, bearing_normalised = 0;
 };
+
+/// Calls `visit(scan, measurement, range error [m], bearing error [rad])`
+/// for every measurement with an ID whose step has a reference pose and
+/// whose ID a reference landmark: the measurement minus eq. (1.6) at the
+/// reference (bearing wrapped). The one residual of every sensor check and fit.
+void forEachSensorResidual(
+	const std::vector<StepInput>& steps, const std::vector<Pose2>& path,
+	const std::map<LandmarkId, Eigen::Vector2d>& landmarks,
+	const std::function<void(const Scan&, const RangeBearing&, double, double)>& visit);
 
 /// Every measurement with an ID against the reference pose of its step and
 /// the reference landmark of its ID.
