@@ -1,12 +1,10 @@
 /// \file GzArchive.cpp
-/// In-memory serialization and gzip; see GzArchive.h.
+/// Streamed serialization and gzip; see GzArchive.h.
 
 #include <esif/core/Errors.h>
 #include <esif/formats/GzArchive.h>
 #include <esif/safeio/AtomicFile.h>
 #include "GzipFileStream.h"
-
-#include <mrpt/io/CMemoryStream.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -24,10 +22,10 @@ constexpr std::size_t kChunk = 1 << 16;
 }  // namespace
 
 GzipFileStream::GzipFileStream(const std::string& path, const std::string& shown_name, int level)
-	: file_(path, shown_name), shown_name_(shown_name), out_(kChunk)
+	: file_(path, shown_name), out_(kChunk)
 {
 	if (deflateInit2(&z_, level, Z_DEFLATED, kGzipWindowBits, kMemLevel, Z_DEFAULT_STRATEGY) != Z_OK)
-		throw InputError(shown_name_ + ": gzip: cannot initialise zlib");
+		throw InputError(file_.shownName() + ": gzip: cannot initialise zlib");
 	open_ = true;
 }
 
@@ -62,7 +60,7 @@ void GzipFileStream::deflateInput(int flush)
 		z_.avail_out = static_cast<uInt>(out_.size());
 		rc = deflate(&z_, flush);
 		if (rc != Z_OK && rc != Z_STREAM_END && rc != Z_BUF_ERROR)
-			throw InputError(shown_name_ + ": gzip: deflate failed (zlib code " + std::to_string(rc) + ")");
+			throw InputError(file_.shownName() + ": gzip: deflate failed (zlib code " + std::to_string(rc) + ")");
 		file_.write(out_.data(), out_.size() - z_.avail_out);
 	} while (z_.avail_out == 0 || (flush == Z_FINISH && rc != Z_STREAM_END));
 }
@@ -82,47 +80,6 @@ size_t GzipFileStream::Read(void*, size_t) { throw std::logic_error("GzipFileStr
 uint64_t GzipFileStream::Seek(int64_t, mrpt::io::CStream::TSeekOrigin)
 {
 	throw std::logic_error("GzipFileStream cannot seek");
-}
-
-std::string gzipBytes(const std::string& raw, int level)
-{
-	z_stream z{};
-	if (deflateInit2(&z, level, Z_DEFLATED, kGzipWindowBits, kMemLevel, Z_DEFAULT_STRATEGY) != Z_OK)
-		throw InputError("gzip: cannot initialise zlib");
-	z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(raw.data()));
-	z.avail_in = static_cast<uInt>(raw.size());
-	// One call with Z_FINISH is fine for inputs below 4 GiB (avail_in is a uInt).
-	if (raw.size() != z.avail_in)
-	{
-		deflateEnd(&z);
-		throw InputError("gzip: input of " + std::to_string(raw.size()) + " bytes is too large");
-	}
-	std::string out;
-	int rc = Z_OK;
-	while (rc != Z_STREAM_END)
-	{
-		const std::size_t before = out.size();
-		out.resize(before + kChunk);
-		z.next_out = reinterpret_cast<Bytef*>(&out[before]);
-		z.avail_out = static_cast<uInt>(kChunk);
-		rc = deflate(&z, Z_FINISH);
-		out.resize(before + kChunk - z.avail_out);
-		if (rc != Z_OK && rc != Z_STREAM_END && rc != Z_BUF_ERROR)
-		{
-			deflateEnd(&z);
-			throw InputError("gzip: deflate failed (zlib code " + std::to_string(rc) + ")");
-		}
-	}
-	deflateEnd(&z);
-	return out;
-}
-
-std::string serializedBytes(const std::function<void(mrpt::serialization::CArchive&)>& fill)
-{
-	mrpt::io::CMemoryStream memory;
-	auto archive = mrpt::serialization::archiveFrom(memory);
-	fill(archive);
-	return std::string(static_cast<const char*>(memory.getRawBufferData()), memory.getTotalBytesCount());
 }
 
 void writeGzArchiveAtomically(

@@ -2,9 +2,7 @@
 /// \file GzipFileStream.h
 /// An MRPT output stream that compresses what it is given with zlib and
 /// writes it out as it goes (CheckedFileWriter): a gzip file of any size in
-/// constant memory, with every write checked. Its bytes are those of
-/// gzipBytes() on the whole stream at the same level (zlib's output does
-/// not depend on how its input is cut).
+/// constant memory, with every write checked.
 
 #include <esif/safeio/CheckedFileWriter.h>
 
@@ -36,7 +34,6 @@ class GzipFileStream : public mrpt::io::CStream
 	void deflateInput(int flush);
 
 	CheckedFileWriter file_;
-	std::string shown_name_;
 	z_stream z_{};
 	bool open_ = false;
 	std::vector<unsigned char> out_;

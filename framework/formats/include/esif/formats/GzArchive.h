@@ -14,12 +14,6 @@
 
 namespace esif
 {
-/// `raw` compressed as one gzip member (RFC 1952) at zlib `level` (0-9).
-std::string gzipBytes(const std::string& raw, int level = 6);
-
-/// What `fill(archive)` serializes, as bytes in memory.
-std::string serializedBytes(const std::function<void(mrpt::serialization::CArchive&)>& fill);
-
 /// Writes what `fill` serializes to `path` as gzip, atomically
 /// (AtomicFile.h) and checked: an error names `path`. For map files and for
 /// gz rawlogs (the simulator and importers can adopt it in place of a

@@ -27,6 +27,8 @@ class CheckedFileWriter
 	void write(const void* data, std::size_t size);
 	/// fsyncs and closes the file, both checked (a full disk may show only here).
 	void finish();
+	/// The name errors give the file.
+	const std::string& shownName() const { return shown_name_; }
 
    private:
 	int fd_ = -1;
