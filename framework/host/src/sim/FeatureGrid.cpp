@@ -14,6 +14,7 @@ FeatureGrid::FeatureGrid(const std::vector<Eigen::Vector2d>& points, double cell
 	Eigen::Vector2d lo = points.front(), hi = points.front();
 	for (const auto& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
 	origin_ = lo;
+	cell_m_ = std::max(cell_m_, (hi - lo).maxCoeff() / kMaxCellsPerSide);
 	columns_ = static_cast<long>(std::floor((hi.x() - lo.x()) / cell_m_)) + 1;
 	rows_ = static_cast<long>(std::floor((hi.y() - lo.y()) / cell_m_)) + 1;
 

@@ -14,8 +14,12 @@ namespace esif
 class FeatureGrid
 {
    public:
-	/// Buckets `points` in cells of `cell_size_m` (> 0) over their bounding box.
+	/// Buckets `points` in square cells over their bounding box: cells of
+	/// `cell_size_m` (> 0), or larger where the points spread so far that
+	/// there would be more than kMaxCellsPerSide of them per side.
 	FeatureGrid(const std::vector<Eigen::Vector2d>& points, double cell_size_m);
+
+	static constexpr double kMaxCellsPerSide = 2048;
 
 	/// Indices (into the points given at construction) of every point within
 	/// `radius_m` of `centre`, and possibly some farther ones (those of the

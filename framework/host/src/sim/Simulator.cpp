@@ -160,22 +160,6 @@ std::vector<MeasurementIds> measurementIdsOf(const SimulatedStep& step)
 	return out;
 }
 
-/// The simulator's grid cells: the sensor's range, or larger where the
-/// features spread so far that cells of that size would be too many (at most
-/// about kMaxGridCellsPerSide^2 cells).
-double gridCellSize(const std::vector<Eigen::Vector2d>& features, double sensor_range_m)
-{
-	constexpr double kMaxGridCellsPerSide = 2048;
-	double extent = 0;
-	if (!features.empty())
-	{
-		Eigen::Vector2d lo = features.front(), hi = features.front();
-		for (const auto& p : features) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-		extent = (hi - lo).maxCoeff();
-	}
-	return std::max(sensor_range_m, extent / kMaxGridCellsPerSide);
-}
-
 }  // namespace
 
 Simulator::Simulator(const Scenario& scenario) : scenario_(scenario)
@@ -247,7 +231,7 @@ SimulationSummary Simulator::simulate(const std::function<void(const SimulatedSt
 	// A scan tests only the features of the cells its range reaches, in
 	// index order as a loop over all of them would: the same rawlog, bit for
 	// bit, at a cost that does not grow with the world.
-	const FeatureGrid grid(features_, gridCellSize(features_, s.sensor_max_range_m));
+	const FeatureGrid grid(features_, s.sensor_max_range_m);
 	std::vector<std::size_t> nearby;
 
 	Pose2 pose(s.start_x_m, s.start_y_m, wrapAngle(s.start_yaw_deg * kDegToRad));
