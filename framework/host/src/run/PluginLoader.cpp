@@ -1,5 +1,6 @@
 #include <esif/core/Errors.h>
 #include <esif/run/PluginLoader.h>
+#include <esif/run/PluginName.h>
 
 #include "SealedLibrary.h"
 
@@ -119,9 +120,7 @@ std::vector<std::string> PluginLoader::available() const
 	for (const auto* cls : mrpt::rtti::getAllRegisteredClassesChildrenOf(CLASS_ID_NAMESPACE(FilterPlugin, esif)))
 	{
 		if (!cls->ptrCreateObject) continue;  // abstract
-		std::string name = cls->className;
-		if (name.rfind(kNamespace, 0) == 0) name.erase(0, std::string(kNamespace).size());
-		out.push_back(name);
+		out.push_back(iniClassName(cls->className));
 	}
 	std::sort(out.begin(), out.end());
 	return out;

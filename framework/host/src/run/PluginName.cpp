@@ -2,11 +2,12 @@
 
 namespace esif
 {
-std::string iniClassName(const FilterPlugin& plugin)
+std::string iniClassName(const std::string& registered_name)
 {
-	const std::string name = plugin.GetRuntimeClass()->className;
 	const std::string prefix = "esif::";
-	return name.rfind(prefix, 0) == 0 ? name.substr(prefix.size()) : name;
+	return registered_name.rfind(prefix, 0) == 0 ? registered_name.substr(prefix.size()) : registered_name;
 }
+
+std::string iniClassName(const FilterPlugin& plugin) { return iniClassName(plugin.GetRuntimeClass()->className); }
 
 }  // namespace esif

@@ -10,5 +10,7 @@ namespace esif
 {
 /// "EkfSlam", not "esif::EkfSlam".
 std::string iniClassName(const FilterPlugin& plugin);
+/// The same for a registered class name ("esif::EkfSlam" -> "EkfSlam").
+std::string iniClassName(const std::string& registered_name);
 
 }  // namespace esif
