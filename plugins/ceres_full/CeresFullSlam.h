@@ -71,8 +71,6 @@ class CeresFullSlam : public FilterPlugin
 		double largest_dropped_sigma = 0;  ///< whitened residual norm of the worst one dropped
 		std::optional<ceres_full::SolutionCheck> check;	 ///< of the final solve
 	};
-	const SolveTally& tally() const { return tally_; }
-	const ceres_full::FullSlamGraph& graph() const { return *graph_; }
 
    private:
 	/// Runs Ceres; false when it failed (the last accepted estimate stays).

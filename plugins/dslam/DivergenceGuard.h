@@ -39,7 +39,6 @@ class DivergenceGuard
 
 	/// Distance bound from the origin [m].
 	double bound() const { return factor_ * (path_m_ + max_range_m_); }
-	double pathLength() const { return path_m_; }
 
 	/// Throws NumericalError naming the feature if one of `positions`
 	/// ([x1, y1, x2, y2, ...], features `ids`) is non-finite or beyond

@@ -110,7 +110,7 @@ class Dslam : public FilterPlugin
 
 	struct Tally
 	{
-		std::size_t admissible = 0, inadmissible = 0, skipped = 0, withdrawals = 0, virtual_updates = 0,
+		std::size_t admissible = 0, inadmissible = 0, withdrawals = 0, virtual_updates = 0,
 					anchor_updates = 0, ci_fusions = 0, ci_failures = 0, local_gate_rejections = 0,
 					map_gate_rejections = 0, reobservation_gate_rejections = 0, unconfirmed_sightings = 0, tracked_matches = 0,
 					ci_disagreements = 0,

@@ -188,8 +188,8 @@ std::size_t readHeader(const LineFile& f, std::size_t k)
 {
 	if (f.lineCount() < 2) f.fail(f.lineCount() + 1, "file ends early: expected 'Ref' on line 1 and 'N' on line 2");
 	const long ref = f.integer(1, f.row(1, 1, "'Ref'")[0], "Ref");
-	// LocalMap has no field for another reference pose (startPoseId() is
-	// k-1 by construction), so a map expressed in any other pose would be
+	// LocalMap has no field for another reference pose (map k is expressed
+	// in pose k-1 by construction), so a map expressed in any other pose would be
 	// joined in the wrong frame: reject it instead of misplacing it.
 	if (ref != static_cast<long>(k) - 1)
 		f.fail(1, "Ref " + std::to_string(ref) + ", expected " + std::to_string(k - 1) + " (map " + std::to_string(k) +

@@ -241,12 +241,4 @@ inline double niceStep(double span, double target_count)
 	return m * p;
 }
 
-/// A length in metres as a label, e.g. "10 m" or "0.5 m".
-inline std::string formatLength(double metres)
-{
-	char buf[32];
-	std::snprintf(buf, sizeof(buf), "%g m", metres);
-	return buf;
-}
-
 }  // namespace esif::map_geometry

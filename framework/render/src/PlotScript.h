@@ -67,8 +67,6 @@ class Figure
 	/// Appends one or more commands (a newline is added).
 	void command(const std::string& commands);
 
-	int widthPx() const { return width_px_; }
-	int heightPx() const { return height_px_; }
 
 	/// The whole gnuplot script: the data blocks once, then the commands
 	/// drawn to `png_path` and again to `svg_path`.

@@ -62,7 +62,7 @@ std::uintmax_t requireRegularFile(const std::string& path, const std::string& wh
 
 TextLineReader::TextLineReader(std::string path, const std::string& what) : path_(std::move(path))
 {
-	size_ = requireRegularFile(path_, what);
+	requireRegularFile(path_, what);
 	in_.open(path_, std::ios::binary);
 	if (!in_) throw InputError(path_ + ": cannot open " + what + ": " + std::strerror(errno));
 }

@@ -59,7 +59,6 @@ int PcgSolver::solve(const InformationForm& info, const Eigen::VectorXd& b, Eige
 		}
 	}
 	if (!x.allFinite()) throw NumericalError(what + ": PCG produced a non-finite solution");
-	last_iterations_ = it;
 	++counters_.pcg_solves;
 	counters_.pcg_iterations_total += it;
 	counters_.pcg_iterations_max = std::max<std::size_t>(counters_.pcg_iterations_max, it);

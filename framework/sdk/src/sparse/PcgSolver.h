@@ -25,7 +25,6 @@ class PcgSolver : public RecoverySolver
 	const LowerCsc* incompleteFactor() const override { return &preconditioner_.factor(); }
 
 	/// Iterations of the last solve.
-	int lastIterations() const { return last_iterations_; }
 
    private:
 	/// Solves I x = b from the given x; returns the iterations used.
@@ -35,7 +34,6 @@ class PcgSolver : public RecoverySolver
 	SparseCounters& counters_;
 	IncrementalPreconditioner preconditioner_;
 	Eigen::VectorXd r_, z_, p_, q_;
-	int last_iterations_ = 0;
 };
 
 }  // namespace esif

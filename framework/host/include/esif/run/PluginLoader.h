@@ -39,7 +39,6 @@ class PluginLoader
 	FilterPlugin::Ptr create(const std::string& class_name) const;
 
 	/// Library files loaded so far.
-	const std::vector<std::string>& loadedFiles() const { return loaded_; }
 
 	/// A plugin file that failed to load, and why (esif's check or dlerror's text).
 	struct BrokenPlugin

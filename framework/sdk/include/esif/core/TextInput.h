@@ -67,7 +67,6 @@ class TextLineReader
 	/// "PATH:LINE" of that line, for messages.
 	std::string where() const;
 	/// Size of the file in bytes, the bound for any count it declares.
-	std::uintmax_t fileSize() const { return size_; }
 	/// Throws InputError "PATH:LINE: problem".
 	[[noreturn]] void fail(const std::string& problem) const;
 
@@ -75,7 +74,6 @@ class TextLineReader
 	bool fill();
 
 	std::string path_;
-	std::uintmax_t size_ = 0;
 	std::ifstream in_;
 	std::string buffer_;
 	std::size_t begin_ = 0;	 // start of the unread part of buffer_

@@ -108,7 +108,6 @@ class EkfSlamCore
 
 	/// Takes effect from the next call on. The FEJ linearisation points are
 	/// kept in either mode, so switching mid-run is consistent.
-	void setJacobianPoints(JacobianPoints points) { points_ = points; }
 	JacobianPoints jacobianPoints() const { return points_; }
 
 	/// Prediction step, eq. (1.8): x_r <- x_r (+) u, P_rr <- F P_rr F^T + G Q G^T,

@@ -65,10 +65,6 @@ struct LocalMap
 	/// feature IDs (empty when read from files).
 	std::vector<StepReport> step_reports;
 
-	/// Id of the pose this map is expressed in (k-1; 0 = the global origin).
-	std::size_t startPoseId() const { return index - 1; }
-	/// Id of its end pose (k; the authors' files write it as -k).
-	std::size_t endPoseId() const { return index; }
 	/// Dimension of the state: 3 + 2 * features.
 	std::size_t stateDim() const { return 3 + 2 * features.size(); }
 	/// The state vector [end pose; x1, y1, ...] the information matrix is about.
