@@ -131,6 +131,7 @@ TEST(Simulator, CityConfigsDifferOnlyInTheirSteps)
 	const std::string city = keysButSteps("city");
 	EXPECT_NE(city.find("features_per_side"), std::string::npos);
 	EXPECT_EQ(keysButSteps("city_10k"), city);
+	EXPECT_EQ(keysButSteps("city_30k"), city);
 	EXPECT_EQ(keysButSteps("city_1k"), city);
 }
 
