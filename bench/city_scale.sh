@@ -1,0 +1,258 @@
+#!/usr/bin/env bash
+# City scale (book Sec. 1.4, 3.7, 4.5, 5.7): every back-end on the same
+# simulated city cut at about 1,000, 10,000, 32,000 and 100,000 landmarks
+# (configs/sim/city_1k.ini, city_10k.ini, city_30k.ini, city.ini; the rawlogs
+# are simulated into out/bench on first use and never committed). Whole `esif
+# run` processes with their IDs, medians over RUNS (the 100k runs once):
+# whole-process seconds and peak memory (/usr/bin/time), the replay's time
+# per fusion (map joining) or per step, and the landmark RMSE against the
+# ground truth; then log-log slopes between consecutive sizes, a projection of the
+# 1,000,000-landmark run from them, and the figures
+# docs/results/city_scale_time.svg and city_scale_memory.svg.
+#
+# A back-end runs only up to its size in MAX_SIZES (a run beyond it would
+# take hours: the EKF's cost is quadratic, D-SLAM map joining's join cost and
+# Ceres' solve grow faster than linearly); the EKF is also asked for the
+# 100k city, where it must refuse before replaying.
+#
+# The runs are kept in out/bench/city_scale/ (replaced by the next bench
+# run); REPORT_ONLY=1 writes the tables and figures again from them without
+# running anything.
+#
+# usage: bench/city_scale.sh [RUNS] [SIZES] [--update-docs]   (default 3, "1k 10k 30k 100k")
+# Environment: ESIF, ESIF_BENCH_OUT, ESIF_RESULTS_DIR (bench/common.sh);
+# MAX_SIZES, default "slsjf=100k dslam_lmj=10k dslam=10k ceres_full=10k ekf=1k";
+# RUN_TIMEOUT, seconds after which a run is stopped and reported as such
+# (default 600: the issue's 10-minute target for the 100k city); REPORT_ONLY.
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+runs=${1:-3}
+sizes=${2:-"1k 10k 30k 100k"}
+max_sizes=${MAX_SIZES:-"slsjf=100k dslam_lmj=10k dslam=10k ceres_full=10k ekf=1k"}
+run_timeout=${RUN_TIMEOUT:-600}
+cache=$bench_out; mkdir -p "$cache"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+runs_dir=$cache/city_scale  # the runs of the last bench, for REPORT_ONLY=1
+
+config_of_size() { [ "$1" = 100k ] && echo configs/sim/city.ini || echo "configs/sim/city_$1.ini"; }
+landmarks_of_size() { echo "${1%k}000"; }
+
+city_rawlog() {
+  local log=$cache/city_$1.rawlog
+  [ -f "$log" ] || "$esif" simulate --config "$(config_of_size "$1")" --out "$log" >&2
+  echo "$log"
+}
+
+# runs_at BACKEND SIZE: how many runs (0 beyond the back-end's largest size).
+runs_at() {
+  local limit
+  limit=$(tr ' ' '\n' <<<"$max_sizes" | sed -n "s/^$1=//p")
+  [ -n "$limit" ] || { echo 0; return; }
+  if [ "$(landmarks_of_size "$2")" -gt "$(landmarks_of_size "$limit")" ]; then echo 0
+  elif [ "$2" = 100k ]; then echo 1
+  else echo "$runs"; fi
+}
+
+# One whole process: appends "backend size exit seconds peak_kb run_dir" to runs.tsv.
+run_once() {
+  local backend=$1 size=$2 i=$3 log out code
+  log=$(city_rawlog "$size")
+  out=$runs_dir/${backend}_${size}_$i
+  code=0
+  /usr/bin/time -f "%e %M" -o "$work/time" timeout "$run_timeout" "$esif" run -q --no-figures --config "configs/$backend.ini" \
+    --rawlog "$log" --ground-truth "${log%.rawlog}" --out "$out" >"$work/stdout" 2>"$work/stderr" || code=$?
+  echo "$backend $size $code $(tail -1 "$work/time") ${out#"$runs_dir"/}" >>"$runs_dir/runs.tsv"
+  if [ "$code" = 124 ]; then echo "bench/city_scale.sh: $backend on city_$size stopped after $run_timeout s" >&2
+  elif [ "$code" != 0 ]; then echo "bench/city_scale.sh: $backend on city_$size exited $code: $(grep -v '^Command exited' "$work/stderr" | tail -1)" >&2; fi
+}
+
+if [ "${REPORT_ONLY:-0}" != 1 ]; then
+  rm -rf "$runs_dir"; mkdir -p "$runs_dir"
+  for size in $sizes; do
+    for backend in slsjf dslam_lmj dslam ceres_full ekf; do
+      for i in $(seq 1 "$(runs_at "$backend" "$size")"); do run_once "$backend" "$size" "$i"; done
+    done
+  done
+  # The EKF's refusal on the 100k city: one line naming the memory it would
+  # need, exit 1, nothing replayed (at 32k it would still be refused; at 10k
+  # its 3.2 GB fit, and the run would take hours).
+  largest=${sizes##* }
+  if [ "$largest" = 100k ] && [ "$(runs_at ekf "$largest")" = 0 ]; then
+    code=0
+    "$esif" run -q --no-figures --config configs/ekf.ini --rawlog "$(city_rawlog "$largest")" --out "$work/ekf_refused" \
+      >/dev/null 2>"$work/ekf_refused.err" || code=$?
+    { echo "$code"; head -1 "$work/ekf_refused.err"; } >"$runs_dir/ekf_refusal"
+  fi
+fi
+[ -f "$runs_dir/runs.tsv" ] || { echo "bench/city_scale.sh: no runs in $runs_dir" >&2; exit 1; }
+
+python3 - "$runs_dir" "$work" <<'PY' | tee "$work/tables.md"
+import json, math, os, statistics, sys
+runs_dir, work = sys.argv[1:3]
+
+rows = {}
+for line in open(os.path.join(runs_dir, "runs.tsv")):
+    backend, size, code, seconds, peak_kb, run_dir = line.split()
+    stats = {}
+    if code == "0":
+        stats = json.load(open(os.path.join(runs_dir, run_dir, "stats.json")))
+    rows.setdefault((backend, size), []).append(dict(code=int(code), seconds=float(seconds),
+                                                        peak_mb=float(peak_kb) / 1024, stats=stats))
+
+def med(values):
+    values = [v for v in values if v is not None]
+    return statistics.median(values) if values else None
+
+def per_unit_us(s):
+    """Replay time per fusion (map joining) or per step, microseconds."""
+    if s.get("local_maps"):
+        return s.get("join_us_mean")
+    return s.get("step_us_mean")
+
+table = []
+for (backend, size), runs in rows.items():
+    ok = [r for r in runs if r["code"] == 0]
+    if not ok:
+        code = runs[0]["code"]
+        failed = f"stopped after {runs[0]['seconds']:.0f} s" if code == 124 else f"exit {code}"
+        table.append(dict(backend=backend, size=size, failed=failed, runs=len(runs), peak_mb=runs[0]["peak_mb"]))
+        continue
+    s = ok[0]["stats"]
+    table.append(dict(backend=backend, size=size, runs=len(ok), failed=None,
+                      landmarks=s.get("landmarks"), steps=s.get("steps"), local_maps=s.get("local_maps"),
+                      seconds=med([r["seconds"] for r in ok]), wall_s=med([r["stats"].get("wall_s") for r in ok]),
+                      unit_us=med([per_unit_us(r["stats"]) for r in ok]),
+                      unit="fusion" if s.get("local_maps") else "step",
+                      peak_mb=med([r["peak_mb"] for r in ok]),
+                      factor_s=med([r["stats"].get("plugin_sparse_factor_time_s") for r in ok]),
+                      recovery_s=med([r["stats"].get("plugin_sparse_recovery_time_s") for r in ok]),
+                      association_s=med([r["stats"].get("plugin_association_s") for r in ok]),
+                      read_s=med([r["stats"].get("time_read_s") for r in ok]),
+                      rmse=s.get("landmark_rmse_m")))
+order = {"slsjf": 0, "dslam_lmj": 1, "dslam": 2, "ceres_full": 3, "ekf": 4}
+table.sort(key=lambda t: (order[t["backend"]], int(t["size"][:-1])))
+
+def cell(fmt, v):
+    return "-" if v is None else fmt % v
+
+print("### Every run, medians\n")
+print("| back-end | city | runs | steps | landmarks | local maps | whole process s | replay s | per fusion / step ms | peak memory MB | landmark RMSE m |")
+print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+for t in table:
+    if t["failed"]:
+        print(f"| {t['backend']} | {t['size']} | {t['runs']} | - | - | - | {t['failed']} | - | - | {t['peak_mb']:.0f} | - |")
+        continue
+    print(f"| {t['backend']} | {t['size']} | {t['runs']} | {t['steps']} | {t['landmarks']} | {cell('%d', t['local_maps'])} | "
+          f"{t['seconds']:.2f} | {t['wall_s']:.2f} | {t['unit_us'] / 1000:.3f} per {t['unit']} | {t['peak_mb']:.0f} | "
+          f"{cell('%.2f', t['rmse'])} |")
+
+# RMSE against the full-SLAM optimum where both ran.
+print("\n### Landmark RMSE against the ground truth, beside the full-SLAM optimum's\n")
+print("| city | slsjf m | ceres_full m | ratio |")
+print("|---|---:|---:|---:|")
+by = {(t["backend"], t["size"]): t for t in table if not t["failed"]}
+for size in ["1k", "10k", "30k", "100k"]:
+    a, b = by.get(("slsjf", size)), by.get(("ceres_full", size))
+    if a and b and a["rmse"] and b["rmse"]:
+        print(f"| {size} | {a['rmse']:.2f} | {b['rmse']:.2f} | {a['rmse'] / b['rmse']:.2f} |")
+
+def series(backend, key):
+    """(landmarks, value) of the back-end's completed sizes, fewest landmarks first."""
+    return sorted((t["landmarks"], t[key]) for t in table if t["backend"] == backend and not t["failed"] and t[key])
+
+def slopes(points):
+    """Log-log slope between each pair of consecutive sizes: growth is read
+    interval by interval, since one line through all of them would hide a
+    cost that steepens with the map."""
+    return [math.log(b[1] / a[1]) / math.log(b[0] / a[0]) for a, b in zip(points, points[1:])]
+
+def duration(seconds):
+    return f"{seconds:.0f} s" if seconds < 600 else (f"{seconds / 60:.0f} min" if seconds < 36000 else f"{seconds / 3600:.0f} h")
+
+def project(points, to=1e6):
+    """From the largest completed size with the last interval's slope."""
+    (n0, v0), (n1, v1) = points[-2], points[-1]
+    return v1 * (to / n1) ** (math.log(v1 / v0) / math.log(n1 / n0))
+
+print("\n### Growth: log-log slopes between consecutive sizes (landmarks)\n")
+print("Slope 1 is linear growth in the landmarks. The projection extends the last interval's slope from the largest")
+print("completed run to 1,000,000 landmarks; a larger run that was stopped is listed below it.\n")
+print("| back-end | interval | per fusion / step time | whole process | peak memory |")
+print("|---|---|---:|---:|---:|")
+growth = {}
+for backend in order:
+    unit, whole, mem = series(backend, "unit_us"), series(backend, "seconds"), series(backend, "peak_mb")
+    if len(unit) < 2:
+        continue
+    growth[backend] = (unit, whole, mem)
+    for k, (su, sw, sm) in enumerate(zip(slopes(unit), slopes(whole), slopes(mem))):
+        print(f"| {backend} | {unit[k][0]} - {unit[k + 1][0]} | {su:.2f} | {sw:.2f} | {sm:.2f} |")
+print("\n| back-end | projected 1,000,000 landmarks: whole process | peak memory | larger runs stopped |")
+print("|---|---:|---:|---|")
+for backend, (unit, whole, mem) in growth.items():
+    stopped = [t for t in table if t["backend"] == backend and t["failed"]]
+    note = "; ".join(f"{t['size']}: {t['failed']} at {t['peak_mb']:.0f} MB" for t in stopped) or "-"
+    print(f"| {backend} | {duration(project(whole))} | {project(mem) / 1024:.1f} GiB | {note} |")
+
+print("\nWhere the largest SLSJF run spends its replay (the plugin's own timers):\n")
+big = max((t for t in table if t["backend"] == "slsjf" and not t["failed"]), key=lambda t: t["landmarks"], default=None)
+if big:
+    print("| part | s | share of replay |")
+    print("|---|---:|---:|")
+    for name, key in [("factorisation (sparse Cholesky: reorder, analysis, numeric, updates)", "factor_s"),
+                      ("recovery (state and covariance columns, eq. 3.25/3.37)", "recovery_s"),
+                      ("data association", "association_s")]:
+        if big[key] is not None:
+            print(f"| {name} | {big[key]:.2f} | {100 * big[key] / big['wall_s']:.0f}% |")
+    if big["read_s"] is not None:
+        print(f"| reading the rawlog (before the replay) | {big['read_s']:.2f} | - |")
+
+refusal = os.path.join(runs_dir, "ekf_refusal")
+if os.path.exists(refusal):
+    code, line = (open(refusal).read().split("\n", 1) + [""])[:2]
+    print(f"\nThe EKF on the largest city: exit {code.strip()}, `{line.strip()}`")
+
+# Figures: each back-end's sizes joined by lines, its interval slopes in the key.
+with open(os.path.join(work, "series.gp"), "w") as gp:
+    plots = {"time": [], "memory": []}
+    for i, (backend, (unit, _, mem)) in enumerate(growth.items()):
+        for name, points, scale in [("time", unit, 1e-3), ("memory", mem, 1.0)]:
+            data = os.path.join(work, f"{name}_{backend}.dat")
+            with open(data, "w") as f:
+                for n, v in points:
+                    f.write(f"{n} {v * scale}\n")
+            label = ", ".join(f"{x:.2f}" for x in slopes(points))
+            plots[name].append(f"'{data}' using 1:2 with linespoints pt 7 lc {i + 1} title '{backend} (slopes {label})'")
+    for name, ylabel in [(n, l) for n, l in [("time", "mean time per fusion (map joining) or step [ms]"),
+                         ("memory", "peak memory of the whole process [MB]")] if plots[n]]:
+        gp.write(f"set terminal svg size 640,420 dynamic font 'sans,11'\nset output '{work}/city_scale_{name}.svg'\n")
+        gp.write("set logscale xy\nset grid\nset key left top\nset xlabel 'landmarks in the map'\n")
+        gp.write(f"set ylabel '{ylabel}'\nplot " + ", ".join(plots[name]) + "\nunset output\n")
+print("\n![time per fusion or step](city_scale_time.svg)\n\n![peak memory](city_scale_memory.svg)")
+PY
+gnuplot "$work/series.gp"  # empty when fewer than two sizes ran: no figure
+
+if [ "$update_docs" = 1 ]; then
+  mkdir -p "$results_dir"
+  for figure in time memory; do
+    [ ! -f "$work/city_scale_$figure.svg" ] || cp "$work/city_scale_$figure.svg" "$results_dir/"
+  done
+  {
+    cat <<'MD'
+Every back-end on one simulated city cut at four sizes (`configs/sim/city*.ini`:
+a 1100 m square of features on a 3 m grid, a random tour at 1.5 m/s, the
+sensor and noise of `configs/sim/booksim.ini`), with the rawlog's IDs, each
+with its shipped config (`configs/<back-end>.ini`). Whole `esif run
+--no-figures` processes; medians over the runs (the 100k city once). "Per
+fusion / step" is the replay's mean time per local-map fusion for the
+map-joining filters and per step otherwise; peak memory is the whole
+process's (`/usr/bin/time`), rawlog included. Slopes are log-log slopes
+against the landmarks between consecutive sizes; the projection extends the
+last one. A run stopped at the time limit (`RUN_TIMEOUT`, 600 s: the
+10-minute target) is listed with the memory it had reached.
+
+MD
+    cat "$work/tables.md"
+  } | results_page city_scale "City scale: cost against map size" "configs/sim/city_1k.ini, city_10k.ini, city_30k.ini and city.ini simulated by \`esif simulate\`, $runs runs"
+fi
