@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -35,6 +36,26 @@ inline LocalMap makeLocalMap(
 	for (const auto& f : features) map.features.push_back({f.id, Eigen::Vector2d(f.x, f.y), false});
 	const auto n = static_cast<Eigen::Index>(map.stateDim());
 	map.information = Eigen::MatrixXd::Identity(n, n) / (sigma * sigma);
+	return map;
+}
+
+/// Local map `index` with `features` random features spread along x (3 m
+/// apart, 1 m noise) and a random, well-conditioned SPD information matrix:
+/// for tests of algebra that must hold for any map.
+inline LocalMap randomLocalMap(std::size_t index, int features, unsigned seed)
+{
+	std::mt19937 rng(seed);
+	std::normal_distribution<double> n(0, 1);
+	LocalMap map;
+	map.index = index;
+	map.end_pose = Pose2(2 + n(rng), n(rng), 0.3 * n(rng));
+	for (int i = 0; i < features; ++i)
+		map.features.push_back({10 + i, Eigen::Vector2d(3 * i + n(rng), 3 * n(rng)), false});
+	const int d = 3 + 2 * features;
+	Eigen::MatrixXd A(d, d);
+	for (int r = 0; r < d; ++r)
+		for (int c = 0; c < d; ++c) A(r, c) = n(rng);
+	map.information = A * A.transpose() + d * Eigen::MatrixXd::Identity(d, d);
 	return map;
 }
 

@@ -7,6 +7,7 @@
 // local map.
 
 #include <EsifTestSupport.h>
+#include <LocalMapTestSupport.h>
 #include <NumericJacobian.h>
 
 #include "PairFrame.h"
@@ -35,29 +36,12 @@ const std::string kGrid196 = test::sourcePath("rawlogs/grid196.rawlog");
 
 LocalMapJoiner& joinerOf(FilterPlugin& plugin) { return dynamic_cast<LocalMapJoiner&>(plugin); }
 
-LocalMap randomLocalMap(int features, unsigned seed)
-{
-	std::mt19937 rng(seed);
-	std::normal_distribution<double> n(0, 1);
-	LocalMap map;
-	map.index = 1;
-	map.end_pose = Pose2(2 + n(rng), n(rng), 0.3 * n(rng));
-	for (int i = 0; i < features; ++i)
-		map.features.push_back({10 + i, Eigen::Vector2d(3 * i + n(rng), 3 * n(rng)), false});
-	const int d = 3 + 2 * features;
-	Eigen::MatrixXd A(d, d);
-	for (int r = 0; r < d; ++r)
-		for (int c = 0; c < d; ++c) A(r, c) = n(rng);
-	map.information = A * A.transpose() + d * Eigen::MatrixXd::Identity(d, d);
-	return map;
-}
-
 TEST(LmjUnits, OneLocalMapIsTheGlobalMapWithTheRobotMarginalised)
 {
 	// Sec. 4.3: "the global map is just the same as the first local map
 	// without the robot pose": I(1) = P_ff^-1.
 	auto plugin = test::makePlugin("DslamLocalMapJoining", "");
-	const LocalMap map = randomLocalMap(4, 5);
+	const LocalMap map = test::randomLocalMap(1, 4, 5);
 	joinerOf(*plugin).joinLocalMap(map);
 	plugin->finish();
 	const Eigen::MatrixXd P = map.information.inverse();  // 11 x 11 reference

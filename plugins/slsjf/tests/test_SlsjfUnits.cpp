@@ -5,6 +5,7 @@
 // virtual observation marginalises left-out features exactly.
 
 #include <EsifTestSupport.h>
+#include <LocalMapTestSupport.h>
 
 #include "VirtualObservation.h"
 
@@ -19,7 +20,6 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
-#include <random>
 
 namespace
 {
@@ -32,28 +32,11 @@ LocalMapJoiner& joinerOf(FilterPlugin& plugin)
 	return *joiner;
 }
 
-/// A local map with random features and a random SPD information matrix.
-LocalMap randomLocalMap(std::size_t index, int features, unsigned seed)
-{
-	std::mt19937 rng(seed);
-	std::normal_distribution<double> n(0, 1);
-	LocalMap map;
-	map.index = index;
-	map.end_pose = Pose2(2 + n(rng), n(rng), 0.3 * n(rng));
-	for (int i = 0; i < features; ++i) map.features.push_back({10 + i, Eigen::Vector2d(3 * n(rng), 3 * n(rng)), false});
-	const int d = 3 + 2 * features;
-	Eigen::MatrixXd A(d, d);
-	for (int r = 0; r < d; ++r)
-		for (int c = 0; c < d; ++c) A(r, c) = n(rng);
-	map.information = A * A.transpose() + d * Eigen::MatrixXd::Identity(d, d);
-	return map;
-}
-
 TEST(SlsjfUnits, OneLocalMapIsTheGlobalMap)
 {
 	// Algorithm 5.1, k = 1: "the first local map is set as the global map".
 	auto plugin = test::makePlugin("Slsjf", "");
-	const LocalMap map = randomLocalMap(1, 4, 7);
+	const LocalMap map = test::randomLocalMap(1, 4, 7);
 	joinerOf(*plugin).joinLocalMap(map);
 	plugin->finish();
 
@@ -81,14 +64,14 @@ TEST(SlsjfUnits, OneLocalMapIsTheGlobalMap)
 TEST(SlsjfUnits, MapsMustComeInOrder)
 {
 	auto plugin = test::makePlugin("Slsjf", "");
-	EXPECT_THROW(joinerOf(*plugin).joinLocalMap(randomLocalMap(2, 2, 1)), InputError);
+	EXPECT_THROW(joinerOf(*plugin).joinLocalMap(test::randomLocalMap(2, 2, 1)), InputError);
 }
 
 TEST(SlsjfUnits, LeftOutFeaturesAreMarginalisedExactly)
 {
 	// The kept part of the virtual observation must carry the marginal of
 	// the local map over it: its covariance is the kept block of P.
-	const LocalMap map = randomLocalMap(3, 5, 11);
+	const LocalMap map = test::randomLocalMap(3, 5, 11);
 	const auto obs = slsjf::keepFeatures(map, {true, false, true, false, true});
 	ASSERT_EQ(obs.kept, (std::vector<std::size_t>{0, 2, 4}));
 	const Eigen::MatrixXd P = map.information.inverse();
