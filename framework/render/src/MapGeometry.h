@@ -13,9 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <limits>
-#include <string>
 #include <vector>
 
 namespace esif::map_geometry

@@ -24,8 +24,6 @@ class PcgSolver : public RecoverySolver
 	std::size_t factorNonZeros() const override { return preconditioner_.nonZeros(); }
 	const LowerCsc* incompleteFactor() const override { return &preconditioner_.factor(); }
 
-	/// Iterations of the last solve.
-
    private:
 	/// Solves I x = b from the given x; returns the iterations used.
 	int solve(const InformationForm& info, const Eigen::VectorXd& b, Eigen::VectorXd& x, const std::string& what);

@@ -38,8 +38,6 @@ class PluginLoader
 	/// to load (any may have been it), when it is unknown.
 	FilterPlugin::Ptr create(const std::string& class_name) const;
 
-	/// Library files loaded so far.
-
 	/// A plugin file that failed to load, and why (esif's check or dlerror's text).
 	struct BrokenPlugin
 	{

@@ -66,7 +66,6 @@ class TextLineReader
 	std::size_t lineNumber() const { return line_number_; }
 	/// "PATH:LINE" of that line, for messages.
 	std::string where() const;
-	/// Size of the file in bytes, the bound for any count it declares.
 	/// Throws InputError "PATH:LINE: problem".
 	[[noreturn]] void fail(const std::string& problem) const;
 

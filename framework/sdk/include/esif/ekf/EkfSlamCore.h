@@ -106,8 +106,7 @@ class EkfSlamCore
 	/// robot pose (relative SLAM, Sec. 1.3.1).
 	explicit EkfSlamCore(JacobianPoints points = JacobianPoints::Current);
 
-	/// Takes effect from the next call on. The FEJ linearisation points are
-	/// kept in either mode, so switching mid-run is consistent.
+	/// Where the Jacobians are taken, as given at construction.
 	JacobianPoints jacobianPoints() const { return points_; }
 
 	/// Prediction step, eq. (1.8): x_r <- x_r (+) u, P_rr <- F P_rr F^T + G Q G^T,
