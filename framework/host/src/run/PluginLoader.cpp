@@ -21,7 +21,6 @@ namespace esif
 namespace
 {
 constexpr const char* kPrefix = "libesif_plugin_";
-constexpr const char* kNamespace = "esif::";
 
 /// ../lib/esif relative to the running executable, where the build and
 /// install put the plugins.
@@ -128,8 +127,7 @@ std::vector<std::string> PluginLoader::available() const
 
 FilterPlugin::Ptr PluginLoader::create(const std::string& class_name) const
 {
-	const std::string full = class_name.rfind(kNamespace, 0) == 0 ? class_name : kNamespace + class_name;
-	const auto* cls = mrpt::rtti::findRegisteredClass(full);
+	const auto* cls = mrpt::rtti::findRegisteredClass(registeredClassName(class_name));
 	FilterPlugin::Ptr plugin;
 	if (cls && cls->derivedFrom(CLASS_ID_NAMESPACE(FilterPlugin, esif)) && cls->ptrCreateObject)
 		plugin = std::dynamic_pointer_cast<FilterPlugin>(cls->createObject());
