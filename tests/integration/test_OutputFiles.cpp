@@ -104,7 +104,7 @@ TEST(OutputFiles, AJobListIsNeverWrittenIntoACampaignNorOverAnotherKindOfFile)
 	ASSERT_EQ(runEsif(campaign + " --runs 1").exit_code, 0);
 	const std::string manifest = readText(mc + "/campaign.ini");
 	const std::string stats = readText(mc + "/runs/ekf/seed_0001/stats.json");
-	for (const std::string inside : {mc + "/campaign.ini", mc + "/runs/ekf/seed_0001/stats.json", mc + "/jobs.txt"})
+	for (const std::string& inside : {mc + "/campaign.ini", mc + "/runs/ekf/seed_0001/stats.json", mc + "/jobs.txt"})
 		expectOneErrorLine(runEsif(campaign + " --runs 2 --emit-jobs " + quoted(inside)), "lies inside the campaign folder");
 	EXPECT_EQ(readText(mc + "/campaign.ini"), manifest);
 	EXPECT_EQ(readText(mc + "/runs/ekf/seed_0001/stats.json"), stats);
@@ -155,9 +155,13 @@ TEST(OutputFiles, AKillAtAnyRenameNeverLeavesARawlogBesideAnotherOnesTruth)
 			"run -q --no-figures --config " + quoted(sourcePath("configs/ekf.ini")) + " --rawlog " + quoted(rawlog) +
 			" --out " + quoted(dir.file("r" + std::to_string(when))));
 		if (new_rawlog != new_truth)
+		{
 			expectOneErrorLine(run, rawlog + ": esif was stopped while replacing it");
-		else if (run.exit_code != 0)	// a whole pair, but the commit not yet marked complete
+		}
+		else if (run.exit_code != 0)  // a whole pair, but the commit not yet marked complete
+		{
 			EXPECT_NE(run.out.find("esif was stopped while replacing it"), std::string::npos) << when << run.out;
+		}
 		// The next writer finishes what the kill left and takes the set over.
 		const auto next = simulateSmall(rawlog, "--seed 3");
 		ASSERT_EQ(next.exit_code, 0) << "after a kill at rename " << when << ": " << next.out;

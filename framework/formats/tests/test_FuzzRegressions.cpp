@@ -54,7 +54,10 @@ void checkTextReader(const std::string& reader, Judge judge, Kept expected = Kep
 		EXPECT_FALSE(verdict.finding) << path << ": " << verdict.finding.value_or("");
 	}
 	const auto kept = keptInputs(reader);
-	if (expected == Kept::Some) ASSERT_FALSE(kept.empty()) << reader;
+	if (expected == Kept::Some)
+	{
+		ASSERT_FALSE(kept.empty()) << reader;
+	}
 	for (const auto& path : kept)
 	{
 		const auto verdict = judge(test::readText(path));

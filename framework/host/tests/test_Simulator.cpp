@@ -108,7 +108,7 @@ Reloaded reload(const std::string& path)
 TEST(Simulator, DefaultsAndCommittedConfigsAreValid)
 {
 	EXPECT_NO_THROW(Simulator(Scenario{}));
-	for (const char* name : {"small", "grid196", "grid1225", "grid1225_large", "city", "city_10k", "city_1k"})
+	for (const char* name : {"small", "grid196", "grid1225", "grid1225_large", "city", "city_30k", "city_10k", "city_1k"})
 	{
 		SCOPED_TRACE(name);
 		Scenario s;
