@@ -65,20 +65,15 @@ struct CeresFullParams
 	double parameter_tolerance = 1e-10;
 
 	// Trust-region damping (Ceres' Solver::Options of the same names).
-	/// Powell's dogleg. With the book's velocity-model odometry (booksim: a
-	/// near rank-2 covariance, lateral sigma 3e-5 m against 6e-3 m forward)
-	/// Levenberg-Marquardt stalls in the re-solve after a long loop (chi2 per
-	/// residual 6.8 at its iteration cap, 7.7 x dof at the end), where the
-	/// dogleg reaches the optimum (chi2 = dof) in 21 iterations. Both reach the
-	/// same optimum on Victoria Park and grid1225_large; the dogleg in 0.72 of the
-	/// time on the latter.
+	/// Powell's dogleg: Levenberg-Marquardt stalls on the book's near rank-2
+	/// velocity-model odometry (docs/plugins/ceres_full.md, "Damping").
 	TrustRegion trust_region_strategy = TrustRegion::Dogleg;
 	/// Ceres' Levenberg-Marquardt damps with mu D, D = diag(J^T J) clamped to
 	/// [min_lm_diagonal, max_lm_diagonal], of J scaled to unit columns when
 	/// jacobi_scaling is on (the dogleg regularises its Gauss-Newton step with
-	/// the same D). Off with both clamps at 1: plain damping mu I, which on
-	/// Victoria Park and grid1225_large converges where the diagonal-scaled
-	/// damping crawls.
+	/// the same D). Off with both clamps at 1: plain damping mu I, which
+	/// converges where the diagonal-scaled damping crawls
+	/// (docs/plugins/ceres_full.md, "Damping").
 	bool jacobi_scaling = false;
 	double initial_trust_region_radius = 1e4;
 	double max_trust_region_radius = 1e16;
@@ -86,14 +81,12 @@ struct CeresFullParams
 	double max_lm_diagonal = 1;
 
 	/// Outliers (a misread ID, a reflection) are not Gaussian noise: one of
-	/// them metres off drags the least-squares optimum by metres (MRCLAM
-	/// dataset 6, robots 3 and 5: landmark RMSE 4.9 and 4.0 m, chi2 / dof 3.4
-	/// and 3.9, the optimum all the same: a solve started at the truth ends at
-	/// the same chi2). With Drop every solve of the run uses a Huber loss
-	/// (robust_loss_scale); the final one, converged so, drops every
-	/// measurement whose whitened residual fails the gate and solves eq. 1.21
-	/// (or robust_loss) on the rest, repeating until no more is dropped: the
-	/// result is the optimum of the measurements it keeps.
+	/// them metres off drags the least-squares optimum by metres
+	/// (docs/plugins/ceres_full.md, "Outliers"). With Drop every solve of the
+	/// run uses a Huber loss (robust_loss_scale); the final one, converged
+	/// so, drops every measurement whose whitened residual fails the gate and
+	/// solves eq. 1.21 (or robust_loss) on the rest, repeating until no more
+	/// is dropped: the result is the optimum of the measurements it keeps.
 	OutlierPolicy outliers = OutlierPolicy::Drop;
 	/// The gate's chance of dropping any inlier over the whole run: the
 	/// chi-square(2) quantile 1 - rate / N of the N measurements (Bonferroni),
@@ -101,11 +94,10 @@ struct CeresFullParams
 	/// long it is; 5.1 sigma for 4,000 measurements, 6.0 for 470,000.
 	double outlier_false_drop_rate = 0.01;
 	/// More measurements than this share beyond the gate is not a few
-	/// outliers but a wrong solution (a collapsed pose, a wrong noise model:
-	/// a batch solve from dead reckoning on Victoria Park put 15% beyond it):
+	/// outliers but a wrong solution (a collapsed pose, a wrong noise model):
 	/// then nothing is dropped, the plain solve stands and is reported
-	/// implausible. Real data here: 0.1-0.2% (MRCLAM dataset 6), 0.3%
-	/// (Victoria Park).
+	/// implausible. Well above real data's share (docs/plugins/ceres_full.md,
+	/// "Outliers").
 	double max_outlier_share = 0.02;
 
 	int threads = 0;  ///< Jacobian evaluation and covariance threads; 0 = every core

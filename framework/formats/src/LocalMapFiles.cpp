@@ -28,14 +28,9 @@ namespace esif
 namespace
 {
 /// Largest asymmetry |M(i,j) - M(j,i)| accepted, relative to the largest
-/// |entry| of the matrix. Measured on the data sets (max over all maps):
-///   vicpark_200 (200 maps, N 13..75): absolute 1.2e-12 .. 5.6e-11,
-///     relative 1.4e-16 .. 7.5e-15 (median 4.8e-16), i.e. at most ~34 ulps of
-///     the largest entry: the round-off of the authors' MATLAB inversion;
-///   sim5_with_truth (5 maps): exactly symmetric (0).
-/// 1e-9 is five orders of magnitude above that round-off, so no published map
-/// is near the limit, yet any real damage (a transposed or mistyped entry,
-/// a wrong row) is caught; it is also LocalMap::validate's default.
+/// |entry| of the matrix; also LocalMap::validate's default. Far above the
+/// published maps' round-off, yet it catches real damage (a transposed or
+/// mistyped entry, a wrong row): docs/local-maps.md, "Symmetry tolerance".
 constexpr double kSymmetryTolerance = 1e-9;
 
 const char* const kLinksFile = "links.txt";
