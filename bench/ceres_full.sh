@@ -39,13 +39,14 @@ rawlog_for() {
 ekf_config_for() { if [ "$1" = vicpark ]; then echo configs/vicpark/ekf.ini; else echo configs/ekf.ini; fi; }
 resolve_steps_for() { if [ "$1" = vicpark ]; then echo 100; else echo 200; fi; }
 
-# variant name -> INI text of the baseline's section
+# variant name -> INI text of the baseline's config
 variants="growth every_k from_ekf batch"
 variant_ini() {  # dataset variant
+  printf '[esif]\nplugin = CeresFullSlam\n'
   case $2 in
     growth) printf '[ceres_full]\n' ;;
     every_k) printf '[ceres_full]\nresolve_growth = 0\nrefine_new_poses = false\nresolve_every_steps = %s\n' "$(resolve_steps_for "$1")" ;;
-    from_ekf) printf '[ceres_full]\nresolve_growth = 0\ninitial_run = %s\n' "$work/$1_ekf" ;;
+    from_ekf) printf 'initial_run = %s\n[ceres_full]\nresolve_growth = 0\n' "$work/$1_ekf" ;;
     batch) printf '[ceres_full]\nresolve_growth = 0\nrefine_new_poses = false\n' ;;
   esac
 }
@@ -67,7 +68,7 @@ table() {
       t0=$(now); "$esif" run -q --config "$(ekf_config_for "$data")" --rawlog "$log" --out "$work/${data}_ekf" >/dev/null; t1=$(now)
       awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}' >>"$work/${data}_ekf.total"
       for v in $variants; do
-        { printf '[esif]\nplugin = CeresFullSlam\n'; variant_ini "$data" "$v"; } >"$work/$v.ini"
+        variant_ini "$data" "$v" >"$work/$v.ini"
         d="$work/${data}_$v"
         t0=$(now); "$esif" run -q --config "$work/$v.ini" --rawlog "$log" --out "$d" >/dev/null; t1=$(now)
         awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}' >>"$d.total"

@@ -76,9 +76,6 @@ void declareModelAndOutputs(CeresFullParams& p, ParamBinder& b)
 		 {"landmarks_and_final_pose", CovarianceScope::LandmarksAndFinalPose},
 		 {"all_poses", CovarianceScope::AllPoses}},
 		"marginal covariances computed after the final solve (none disables NEES and ellipses)");
-	b.text("initial_run", p.initial_run,
-		   "run folder whose trajectory.tum and landmarks.txt are the initial guess (empty = odometry and first "
-		   "sightings)");
 }
 
 void declareChecks(CeresFullParams& p, ParamBinder& b)

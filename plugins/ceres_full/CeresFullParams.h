@@ -104,9 +104,6 @@ struct CeresFullParams
 	RobustLoss robust_loss = RobustLoss::None;	///< on range-bearing terms only
 	double robust_loss_scale = 3.0;	 ///< whitened residual norm where the loss turns robust [sigma]
 	CovarianceScope covariance = CovarianceScope::LandmarksAndFinalPose;
-	/// Run folder (trajectory.tum, landmarks.txt) whose estimate is the initial
-	/// guess; empty = odometry and first sightings.
-	std::string initial_run;
 
 	// Checks of the final solution.
 	/// A pose closer than this to a landmark it measured more than 5 range

@@ -42,8 +42,6 @@ void CeresFullSlam::configure(const ConfigSection& section)
 	schedule_.emplace(
 		params_.resolve_growth, static_cast<std::size_t>(params_.resolve_min_new_poses),
 		static_cast<std::size_t>(params_.resolve_every_steps));
-	if (!params_.initial_run.empty())
-		guess_ = InitialGuess::load(params_.initial_run, section.describeKey("initial_run", params_.initial_run));
 }
 
 std::unique_ptr<ceres::LossFunction> CeresFullSlam::outlierLoss() const

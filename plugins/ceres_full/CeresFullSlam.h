@@ -13,7 +13,6 @@
 
 #include "CeresFullParams.h"
 #include "FullSlamGraph.h"
-#include "InitialGuess.h"
 #include "SolutionChecks.h"
 #include "SolveSchedule.h"
 #include "SolverOptions.h"
@@ -42,6 +41,10 @@ class CeresFullSlam : public FilterPlugin
 	CostFigures costFigures() const override;
 	Formulation formulation() const override { return Formulation::FullSlamOptimum; }
 	bool needsLandmarkIds() const override { return true; }
+	/// Started from another run's poses and landmarks (`[esif] initial_run`)
+	/// instead of odometry and first sightings.
+	bool usesInitialEstimate() const override { return true; }
+	void setInitialEstimate(InitialEstimate estimate) override { guess_ = std::move(estimate); }
 	std::optional<std::vector<PoseEstimate>> smoothedTrajectory() const override;
 	/// The step reports with every measurement the outlier gate dropped
 	/// marked rejected; nullopt when none was.
@@ -91,7 +94,7 @@ class CeresFullSlam : public FilterPlugin
 
 	ceres_full::CeresFullParams params_;
 	std::unique_ptr<ceres_full::FullSlamGraph> graph_ = std::make_unique<ceres_full::FullSlamGraph>();
-	std::optional<ceres_full::InitialGuess> guess_;
+	std::optional<InitialEstimate> guess_;
 	std::optional<ceres_full::SolveSchedule> schedule_;
 	std::size_t current_pose_ = 0;
 	std::vector<std::size_t> step_pose_;  ///< pose index after each step

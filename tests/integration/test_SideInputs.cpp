@@ -106,6 +106,39 @@ TEST_F(SideInputs, AssociationsDeclaringOtherStepsAreRefusedBeforeAllocating)
 				  "associations.txt:2: landmark_id -5 is not a landmark ID");
 }
 
+/// [esif] initial_run is read by the host, which hands the estimate to the
+/// plugin: a plugin that starts from none refuses the key, a folder that is
+/// no run or a run of fewer steps is named before the replay, and a run
+/// folder of the same rawlog is accepted.
+TEST_F(SideInputs, AnInitialRunIsReadByTheHostAndCheckedBeforeTheReplay)
+{
+	TempDir dir;
+	ASSERT_EQ(runEsif(run(kEkf, dir_->file("small.rawlog"), dir.file("ekf"))).exit_code, 0);
+	const auto config = [&](const std::string& plugin, const std::string& folder) {
+		std::ofstream(dir.file("c.ini")) << "[esif]\nplugin = " << plugin << "\ninitial_run = " << folder << "\n";
+		return dir.file("c.ini");
+	};
+	expectOneErrorLine(runEsif(run(config("EkfSlam", dir.file("ekf")), dir_->file("small.rawlog"), dir.file("out"))),
+					   "[esif] initial_run: plugin EkfSlam does not start from another run's estimate");
+	expectOneErrorLine(
+		runEsif(run(config("CeresFullSlam", dir.file("nowhere")), dir_->file("small.rawlog"), dir.file("out"))),
+		"[esif] initial_run: " + dir.file("nowhere") + ": run folder not found");
+	// The header line and the first 150 of the run's 200 poses.
+	const std::string tum = readText(dir.file("ekf/trajectory.tum"));
+	std::size_t cut = 0;
+	for (int line = 0; line < 151; ++line) cut = tum.find('\n', cut) + 1;
+	fs::create_directory(dir.file("short"));
+	std::ofstream(dir.file("short/trajectory.tum")) << tum.substr(0, cut);
+	fs::copy_file(dir.file("ekf/landmarks.txt"), dir.file("short/landmarks.txt"));
+	expectOneErrorLine(
+		runEsif(run(config("CeresFullSlam", dir.file("short")), dir_->file("small.rawlog"), dir.file("out"))),
+		"trajectory.tum: 150 poses, the rawlog has 200 steps");
+	EXPECT_FALSE(fs::exists(dir.file("out")));
+	const auto r = runEsif(run(config("CeresFullSlam", dir.file("ekf")), dir_->file("small.rawlog"), dir.file("out")));
+	EXPECT_EQ(r.exit_code, 0) << r.out;
+	EXPECT_NE(readText(dir.file("out/params.ini")).find("initial_run = " + dir.file("ekf")), std::string::npos);
+}
+
 TEST(SideInputCounts, DevicesAndCommandLineCountsAreBounded)
 {
 	TempDir dir;

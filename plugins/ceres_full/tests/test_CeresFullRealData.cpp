@@ -100,7 +100,7 @@ TEST(CeresFullRealData, ConvergesOnVictoriaParkWithAnEkfRunsAssociations)
 	std::ofstream(dir.file("ekf.ini")) << "[esif]\nplugin = EkfSlam\nhide_landmark_ids = true\n[ekf]\nassociation = jcbb\n";
 	const Stats ekf = runAndReadStats(dir.file("ekf.ini"), *vicpark, dir.file("ekf"));
 	std::ofstream(dir.file("full.ini")) << "[esif]\nplugin = CeresFullSlam\nhide_landmark_ids = true\nassociations_from = "
-										<< dir.file("ekf") << "\n[ceres_full]\ninitial_run = " << dir.file("ekf") << "\n";
+										<< dir.file("ekf") << "\ninitial_run = " << dir.file("ekf") << "\n";
 	const Stats full = runAndReadStats(dir.file("full.ini"), *vicpark, dir.file("full"));
 	EXPECT_EQ(test::statNumber(full, "plugin_converged"), 1);
 	EXPECT_LT(test::statNumber(full, "plugin_chi2") / test::statNumber(full, "plugin_chi2_dof"), kVicparkChi2PerDof);

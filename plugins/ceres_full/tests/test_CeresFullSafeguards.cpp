@@ -146,7 +146,7 @@ TEST(CeresFullSafeguards, APoseOnALandmarkIsFlaggedAndTheRunStillWritesEveryOutp
 
 	const std::string out = dir.file("collapsed");
 	const RunResult r = runEsif(
-		"[esif]\nplugin = CeresFullSlam\n[ceres_full]\ninitial_run = " + dir.file("good") + "\n", rawlog, out, dir);
+		"[esif]\nplugin = CeresFullSlam\ninitial_run = " + dir.file("good") + "\n", rawlog, out, dir);
 	EXPECT_EQ(test::statNumber(r.stats, "plugin_degenerate_poses"), 1);
 	EXPECT_EQ(test::statNumber(r.stats, "plugin_optimum_plausible"), 0);
 	EXPECT_EQ(test::statNumber(r.stats, "plugin_covariances_available"), 0);

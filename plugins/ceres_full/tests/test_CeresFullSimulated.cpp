@@ -13,6 +13,8 @@
 #include <esif/eval/StateNees.h>
 #include <esif/formats/GroundTruth.h>
 #include <esif/models/Se2.h>
+#include <esif/run/InitialRun.h>
+#include <esif/run/RunSetup.h>
 #include <esif/sim/Simulator.h>
 
 #include <Eigen/Eigenvalues>
@@ -50,10 +52,19 @@ struct Scored
 	Accuracy accuracy;
 };
 
-Scored runOnGrid196(const std::string& plugin_class, const std::string& section)
+/// `[esif] initial_run = dir` read as the host reads it.
+std::optional<InitialEstimate> initialRun(const std::string& dir)
+{
+	const auto cfg = ConfigFile::fromText("[esif]\nplugin = CeresFullSlam\ninitial_run = " + dir + "\n", "test.ini");
+	return readInitialRun(cfg, loadHostParams(cfg));
+}
+
+Scored runOnGrid196(
+	const std::string& plugin_class, const std::string& section, std::optional<InitialEstimate> start = std::nullopt)
 {
 	const Rawlog log = readRawlog(kGrid196);
 	Scored s{test::makePlugin(plugin_class, section), {}, {}};
+	if (start) s.plugin->setInitialEstimate(std::move(*start));
 	s.result = replay(*s.plugin, log, {0, false});
 	s.accuracy = test::scoreAgainstTruth(s.result, groundTruthPrefixFor(kGrid196));
 	return s;
@@ -239,7 +250,7 @@ TEST(CeresFullGrid196, StartingFromAnEkfRunReachesTheSameOptimum)
 	ASSERT_EQ(ekf.exit_code, 0) << ekf.out;
 	const auto batch = runOnGrid196("CeresFullSlam", "resolve_growth = 0\n");
 	const auto warm =
-		runOnGrid196("CeresFullSlam", "covariance = none\nresolve_growth = 0\ninitial_run = " + dir.file("ekf") + "\n");
+		runOnGrid196("CeresFullSlam", "covariance = none\nresolve_growth = 0\n", initialRun(dir.file("ekf")));
 	// The EKF's online trajectory does not fit the precise odometry (it jumps
 	// at loop closures), so its start cost is not lower than dead
 	// reckoning's; what matters is that it converges to the same optimum.
@@ -255,7 +266,7 @@ TEST(CeresFullGrid196, StartingFromAnEkfRunReachesTheSameOptimum)
 	// A folder that is not a run is one clear error naming the key.
 	try
 	{
-		test::makePlugin("CeresFullSlam", "initial_run = " + dir.file("nowhere") + "\n");
+		initialRun(dir.file("nowhere"));
 		FAIL() << "no error";
 	}
 	catch (const InputError& e)

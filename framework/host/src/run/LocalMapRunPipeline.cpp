@@ -53,6 +53,9 @@ void rejectRawlogOnlyKeys(const ConfigFile& cfg, const HostParams& host)
 	if (!host.associations_from.empty())
 		throw ConfigError(cfg.section(kHostSection)
 							  .describeKey("associations_from", "applies to rawlog input only, not to --local-maps"));
+	if (!host.initial_run.empty())
+		throw ConfigError(
+			cfg.section(kHostSection).describeKey("initial_run", "applies to rawlog input only, not to --local-maps"));
 }
 
 Stats collectStats(

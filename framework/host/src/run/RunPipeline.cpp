@@ -12,6 +12,7 @@
 #include <esif/formats/RawlogReader.h>
 #include <esif/render/FigureWriter.h>
 #include <esif/run/HostParams.h>
+#include <esif/run/InitialRun.h>
 #include <esif/run/LandmarkIdRequirement.h>
 #include <esif/run/MemoryRequirement.h>
 #include <esif/run/Replay.h>
@@ -93,6 +94,7 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 	if (request.associations_from) host.associations_from = *request.associations_from;	// params.ini shows the folder used
 	auto plugin = createConfiguredPlugin(cfg, host, loader);
 	const auto associations = locateAssociations(cfg, host, request.associations_from.has_value());
+	auto initial_estimate = readInitialRun(cfg, host);
 
 	Rawlog log = times.time("read", [&] { return readRawlog(request.rawlog_path, readOptionsOf(host)); });
 	if (log.truncation_warning) std::cerr << "esif: warning: " << *log.truncation_warning << "\n";
@@ -102,6 +104,11 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 		log, request.ground_truth_prefix.value_or(groundTruthPrefixFor(request.rawlog_path)));
 	requireLandmarkIds(*plugin, log, {cfg.origin(), host.hide_landmark_ids, associations.value_or("")});
 	requireMemory(*plugin, log, cfg.origin(), memoryBudget());
+	if (initial_estimate)
+	{
+		requireInitialRunCovers(cfg, *initial_estimate, log.steps.size());
+		plugin->setInitialEstimate(std::move(*initial_estimate));
+	}
 	auto truth = findGroundTruth(request.ground_truth_prefix, request.rawlog_path);
 	if (truth)
 		if (const auto problem = groundTruthProblem(*truth, log.steps.size(), log.truncation_warning.has_value()))

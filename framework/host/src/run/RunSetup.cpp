@@ -1,5 +1,6 @@
 #include <esif/core/Errors.h>
 #include <esif/eval/SuspectResult.h>
+#include <esif/run/InitialRun.h>
 #include <esif/run/RunSetup.h>
 #include <esif/sim/MeasurementTruth.h>
 
@@ -56,6 +57,7 @@ FilterPlugin::Ptr createConfiguredPlugin(const ConfigFile& cfg, const HostParams
 	const auto section = cfg.section(plugin->sectionName());
 	plugin->configure(section);
 	section.rejectUnknownKeys();
+	requireInitialRunUse(cfg, host, *plugin);
 	for (const auto& name : cfg.sectionNames())
 		if (name != kHostSection && name != plugin->sectionName())
 			throw ConfigError(
@@ -112,6 +114,7 @@ std::vector<NamedInput> rawlogRunInputs(
 	const HostParams host = loadHostParams(ConfigFile::load(config));
 	inputs.push_back({"the associations folder", associations_from.value_or(host.associations_from)});
 	inputs.push_back({"the calibration file", host.calibration});
+	inputs.push_back({"the initial run", host.initial_run});
 	return inputs;
 }
 

@@ -26,6 +26,10 @@ struct HostParams
 	/// (relative to the current directory; in `esif compare` also the label of
 	/// another compared config); empty = the rawlog's own IDs.
 	std::string associations_from;
+	/// Run folder (trajectory.tum, landmarks.txt) whose estimate starts a
+	/// plugin that takes one (FilterPlugin::usesInitialEstimate), relative to
+	/// the current directory; empty = none.
+	std::string initial_run;
 	/// Calibration file (NoiseCalibration.h, written by `esif calibrate`),
 	/// relative to the config's folder; empty = the rawlog's noise as it is.
 	std::string calibration;
@@ -55,6 +59,9 @@ struct HostParams
 		b.text("associations_from", associations_from,
 			   "run folder whose associations.txt gives the landmark IDs of every measurement (in esif compare "
 			   "also another config's label); empty = the rawlog's IDs");
+		b.text("initial_run", initial_run,
+			   "run folder (trajectory.tum, landmarks.txt) whose estimate the plugin starts from, for plugins "
+			   "that take one (ceres_full); empty = none");
 		b.text("calibration", calibration,
 			   "calibration file of the rawlog's noise (esif calibrate), relative to this config's folder; empty = "
 			   "the rawlog's noise");

@@ -17,6 +17,7 @@
 #include <esif/config/ConfigSection.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Estimate.h>
+#include <esif/plugin/InitialEstimate.h>
 #include <esif/core/InformationPattern.h>
 #include <esif/core/StateInformation.h>
 #include <esif/core/StepInput.h>
@@ -67,6 +68,16 @@ class FilterPlugin : public mrpt::rtti::CObject
 	/// rawlog, or from another run's decisions via [esif] associations_from).
 	/// The host refuses to start such a plugin on input without any ID.
 	virtual bool needsLandmarkIds() const { return false; }
+
+	/// Whether the plugin starts from another run's estimate when the config
+	/// gives one (`[esif] initial_run`); the host refuses the key for a
+	/// plugin that does not.
+	virtual bool usesInitialEstimate() const { return false; }
+
+	/// Called once, after configure() and before the first step, when
+	/// usesInitialEstimate() and the config gives `[esif] initial_run`: the
+	/// run's estimate, read and checked by the host (one pose per step).
+	virtual void setInitialEstimate(InitialEstimate /*estimate*/) {}
 
 	/// The memory [bytes] the plugin's estimate of `landmarks` landmarks
 	/// takes, for a plugin whose memory is dominated by one dense matrix (the
