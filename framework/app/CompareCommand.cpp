@@ -137,6 +137,10 @@ struct ChildSettings
 	std::optional<std::string> ground_truth;
 	std::optional<std::string> reference_result;
 	std::optional<std::string> plugin_dir;
+	/// With --reference on a rawlog: the reference's run folder, given to
+	/// every other run as --reference-run so that it computes its
+	/// whole-state NEES against it (state_nees*), as `esif run` does.
+	std::optional<std::string> reference_run;
 	/// The partial folder the runs write into and --out: a failed run's error
 	/// line is shown with the folder it will have.
 	std::pair<std::string, std::string> staging_to_out;
@@ -155,6 +159,10 @@ Stats runConfig(
 	if (settings.reference_result) args.insert(args.end(), {"--reference-result", *settings.reference_result});
 	if (settings.plugin_dir) args.insert(args.end(), {"--plugin-dir", *settings.plugin_dir});
 	if (associations_dir) args.insert(args.end(), {"--associations-from", *associations_dir});
+	if (settings.reference_run && *settings.reference_run != dir)
+		args.insert(
+			args.end(), {"--reference-run", *settings.reference_run, "--reference-run-name",
+						 replaceAll(*settings.reference_run, settings.staging_to_out.first, settings.staging_to_out.second)});
 	std::cerr << "esif compare: running " << config
 			  << (associations_dir ? " (data association of " + *associations_dir + ")" : std::string()) << "\n";
 	// Each config runs as its own `esif run` process; its stderr is passed on.
@@ -278,11 +286,13 @@ std::vector<NamedInput> compareInputs(
 
 /// Runs every config in run order; a failed run is a row of its own and
 /// the others still run, except those taking their data association from
-/// it (rows "not run").
+/// it (rows "not run"). On a rawlog, the runs after `reference` (a compared
+/// run) compute their whole-state NEES against it.
 std::vector<Stats> runAll(
 	const std::vector<std::string>& configs, const std::vector<CheckedConfig>& checked,
 	const std::vector<PlannedRun>& planned, const std::vector<std::optional<std::size_t>>& sources,
-	const std::vector<std::size_t>& order, const std::vector<std::string>& dirs, const ChildSettings& settings)
+	const std::vector<std::size_t>& order, const std::vector<std::string>& dirs, ChildSettings settings,
+	const std::optional<std::size_t>& reference)
 {
 	std::vector<Stats> runs(configs.size());  // in the configs' order, whatever the run order
 	for (const auto i : order)
@@ -298,6 +308,10 @@ std::vector<Stats> runAll(
 		runs[i] = runConfig(
 			configs[i], checked[i], planned[i].label, dirs[i],
 			source ? std::optional<std::string>(dirs[*source]) : std::nullopt, settings);
+		// The runs after the reference (runOrder puts it first) are measured
+		// against it; a failed reference leaves nothing to measure against.
+		if (reference && i == *reference && settings.input_option == "--rawlog" && !isFailedRun(runs[i]))
+			settings.reference_run = dirs[i];
 	}
 	return runs;
 }
@@ -395,7 +409,9 @@ int compareCommand(int argc, char** argv)
 		"ref_traj_max_m, ref_heading_rms_deg (poses of the same step), ref_landmark_rms_m, ref_landmark_max_m "
 		"and ref_landmarks_matched (landmarks paired through the true landmark each stands for, or, where a run "
 		"has none, by the optimal assignment within its OSPA cut-off: ref_landmarks_paired_by), ref_ospa_m. "
-		"The reference's row shows zeros and its own landmark count. Default without ground truth: the "
+		"The reference's row shows zeros and its own landmark count. On a rawlog every other run also computes its "
+		"whole-state NEES against the reference (state_nees*, as esif run --reference-run). Default without "
+		"ground truth: the "
 		"optimization baseline (the full-SLAM run), if any",
 		false, "", "LABEL|DIR", cmd);
 	if (!parseCommandLine(cmd, argc, argv)) return 0;
@@ -437,7 +453,7 @@ int compareCommand(int argc, char** argv)
 			ref = referenceIndex(reference.getValue(), config_list, labels, dirs);
 	}
 	const auto sources = associationSources(planned);
-	const auto order = runOrder(planned, sources);
+	const auto order = runOrder(planned, sources, ref);
 	const auto checked = checkConfigs(config_list, plugin_folder, local_maps.isSet());
 	requireOutputApart(
 		out.getValue(), compareInputs(
@@ -452,8 +468,9 @@ int compareCommand(int argc, char** argv)
 		const ChildSettings settings{
 			rawlog.isSet() ? "--rawlog" : "--local-maps", input,
 			valueIfSet(ground_truth), valueIfSet(reference_result),
-			plugin_folder, {staging, withoutTrailingSeparator(out.getValue())}};
-		std::vector<Stats> runs = runAll(config_list, checked, planned, sources, order, run_dirs, settings);
+			plugin_folder, outside_reference && rawlog.isSet() ? std::optional(outside_reference->first) : std::nullopt,
+			{staging, withoutTrailingSeparator(out.getValue())}};
+		std::vector<Stats> runs = runAll(config_list, checked, planned, sources, order, run_dirs, settings, ref);
 		markSucceededRuns(runs);
 
 		std::string note = measureAgainstBaseline(

@@ -85,6 +85,11 @@ int runCommand(int argc, char** argv)
 		"finally). The reference shares the run's error, so only a NEES above the interval is a finding. Also the "
 		"run's difference from it, the ref_* keys of esif compare --reference",
 		false, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> reference_run_name(
+		"", "reference-run-name",
+		"with --reference-run: how stats.json names the reference (state_nees_reference); default: the folder as "
+		"given (esif compare gives the folder the reference has once the comparison is in place)",
+		false, "", "NAME", cmd);
 	TCLAP::SwitchArg quiet("q", "quiet", "no progress bar and no summary", cmd);
 	TCLAP::SwitchArg no_figures(
 		"", "no-figures",
@@ -117,6 +122,11 @@ int runCommand(int argc, char** argv)
 	request.progress_bar = !quiet.getValue();
 	if (associations_from.isSet()) request.associations_from = associations_from.getValue();
 	if (reference_run.isSet()) request.reference_run = reference_run.getValue();
+	if (reference_run_name.isSet())
+	{
+		if (!reference_run.isSet()) throw ConfigError("esif run: --reference-run-name applies with --reference-run only");
+		request.reference_run_name = reference_run_name.getValue();
+	}
 	request.figures = !no_figures.getValue();
 	const Stats stats = runPipeline(request, loader);
 	if (!quiet.getValue()) printSummary(stats, request.rawlog_path, request.out_dir, false);

@@ -100,6 +100,15 @@ TEST_F(CompareReference, AddsDifferenceColumns)
 	EXPECT_LT(std::abs(number(other, "ref_rotation_deg")), 1.0);
 	EXPECT_LE(number(other, "ref_landmark_rms_aligned_m"), number(other, "ref_landmark_rms_m") + 1e-9);
 	EXPECT_TRUE(std::filesystem::exists(dir_->file("cmp/maps_overlay.png")));
+
+	// D-SLAM holds an information matrix: its whole-state test is computed
+	// against the reference run, as `esif run --reference-run` computes it,
+	// which is named by the folder it has once the comparison is in place.
+	const auto dslam = esif::Stats::load(dir_->file("cmp/dslam/stats.json"));
+	EXPECT_EQ(dslam.text("state_nees_reference").value_or(""), dir_->file("cmp/ekf"));
+	EXPECT_GT(esif::test::statNumber(dslam, "state_nees_dof"), 0);
+	EXPECT_TRUE(std::isfinite(esif::test::statNumber(dslam, "state_nees")));
+	EXPECT_TRUE(std::isfinite(number(other, "state_nees")));
 }
 
 TEST_F(CompareReference, WithoutReferenceNoColumns)

@@ -50,6 +50,18 @@ TEST(RunOrder, SourceRunsJustBeforeItsFirstUser)
 	EXPECT_EQ(orderOf({{"ekf.ini", "ekf", ""}, {"full.ini", "full", "ekf"}}), (std::vector<std::size_t>{0, 1}));
 }
 
+TEST(RunOrder, TheReferenceRunsFirstAfterItsOwnSources)
+{
+	// compare --reference full: the other runs are measured against it while
+	// they run, so it goes first, after the EKF whose association it reuses.
+	const std::vector<PlannedRun> runs = {
+		{"d.ini", "d", ""}, {"full.ini", "full", "ekf"}, {"s.ini", "s", ""}, {"ekf.ini", "ekf", ""}};
+	const auto sources = esif::associationSources(runs);
+	EXPECT_EQ(esif::runOrder(runs, sources, 1), (std::vector<std::size_t>{3, 1, 0, 2}));
+	EXPECT_EQ(esif::runOrder(runs, sources, 2), (std::vector<std::size_t>{2, 0, 3, 1}));
+	EXPECT_EQ(esif::runOrder(runs, sources, std::nullopt), (std::vector<std::size_t>{0, 3, 1, 2}));
+}
+
 TEST(RunOrder, AFolderIsNoReference)
 {
 	const std::vector<PlannedRun> runs = {{"full.ini", "full", "out/ekf"}, {"ekf.ini", "ekf", ""}};

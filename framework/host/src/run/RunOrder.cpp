@@ -66,10 +66,12 @@ std::vector<std::optional<std::size_t>> associationSources(const std::vector<Pla
 }
 
 std::vector<std::size_t> runOrder(
-	const std::vector<PlannedRun>& runs, const std::vector<std::optional<std::size_t>>& sources)
+	const std::vector<PlannedRun>& runs, const std::vector<std::optional<std::size_t>>& sources,
+	std::optional<std::size_t> first)
 {
 	std::vector<bool> placed(runs.size(), false);
 	std::vector<std::size_t> visiting, order;
+	if (first) place(*first, runs, sources, placed, visiting, order);
 	for (std::size_t i = 0; i < runs.size(); ++i) place(i, runs, sources, placed, visiting, order);
 	return order;
 }

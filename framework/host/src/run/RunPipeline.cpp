@@ -164,7 +164,7 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 	if (reference_run)
 	{
 		nees_against = stateReferenceOf(*reference_run, log.steps.size());
-		nees_reference = *request.reference_run;
+		nees_reference = request.reference_run_name.value_or(*request.reference_run);
 	}
 	else if (result.record.truth)
 	{

@@ -26,10 +26,13 @@ struct PlannedRun
 /// label only, or a label several other configs share.
 std::vector<std::optional<std::size_t>> associationSources(const std::vector<PlannedRun>& runs);
 
-/// Indices of `runs` in run order: each source (from associationSources)
-/// just before the first run that needs it, otherwise the given order.
-/// Throws ConfigError naming the configs of a cycle (a -> b -> a).
+/// Indices of `runs` in run order: `first` (the reference the others are
+/// measured against) as early as its sources allow, each source (from
+/// associationSources) just before the first run that needs it, otherwise
+/// the given order. Throws ConfigError naming the configs of a cycle
+/// (a -> b -> a).
 std::vector<std::size_t> runOrder(
-	const std::vector<PlannedRun>& runs, const std::vector<std::optional<std::size_t>>& sources);
+	const std::vector<PlannedRun>& runs, const std::vector<std::optional<std::size_t>>& sources,
+	std::optional<std::size_t> first = std::nullopt);
 
 }  // namespace esif

@@ -26,6 +26,10 @@ struct RunRequest
 	/// --reference-run`; its trajectory.tum must hold one final pose per
 	/// step), and the run's difference from it (the ref_* keys, RunDifference.h).
 	std::optional<std::string> reference_run;
+	/// How stats.json names the reference run (state_nees_reference);
+	/// default: `reference_run` as given. `esif compare` gives the folder the
+	/// reference will have once its comparison is in place.
+	std::optional<std::string> reference_run_name;
 	/// false: the data files only, no figure (`esif run --no-figures`; what
 	/// `esif montecarlo` runs, whose summary draws the campaign's figures).
 	bool figures = true;
