@@ -286,8 +286,8 @@ std::vector<NamedInput> compareInputs(
 
 /// Runs every config in run order; a failed run is a row of its own and
 /// the others still run, except those taking their data association from
-/// it (rows "not run"). On a rawlog, the runs after `reference` (a compared
-/// run) compute their whole-state NEES against it.
+/// it (rows "not run"). The runs after `reference` (wholeStateReference)
+/// compute their whole-state NEES against it.
 std::vector<Stats> runAll(
 	const std::vector<std::string>& configs, const std::vector<CheckedConfig>& checked,
 	const std::vector<PlannedRun>& planned, const std::vector<std::optional<std::size_t>>& sources,
@@ -310,7 +310,7 @@ std::vector<Stats> runAll(
 			source ? std::optional<std::string>(dirs[*source]) : std::nullopt, settings);
 		// The runs after the reference (runOrder puts it first) are measured
 		// against it; a failed reference leaves nothing to measure against.
-		if (reference && i == *reference && settings.input_option == "--rawlog" && !isFailedRun(runs[i]))
+		if (reference && i == *reference && !isFailedRun(runs[i]))
 			settings.reference_run = dirs[i];
 	}
 	return runs;
@@ -326,6 +326,23 @@ std::string failedBaselineNote(const std::vector<Stats>& runs, const std::vector
 				   "' failed, so no base_* ratios\n";
 	return "";
 }
+/// The compared run every other run computes its whole-state NEES against
+/// (--reference-run): the --reference run, else, on a rawlog without ground
+/// truth, the full-SLAM baseline the runs are measured against (the first
+/// full-SLAM config, as findBaseline picks it). Nullopt: each run's own
+/// (against the ground truth, or none).
+std::optional<std::size_t> wholeStateReference(
+	const std::optional<std::size_t>& reference, const std::vector<CheckedConfig>& checked, bool rawlog_input,
+	const std::string& ground_truth, const std::string& rawlog)
+{
+	if (reference || !rawlog_input) return rawlog_input ? reference : std::nullopt;
+	const std::string prefix = ground_truth.empty() ? groundTruthPrefixFor(rawlog) : ground_truth;
+	if (fs::exists(groundTruthFilesOf(prefix).front())) return std::nullopt;
+	for (std::size_t i = 0; i < checked.size(); ++i)
+		if (checked[i].formulation == Formulation::FullSlamOptimum) return i;
+	return std::nullopt;
+}
+
 /// Filters are measured against the optimum: by accuracy ratios with
 /// ground truth, else (unless --reference, given as index and label, says
 /// otherwise) by their difference from it. Adds those keys to `runs` and
@@ -453,8 +470,11 @@ int compareCommand(int argc, char** argv)
 			ref = referenceIndex(reference.getValue(), config_list, labels, dirs);
 	}
 	const auto sources = associationSources(planned);
-	const auto order = runOrder(planned, sources, ref);
+	runOrder(planned, sources);	 // a cycle fails here, before the configs are checked
 	const auto checked = checkConfigs(config_list, plugin_folder, local_maps.isSet());
+	const auto nees_reference =
+		wholeStateReference(ref, checked, rawlog.isSet() && !outside_reference, ground_truth.getValue(), rawlog.getValue());
+	const auto order = runOrder(planned, sources, nees_reference);
 	requireOutputApart(
 		out.getValue(), compareInputs(
 							config_list, rawlog.getValue(), local_maps.getValue(), ground_truth.getValue(),
@@ -470,7 +490,7 @@ int compareCommand(int argc, char** argv)
 			valueIfSet(ground_truth), valueIfSet(reference_result),
 			plugin_folder, outside_reference && rawlog.isSet() ? std::optional(outside_reference->first) : std::nullopt,
 			{staging, withoutTrailingSeparator(out.getValue())}};
-		std::vector<Stats> runs = runAll(config_list, checked, planned, sources, order, run_dirs, settings, ref);
+		std::vector<Stats> runs = runAll(config_list, checked, planned, sources, order, run_dirs, settings, nees_reference);
 		markSucceededRuns(runs);
 
 		std::string note = measureAgainstBaseline(

@@ -98,13 +98,18 @@ TEST_F(CompareBaseline, RatiosToTheOptimumWithGroundTruth)
 
 TEST_F(CompareBaseline, WithoutGroundTruthTheBaselineIsTheReference)
 {
-	const auto r = compare("ekf.ini,full.ini", "nogt.rawlog", "nogt");
+	const auto r = compare("ekf.ini,dslam.ini,full.ini", "nogt.rawlog", "nogt");
 	ASSERT_EQ(r.exit_code, 0) << r.out;
 	EXPECT_NE(r.out.find("ref_*: difference from the optimization baseline 'full'"), std::string::npos) << r.out;
 	const auto traj = lineStarting(r.out, "ref_traj_rms_m");
 	ASSERT_FALSE(traj.empty()) << r.out;
 	EXPECT_EQ(lastCell(traj), "0") << traj;
 	EXPECT_EQ(r.out.find("base_"), std::string::npos) << "no ground truth: no ratios\n" << r.out;
+	// ... and the whole-state test of an information-form filter is computed
+	// against it (the baseline ran first).
+	const auto dslam = esif::Stats::load(dir_->file("nogt/dslam/stats.json"));
+	EXPECT_EQ(dslam.text("state_nees_reference").value_or(""), dir_->file("nogt/full"));
+	EXPECT_GT(esif::test::statNumber(dslam, "state_nees_dof"), 0);
 
 	// --reference still wins.
 	const auto ekf_ref = compare("ekf.ini,full.ini", "nogt.rawlog", "nogt_ekf", "--reference ekf");
