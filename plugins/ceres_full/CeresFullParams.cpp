@@ -21,6 +21,8 @@ void declareSchedule(CeresFullParams& p, ParamBinder& b)
 			  "trust-region iterations of each re-solve during the run", Bounds::atLeast(1));
 	b.real("intermediate_function_tolerance", p.intermediate_function_tolerance,
 		   "relative cost decrease that ends a re-solve during the run", Bounds::positive());
+	b.real("intermediate_parameter_tolerance", p.intermediate_parameter_tolerance,
+		   "relative step size that ends a re-solve during the run", Bounds::positive());
 }
 
 void declareFinalSolve(CeresFullParams& p, ParamBinder& b)

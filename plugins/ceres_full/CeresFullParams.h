@@ -57,6 +57,7 @@ struct CeresFullParams
 	/// optimum: few iterations and a loose tolerance.
 	int intermediate_max_iterations = 50;
 	double intermediate_function_tolerance = 1e-6;
+	double intermediate_parameter_tolerance = 1e-6;
 
 	// The final solve.
 	int max_iterations = 200;  ///< trust-region iterations of the final solve

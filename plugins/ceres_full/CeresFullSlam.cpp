@@ -35,9 +35,20 @@ bool isStandStill(const OdometryIncrement& odometry)
 void warn(const std::string& what) { std::cerr << "esif: warning: ceres_full: " << what << "\n"; }
 }  // namespace
 
-void CeresFullSlam::configure(const ConfigSection& section)
+void CeresFullSlam::validate(const CeresFullParams& p, const ConfigSection& section) const
 {
-	loadParams(params_, section);
+	if (p.max_trust_region_radius < p.initial_trust_region_radius)
+		throw ConfigError(section.describeKey(
+			"max_trust_region_radius", formatNumber(p.max_trust_region_radius) + " is below initial_trust_region_radius " +
+										   formatNumber(p.initial_trust_region_radius)));
+	if (p.max_lm_diagonal < p.min_lm_diagonal)
+		throw ConfigError(section.describeKey(
+			"max_lm_diagonal",
+			formatNumber(p.max_lm_diagonal) + " is below min_lm_diagonal " + formatNumber(p.min_lm_diagonal)));
+}
+
+void CeresFullSlam::start()
+{
 	graph_ = std::make_unique<FullSlamGraph>(params_.outliers == OutlierPolicy::Drop ? outlierLoss() : makeLoss());
 	schedule_.emplace(
 		params_.resolve_growth, static_cast<std::size_t>(params_.resolve_min_new_poses),

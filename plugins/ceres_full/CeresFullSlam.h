@@ -17,7 +17,7 @@
 #include "SolveSchedule.h"
 #include "SolverOptions.h"
 
-#include <esif/plugin/FilterPlugin.h>
+#include <esif/plugin/PluginWithParams.h>
 
 #include <memory>
 #include <optional>
@@ -26,14 +26,12 @@
 
 namespace esif
 {
-class CeresFullSlam : public FilterPlugin
+class CeresFullSlam : public PluginWithParams<ceres_full::CeresFullParams>
 {
 	DEFINE_MRPT_OBJECT(CeresFullSlam, esif)
 
    public:
 	std::string sectionName() const override { return "ceres_full"; }
-	void configure(const ConfigSection& section) override;
-	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
 	StepReport processStep(const StepInput& step) override;
 	void finish() override;
 	PoseEstimate robotPose() const override;
@@ -76,6 +74,10 @@ class CeresFullSlam : public FilterPlugin
 	};
 
    private:
+	/// The trust region's and the damping's clamps ordered (Ceres would
+	/// otherwise fail at the first solve, or clamp silently).
+	void validate(const ceres_full::CeresFullParams& params, const ConfigSection& section) const override;
+	void start() override;
 	/// Runs Ceres; false when it failed (the last accepted estimate stays).
 	bool solve(ceres_full::SolveKind kind);
 	/// The final solve of the answer, its failure told on stderr.
@@ -92,7 +94,6 @@ class CeresFullSlam : public FilterPlugin
 	int threads() const;
 	PoseEstimate poseEstimate(std::size_t pose) const;
 
-	ceres_full::CeresFullParams params_;
 	std::unique_ptr<ceres_full::FullSlamGraph> graph_ = std::make_unique<ceres_full::FullSlamGraph>();
 	std::optional<InitialEstimate> guess_;
 	std::optional<ceres_full::SolveSchedule> schedule_;

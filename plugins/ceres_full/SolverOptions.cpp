@@ -1,7 +1,5 @@
 #include "SolverOptions.h"
 
-#include <algorithm>
-
 namespace esif::ceres_full
 {
 namespace
@@ -15,9 +13,9 @@ void setDamping(const CeresFullParams& p, ceres::Solver::Options& o)
 	// clamps and no Jacobi scaling that is plain mu I (see CeresFullParams.h).
 	o.jacobi_scaling = p.jacobi_scaling;
 	o.initial_trust_region_radius = p.initial_trust_region_radius;
-	o.max_trust_region_radius = std::max(p.max_trust_region_radius, p.initial_trust_region_radius);
+	o.max_trust_region_radius = p.max_trust_region_radius;	// >= the initial radius (validated)
 	o.min_lm_diagonal = p.min_lm_diagonal;
-	o.max_lm_diagonal = std::max(p.max_lm_diagonal, p.min_lm_diagonal);
+	o.max_lm_diagonal = p.max_lm_diagonal;  // >= min_lm_diagonal (validated)
 }
 }  // namespace
 
@@ -39,7 +37,7 @@ ceres::Solver::Options solverOptions(const CeresFullParams& p, SolveKind kind, i
 	{
 		o.max_num_iterations = p.intermediate_max_iterations;
 		o.function_tolerance = p.intermediate_function_tolerance;
-		o.parameter_tolerance = p.intermediate_function_tolerance;
+		o.parameter_tolerance = p.intermediate_parameter_tolerance;
 	}
 	o.num_threads = threads;
 	o.logging_type = ceres::SILENT;

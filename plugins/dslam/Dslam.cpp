@@ -20,9 +20,8 @@ namespace esif
 using namespace dslam;
 using namespace relative;
 
-void Dslam::configure(const ConfigSection& section)
+void Dslam::start()
 {
-	loadParams(params_, section);
 	map_ = std::make_unique<FeatureMap>(params_.recovery);
 	association_ = std::make_unique<RelativeAssociation>(params_.association, params_.referenceRules());
 	guard_ = DivergenceGuard(params_.divergence_factor, params_.divergence_disagreeing_scans);

@@ -30,7 +30,7 @@
 #include "LocalSlam.h"
 
 #include <esif/association/TentativeFeatures.h>
-#include <esif/plugin/FilterPlugin.h>
+#include <esif/plugin/PluginWithParams.h>
 #include <esif/relative/FeatureMap.h>
 #include <esif/relative/RelativeAssociation.h>
 
@@ -40,14 +40,12 @@
 
 namespace esif
 {
-class Dslam : public FilterPlugin
+class Dslam : public PluginWithParams<dslam::DslamParams>
 {
 	DEFINE_MRPT_OBJECT(Dslam, esif)
 
    public:
 	std::string sectionName() const override { return "dslam"; }
-	void configure(const ConfigSection& section) override;
-	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
 	StepReport processStep(const StepInput& step) override;
 	void finish() override;
 	PoseEstimate robotPose() const override;
@@ -58,6 +56,7 @@ class Dslam : public FilterPlugin
 	std::optional<StateInformation> stateInformation() const override;
 
    private:
+	void start() override;
 	/// A scan's associated measurements and what they say about admissibility.
 	struct Observed
 	{
@@ -94,7 +93,6 @@ class Dslam : public FilterPlugin
 	relative::MapUpdate updateFromPair(const std::vector<LandmarkId>& ids, const relative::PointSet& points,
 									   std::pair<int, int> pair);
 
-	dslam::DslamParams params_;
 	std::unique_ptr<relative::FeatureMap> map_;	 // mutable state behind a const
 												 // estimate(): recovery caches
 	std::unique_ptr<relative::RelativeAssociation> association_;

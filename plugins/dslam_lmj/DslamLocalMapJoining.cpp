@@ -58,10 +58,8 @@ std::vector<Eigen::Index> featureRows(const std::vector<int>& features)
 }
 }  // namespace
 
-void DslamLocalMapJoining::configure(const ConfigSection& section)
+void DslamLocalMapJoining::start()
 {
-	loadParams(params_, section);
-	startBuilder(params_.builder);
 	global_ = std::make_unique<relative::FeatureMap>(params_.recovery);
 	global_->shareLinearisationPoints(params_.map_linearisation == relative::MapLinearisation::Shared);
 	global_->keepRelativeTerms(params_.relinearise_iterations > 0);

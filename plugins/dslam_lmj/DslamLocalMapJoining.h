@@ -24,6 +24,7 @@
 #include "UpperLevelAssociation.h"
 
 #include <esif/plugin/MapJoiningPlugin.h>
+#include <esif/plugin/PluginWithParams.h>
 #include <esif/relative/FeatureMap.h>
 
 #include <map>
@@ -33,15 +34,13 @@
 
 namespace esif
 {
-class DslamLocalMapJoining : public MapJoiningPlugin
+class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoiningPlugin>
 {
 	DEFINE_MRPT_OBJECT(DslamLocalMapJoining, esif)
 
    public:
-	DslamLocalMapJoining() : MapJoiningPlugin("D-SLAM map joining") {}
+	DslamLocalMapJoining() : PluginWithParams("D-SLAM map joining") {}
 	std::string sectionName() const override { return "dslam_lmj"; }
-	void configure(const ConfigSection& section) override;
-	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
 	PoseEstimate robotPose() const override;
 	Estimate estimate() const override;
 	CostFigures costFigures() const override;
@@ -63,6 +62,7 @@ class DslamLocalMapJoining : public MapJoiningPlugin
 	SparseInformationCore& globalInformation() const override;
 
    private:
+	void start() override;
 	/// The end pose of one original local map, as needed for Sec. 4.4.1.
 	struct EndPose
 	{
@@ -117,7 +117,6 @@ class DslamLocalMapJoining : public MapJoiningPlugin
 	PoseEstimate openMapFrame() const;
 	std::optional<LandmarkId> globalIdOfOpenFeature(LandmarkId id) const;
 
-	lmj::DslamLmjParams params_;
 	// Behind const robotPose()/estimate(): recovery caches.
 	std::unique_ptr<relative::FeatureMap> global_;
 	std::vector<Fusion> fusions_;

@@ -4,9 +4,8 @@ IMPLEMENTS_MRPT_OBJECT(EkfSlam, FilterPlugin, esif)
 
 namespace esif
 {
-void EkfSlam::configure(const ConfigSection& section)
+void EkfSlam::start()
 {
-	loadParams(params_, section);
 	filter_ = LandmarkEkf(params_.association, 0, params_.jacobians);
 }
 

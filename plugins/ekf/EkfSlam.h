@@ -8,18 +8,16 @@
 #include "EkfSlamParams.h"
 
 #include <esif/ekf/LandmarkEkf.h>
-#include <esif/plugin/FilterPlugin.h>
+#include <esif/plugin/PluginWithParams.h>
 
 namespace esif
 {
-class EkfSlam : public FilterPlugin
+class EkfSlam : public PluginWithParams<EkfSlamParams>
 {
 	DEFINE_MRPT_OBJECT(EkfSlam, esif)
 
    public:
 	std::string sectionName() const override { return "ekf"; }
-	void configure(const ConfigSection& section) override;
-	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
 	StepReport processStep(const StepInput& step) override { return filter_.processStep(step); }
 	PoseEstimate robotPose() const override { return filter_.robotPose(); }
 	Estimate estimate() const override { return filter_.estimate(); }
@@ -36,7 +34,7 @@ class EkfSlam : public FilterPlugin
 	}
 
    private:
-	EkfSlamParams params_;
+	void start() override;
 	LandmarkEkf filter_;
 };
 

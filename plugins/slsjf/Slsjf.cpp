@@ -27,10 +27,8 @@ PoseEstimate composeIndependent(const Pose2& x, const Eigen::Matrix3d& Px, const
 }
 }  // namespace
 
-void Slsjf::configure(const ConfigSection& section)
+void Slsjf::start()
 {
-	loadParams(params_, section);
-	startBuilder(params_.builder);
 	global_ = std::make_unique<GlobalMap>(params_.recovery, params_.jacobians);
 }
 

@@ -20,6 +20,7 @@
 #include "SlsjfParams.h"
 
 #include <esif/plugin/MapJoiningPlugin.h>
+#include <esif/plugin/PluginWithParams.h>
 
 #include <map>
 #include <memory>
@@ -28,15 +29,13 @@
 
 namespace esif
 {
-class Slsjf : public MapJoiningPlugin
+class Slsjf : public PluginWithParams<slsjf::SlsjfParams, MapJoiningPlugin>
 {
 	DEFINE_MRPT_OBJECT(Slsjf, esif)
 
    public:
-	Slsjf() : MapJoiningPlugin("SLSJF") {}
+	Slsjf() : PluginWithParams("SLSJF") {}
 	std::string sectionName() const override { return "slsjf"; }
-	void configure(const ConfigSection& section) override;
-	std::vector<ParamInfo> parameters() const override { return describeParams(params_); }
 	PoseEstimate robotPose() const override;
 	Estimate estimate() const override;
 	CostFigures costFigures() const override;
@@ -58,6 +57,7 @@ class Slsjf : public MapJoiningPlugin
 	SparseInformationCore& globalInformation() const override;
 
    private:
+	void start() override;
 	/// What the fusion of one map decided, for reports and the robot pose.
 	struct MapRecord
 	{
@@ -74,7 +74,6 @@ class Slsjf : public MapJoiningPlugin
 	PoseEstimate openMapStart() const;
 	const std::vector<Eigen::MatrixXd>& marginals() const;
 
-	slsjf::SlsjfParams params_;
 	// Behind const estimate()/robotPose(): recovery and marginal caches.
 	std::unique_ptr<slsjf::GlobalMap> global_;
 	std::vector<MapRecord> records_;

@@ -8,7 +8,8 @@
 /// finishJoining), the LocalMapJoiner queries and its own parameters.
 ///
 /// Notes to implementers:
-/// - Call startBuilder() from configure(), after reading the parameters.
+/// - Derive through PluginWithParams<Params, MapJoiningPlugin>, which starts
+///   the builder with the parameters' `builder` member.
 /// - fuseLocalMap() receives the maps in order (k = 1, 2, ...), from the
 ///   builder or from files; the file side is checked for order here first.
 /// - Declare the class with DEFINE_MRPT_OBJECT and implement it with
@@ -49,7 +50,8 @@ class MapJoiningPlugin : public FilterPlugin, public LocalMapJoiner
 	/// `filter_name` starts the error messages about given maps ("SLSJF").
 	explicit MapJoiningPlugin(std::string filter_name) : filter_name_(std::move(filter_name)) {}
 
-	/// Starts the local-map builder with the plugin's builder parameters.
+	/// Starts the local-map builder with the plugin's builder parameters
+	/// (PluginWithParams::configure calls it).
 	void startBuilder(const LocalMapBuilderParams& params);
 	const LocalMapBuilder& builder() const;
 	/// Whether any step so far had a measurement without a landmark ID.
