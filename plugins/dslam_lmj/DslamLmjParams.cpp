@@ -20,10 +20,11 @@ void DslamLmjParams::declare(ParamBinder& b)
 		   "in that map within this chi-square quantile (3 dof); 1 = off",
 		   Bounds{0, 1, true, false});
 	relative::declareMapLinearisation(b, map_linearisation);
+	b.flag("relinearise_after_fusion", relinearise_after_fusion,
+		   "after each fusion, evaluate every map update again at the current estimate (Gauss-Newton over the "
+		   "global map); false = never (the book)");
 	b.integer("relinearise_iterations", relinearise_iterations,
-			  "Gauss-Newton passes over the global map after each fusion (every map update evaluated again at the "
-			  "current estimate); 0 = never (the book)",
-			  Bounds::nonNegative());
+			  "passes of each such relinearisation (each stops early when no update moved)", Bounds::atLeast(1));
 	b.real("relinearise_threshold_m", relinearise_threshold_m,
 		   "relinearise only the map updates whose features' relative geometry moved more than this since their "
 		   "last linearisation [m]",

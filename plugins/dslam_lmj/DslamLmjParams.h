@@ -36,9 +36,12 @@ struct DslamLmjParams : MapLevelAssociationParams
 	double reference_pair_chi2_quantile = 0.9999;
 	/// After each fusion, Gauss-Newton passes over the global map: every
 	/// earlier update (eq. 4.17) evaluated again at the current estimate
-	/// (FeatureMap::relinearise), until none moved. 0 = never (the book's
+	/// (FeatureMap::relinearise), until none moved. false: never (the book's
 	/// EIF linearises each map once, at the estimate before its fusion).
-	int relinearise_iterations = 0;
+	bool relinearise_after_fusion = false;
+	/// ... at most this many passes (as [dslam] relinearise_iterations: the
+	/// passes of one relinearisation).
+	int relinearise_iterations = 5;
 	/// Where each fusion (eq. 4.17) is linearised: at the estimate of its
 	/// time (the book) or at one point per feature shared by every fusion and
 	/// moved only by relinearisation (FeatureMap::shareLinearisationPoints:

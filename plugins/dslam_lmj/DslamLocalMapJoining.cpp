@@ -62,7 +62,7 @@ void DslamLocalMapJoining::start()
 {
 	global_ = std::make_unique<relative::FeatureMap>(params_.recovery);
 	global_->shareLinearisationPoints(params_.map_linearisation == relative::MapLinearisation::Shared);
-	global_->keepRelativeTerms(params_.relinearise_iterations > 0);
+	global_->keepRelativeTerms(params_.relinearise_after_fusion);
 }
 
 void DslamLocalMapJoining::requireConfigured() const
@@ -351,6 +351,7 @@ void DslamLocalMapJoining::relinearise(const Eigen::Vector2d& reference)
 	// Evaluating the updates again at the current estimate is a Gauss-Newton
 	// step of the static map problem (no robot, no prediction: nothing is
 	// marginalised, so nothing is lost by doing so).
+	if (!params_.relinearise_after_fusion) return;
 	tally_.relinearised_terms +=
 		global_->relineariseUntilSettled(params_.relinearise_threshold_m, params_.relinearise_iterations, reference);
 }

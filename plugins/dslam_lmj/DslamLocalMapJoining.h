@@ -107,7 +107,7 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 									   lmj::UpperLevelOutcome& decided) const;
 	std::optional<lmj::UpperLevelOutcome> associate(const LocalMap& map, const Eigen::MatrixXd& feature_cov);
 	LandmarkId freshId(LandmarkId proposed, std::vector<LandmarkId>& taken_now);
-	/// Gauss-Newton passes over the global map (relinearise_iterations).
+	/// Gauss-Newton passes over the global map (relinearise_after_fusion).
 	void relinearise(const Eigen::Vector2d& reference);
 	void recordEnds(Fusion& fusion, const std::vector<std::size_t>& originals, const Eigen::MatrixXd& pair_cov) const;
 	void locateEnds(Fusion& fusion) const;

@@ -14,7 +14,7 @@
 // Second issue: each map's update (eq. 4.17) is linearised once, at the
 // estimate before its fusion. Maps fused after a crossing, before the loop
 // closes, are linearised metres away from where the closure puts their
-// features, and the map ends biased and over-confident; relinearise_iterations
+// features, and the map ends biased and over-confident; relinearise_after_fusion
 // re-evaluates the updates at the current estimate after each fusion.
 // Each log is simulated here (0.5 s).
 
@@ -93,7 +93,7 @@ TEST(LmjLongGap, RelinearisingTheGlobalMapAfterEachFusionKeepsItConsistent)
 {
 	// Noise seed 2 of the campaign, where the single linearisation is far off.
 	const LmjRun once = runLongGap(2, 200);
-	const LmjRun relinearised = runLongGap(2, 200, "relinearise_iterations = 5\n");
+	const LmjRun relinearised = runLongGap(2, 200, "relinearise_after_fusion = true\nrelinearise_iterations = 5\n");
 	std::cout << "long_gap noise seed 2, 200-step maps: linearised once: landmark RMSE " << *once.accuracy.landmark_rmse_m
 			  << " m, " << *once.accuracy.landmark_consistent_fraction << " inside 95%, NEES "
 			  << *once.accuracy.landmark_nees_mean << "; relinearised (" << relinearised.counters.at("relinearised_terms")
