@@ -277,3 +277,35 @@ TEST(CeresFullGrid196, StartingFromAnEkfRunReachesTheSameOptimum)
 }
 
 }  // namespace
+
+namespace
+{
+/// The ConfigError configuring CeresFullSlam with `section` gives ("" for none).
+std::string configError(const std::string& section)
+{
+	try
+	{
+		test::makePlugin("CeresFullSlam", section);
+	}
+	catch (const ConfigError& e)
+	{
+		return e.what();
+	}
+	return "";
+}
+
+TEST(CeresFullConfig, BoundsThatContradictEachOtherAreRefusedNotClamped)
+{
+	// Ceres would clamp a trust region whose largest radius is below its
+	// first, or damping whose upper clamp is below its lower one: the run
+	// would then use other values than the config says.
+	EXPECT_NE(configError("initial_trust_region_radius = 100\nmax_trust_region_radius = 10\n")
+				  .find("[ceres_full] max_trust_region_radius: 10 is below initial_trust_region_radius 100"),
+			  std::string::npos);
+	EXPECT_NE(configError("min_lm_diagonal = 2\nmax_lm_diagonal = 1\n")
+				  .find("[ceres_full] max_lm_diagonal: 1 is below min_lm_diagonal 2"),
+			  std::string::npos);
+	EXPECT_EQ(configError("initial_trust_region_radius = 10\nmax_trust_region_radius = 10\n"), "");
+	EXPECT_EQ(configError(""), "");
+}
+}  // namespace
