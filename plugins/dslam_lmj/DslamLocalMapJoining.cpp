@@ -164,7 +164,7 @@ bool DslamLocalMapJoining::joinWithLastFusion(
 	fusions_.pop_back();
 	global_->withdraw(withdrawn.update);  // its features stay, without its information, until fused again
 	if (withdrawn.anchor) anchored_ = false;
-	tally_.features_rejected -= withdrawn.rejected;
+	tally_.association.features_rejected -= withdrawn.rejected;
 	costs_.pop_back();
 	pair_cov_cache_.clear();
 
@@ -205,7 +205,7 @@ void DslamLocalMapJoining::keepFeaturesOfWithdrawnFusion(
 		const LandmarkId global = useIds(joined) ? local : known != global_of_local_.end() ? known->second : -1;
 		if (std::find(created.begin(), created.end(), global) == created.end()) continue;
 		a = {Association::Kind::Matched, global};
-		if (decided.id_gate_rejected > 0) --decided.id_gate_rejected;
+		if (decided.tally.id_gate_rejected > 0) --decided.tally.id_gate_rejected;
 	}
 }
 
@@ -218,12 +218,10 @@ std::optional<UpperLevelOutcome> DslamLocalMapJoining::associate(const LocalMap&
 
 LandmarkId DslamLocalMapJoining::freshId(LandmarkId proposed, std::vector<LandmarkId>& taken_now)
 {
-	auto taken = [&](LandmarkId id) {
-		return global_->contains(id) || std::find(taken_now.begin(), taken_now.end(), id) != taken_now.end();
-	};
-	LandmarkId id = proposed >= 0 && !taken(proposed) ? proposed : next_free_id_;
-	while (taken(id)) ++id;
-	next_free_id_ = std::max(next_free_id_, id + 1);
+	const LandmarkId id = ids_.allocate(proposed, [&](LandmarkId candidate) {
+		return global_->contains(candidate) ||
+			   std::find(taken_now.begin(), taken_now.end(), candidate) != taken_now.end();
+	});
 	taken_now.push_back(id);
 	return id;
 }
@@ -286,11 +284,7 @@ bool DslamLocalMapJoining::tryFuse(
 		const auto pair = chooseReferenceFeatures(
 			points, mapped, params_.reference_min_separation_m, params_.reference_min_clearance_m);
 		if (!pair) return false;
-		tally_.candidates += outcome->candidates;
-		tally_.pairs_dropped += outcome->pairs_dropped;
-		tally_.jcbb_nodes += outcome->jcbb_nodes;
-		tally_.jcbb_fallbacks += outcome->jcbb_fallbacks;
-		tally_.id_gate_rejected += outcome->id_gate_rejected;
+		tally_.association += outcome->tally;
 		fusion.decisions = outcome->decisions;
 		order = {pair->first, pair->second};
 		std::vector<LandmarkId> taken;
@@ -333,8 +327,8 @@ bool DslamLocalMapJoining::tryFuse(
 	recordEnds(fusion, originals, P(robotAndPairRows(order[0], order[1]), robotAndPairRows(order[0], order[1])));
 	locateEnds(fusion);
 	for (const std::size_t k : originals) fusion_of_map_[k] = fusions_.size();
-	tally_.features_rejected += fusion.rejected;
-	tally_.association_s += association_s;
+	tally_.association.features_rejected += fusion.rejected;
+	tally_.association.seconds += association_s;
 	fusion.seconds = seconds_before + secondsSince(t0);
 	costs_.push_back({originals.front(), fusion.seconds, association_s, global_->featureCount() * 2});
 	fusions_.push_back(std::move(fusion));
@@ -556,13 +550,7 @@ CostFigures DslamLocalMapJoining::costFigures() const
 	c.counters.emplace_back("local_maps_fused", static_cast<double>(fused));
 	c.counters.emplace_back("local_maps_merged", static_cast<double>(tally_.maps_merged));
 	c.counters.emplace_back("local_maps_unjoinable", static_cast<double>(tally_.maps_unjoinable));
-	c.counters.emplace_back("association_s", tally_.association_s);
-	c.counters.emplace_back("association_candidates", static_cast<double>(tally_.candidates));
-	c.counters.emplace_back("association_pairs_dropped", static_cast<double>(tally_.pairs_dropped));
-	c.counters.emplace_back("features_rejected", static_cast<double>(tally_.features_rejected));
-	c.counters.emplace_back("jcbb_nodes", static_cast<double>(tally_.jcbb_nodes));
-	c.counters.emplace_back("jcbb_fallbacks", static_cast<double>(tally_.jcbb_fallbacks));
-	c.counters.emplace_back("id_gate_rejected", static_cast<double>(tally_.id_gate_rejected));
+	tally_.association.appendCounters(c.counters);
 	c.counters.emplace_back("relinearised_terms", static_cast<double>(tally_.relinearised_terms));
 	return c;
 }

@@ -23,6 +23,7 @@
 #include "DslamLmjParams.h"
 #include "UpperLevelAssociation.h"
 
+#include <esif/localmap/LandmarkIdAllocator.h>
 #include <esif/plugin/MapJoiningPlugin.h>
 #include <esif/plugin/PluginWithParams.h>
 #include <esif/relative/FeatureMap.h>
@@ -131,14 +132,12 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 	/// Global covariance of a feature pair, for the robot pose of each step (cleared by every fusion).
 	mutable std::map<std::pair<LandmarkId, LandmarkId>, Eigen::Matrix4d> pair_cov_cache_;
 	std::vector<LocalMapFusionCost> costs_;
-	LandmarkId next_free_id_ = 1;
+	LandmarkIdAllocator ids_;
 
 	struct Tally
 	{
-		std::size_t maps_merged = 0, maps_unjoinable = 0, features_rejected = 0, candidates = 0, pairs_dropped = 0,
-					jcbb_nodes = 0, jcbb_fallbacks = 0, id_gate_rejected = 0,
-					relinearised_terms = 0;
-		double association_s = 0;
+		MapAssociationTally association;
+		std::size_t maps_merged = 0, maps_unjoinable = 0, relinearised_terms = 0;
 	} tally_;
 };
 

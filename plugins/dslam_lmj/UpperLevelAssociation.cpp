@@ -194,7 +194,7 @@ UpperLevelOutcome associateByIds(
 			if (retry && retry->size() < failing->size()) failing = retry;
 		}
 	for (const int i : *failing) out.decisions.associations[i].kind = Association::Kind::Rejected;
-	out.id_gate_rejected = failing->size();
+	out.tally.id_gate_rejected = failing->size();
 	return out;
 }
 
@@ -229,7 +229,7 @@ std::optional<UpperLevelOutcome> associateInPairFrame(
 
 	const double delta_m = params.region_sigmas * largestSigma(global.covariance({g1})) + params.region_margin_m;
 	const std::vector<LandmarkId> candidates = regionCandidates(map, a, g1, delta_m, known_ids, global);
-	out.candidates = candidates.size();
+	out.tally.candidates = candidates.size();
 	if (candidates.empty()) return out;
 
 	// Both sides in the frame of the pair: the local features from the local
@@ -246,18 +246,7 @@ std::optional<UpperLevelOutcome> associateInPairFrame(
 	for (std::size_t c = 0; c < candidates.size(); ++c) moved[c] = static_cast<int>(c + 2);
 	intoPairFrame(global_xy, global.covariance(global_ids), 0, 1, moved, sets.candidates, sets.candidates_cov);
 
-	const MapLevelDecisions result = decideMapFeatures(sets, params);
-	out.pairs_dropped = result.pairs_dropped;
-	out.jcbb_nodes = result.jcbb_nodes;
-	out.jcbb_fallbacks = result.fell_back;
-	for (std::size_t u = 0; u < unknown_indices.size(); ++u)
-	{
-		auto& decision = out.decisions.associations[unknown_indices[u]];
-		if (result.outcome[u] == MapFeatureOutcome::Matched)
-			decision = {Association::Kind::Matched, candidates[result.candidate_of[u]]};
-		else if (result.outcome[u] == MapFeatureOutcome::PoorlyObserved)
-			decision = {Association::Kind::Rejected, -1};
-	}
+	applyMapLevelDecisions(decideMapFeatures(sets, params), unknown_indices, candidates, out.decisions, out.tally);
 	return out;
 }
 

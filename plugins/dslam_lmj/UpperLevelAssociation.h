@@ -17,6 +17,7 @@
 
 #include <esif/core/Estimate.h>
 #include <esif/localmap/LocalMap.h>
+#include <esif/localmap/MapLevelDecisions.h>
 #include <esif/relative/FeatureMap.h>
 
 #include <Eigen/Core>
@@ -31,11 +32,9 @@ struct UpperLevelOutcome
 	/// One per local feature: Matched (global id), New (proposed id: the
 	/// local one) or Rejected (ambiguous).
 	StepReport decisions;
-	std::size_t candidates = 0;
-	std::size_t pairs_dropped = 0;
-	std::size_t jcbb_nodes = 0;
-	std::size_t jcbb_fallbacks = 0;	 ///< 1 when the map was too ambiguous for JCBB (SearchBounds)
-	std::size_t id_gate_rejected = 0;	///< ID-matched local features that failed the ID gate
+	/// What the search found (candidates, pairs dropped, JCBB nodes and
+	/// fallbacks, ID-gate rejections); the fusion adds time and rejections.
+	MapAssociationTally tally;
 };
 
 /// For each local feature, the global feature it is known to be before any

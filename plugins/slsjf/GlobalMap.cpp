@@ -78,13 +78,11 @@ std::optional<VarId> GlobalMap::startPose(const LocalMap& map)
 
 VarId GlobalMap::addFeature(LandmarkId proposed, const Eigen::Vector2d& initial, LandmarkId& id)
 {
-	id = proposed >= 0 && !var_of_id_.count(proposed) ? proposed : next_free_id_;
-	while (var_of_id_.count(id)) ++id;
+	id = ids_.allocate(proposed, [&](LandmarkId candidate) { return var_of_id_.count(candidate) > 0; });
 	const VarId v = newPoint(initial);
 	var_of_id_[id] = v;
 	id_of_var_[v.value] = id;
 	feature_vars_.push_back(v);
-	next_free_id_ = std::max(next_free_id_, id + 1);
 	return v;
 }
 

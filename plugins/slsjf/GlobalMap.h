@@ -26,6 +26,7 @@
 #include "VirtualObservation.h"
 
 #include <esif/core/Estimate.h>
+#include <esif/localmap/LandmarkIdAllocator.h>
 #include <esif/localmap/LocalMap.h>
 #include <esif/sparse/SparseInformationCore.h>
 
@@ -161,7 +162,7 @@ class GlobalMap
 	std::map<int, LandmarkId> id_of_var_;
 	std::vector<VarId> feature_vars_;
 	std::size_t poses_ = 0;
-	LandmarkId next_free_id_ = 1;
+	LandmarkIdAllocator ids_;
 	SparseCounters retired_;  // counters of cores replaced by relinearisation
 };
 

@@ -112,7 +112,7 @@ MapAssociationOutcome associateByIds(
 		const Eigen::LLT<Eigen::Matrix2d> llt(S);
 		if (llt.info() == Eigen::Success && nu.dot(llt.solve(nu)) <= gate) continue;
 		out.decisions.associations[i].kind = Association::Kind::Rejected;
-		++out.id_gate_rejected;
+		++out.tally.id_gate_rejected;
 	}
 	return out;
 }
@@ -136,7 +136,7 @@ MapAssociationOutcome associateGeometrically(
 	for (const auto& f : map.features) local_features.push_back(f.position);
 	const auto candidates = overlapCandidates(
 		global, global.pose(*start), local_features, out.extent, params.overlap_margin_m, slack_m, out.maps_selected);
-	out.candidates = candidates.size();
+	out.tally.candidates = candidates.size();
 	if (candidates.empty()) return out;
 
 	PointSets sets;
@@ -146,18 +146,11 @@ MapAssociationOutcome associateGeometrically(
 	sets.observed_cov = local_cov.bottomRightCorner(2 * M, 2 * M);
 	candidatesInLocalFrame(global, *start, candidates, sets);
 
-	const MapLevelDecisions result = decideMapFeatures(sets, params);
-	out.pairs_dropped = result.pairs_dropped;
-	out.jcbb_nodes = result.jcbb_nodes;
-	out.jcbb_fallbacks = result.fell_back;
-	for (Eigen::Index i = 0; i < M; ++i)
-	{
-		auto& a = out.decisions.associations[i];
-		if (result.outcome[i] == MapFeatureOutcome::Matched)
-			a = {Association::Kind::Matched, global.featureId(candidates[result.candidate_of[i]])};
-		else if (result.outcome[i] == MapFeatureOutcome::PoorlyObserved)
-			a = {Association::Kind::Rejected, -1};
-	}
+	std::vector<int> slots(static_cast<std::size_t>(M));
+	for (Eigen::Index i = 0; i < M; ++i) slots[i] = static_cast<int>(i);
+	std::vector<LandmarkId> candidate_ids;
+	for (const VarId v : candidates) candidate_ids.push_back(global.featureId(v));
+	applyMapLevelDecisions(decideMapFeatures(sets, params), slots, candidate_ids, out.decisions, out.tally);
 	return out;
 }
 

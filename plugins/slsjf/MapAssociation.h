@@ -17,6 +17,7 @@
 #include "SlsjfParams.h"
 
 #include <esif/localmap/LocalMap.h>
+#include <esif/localmap/MapLevelDecisions.h>
 
 #include <Eigen/Core>
 #include <optional>
@@ -30,11 +31,9 @@ struct MapAssociationOutcome
 	StepReport decisions;
 	MapExtent extent;  ///< for the overlap tests of later maps
 	std::size_t maps_selected = 0;
-	std::size_t candidates = 0;
-	std::size_t pairs_dropped = 0;	///< MRPT pairs the exact joint test removed
-	std::size_t jcbb_nodes = 0;
-	std::size_t jcbb_fallbacks = 0;	 ///< 1 when the map was too ambiguous for JCBB (SearchBounds)
-	std::size_t id_gate_rejected = 0;	///< ID-matched local features that failed the ID gate
+	/// What the search found (candidates, pairs dropped, JCBB nodes and
+	/// fallbacks, ID-gate rejections); the fusion adds time and rejections.
+	MapAssociationTally tally;
 };
 
 /// Extent of a local map: the farthest of its end position and features

@@ -74,14 +74,10 @@ void Slsjf::fuseLocalMap(const LocalMap& map)
 
 	MapRecord record{map.first_step, map.step_reports, {}, outcome.decisions};
 	for (const auto& f : map.features) record.local_ids.push_back(f.id);
-	for (const auto& a : outcome.decisions.associations) tally_.features_rejected += a.kind == Association::Kind::Rejected;
 	records_.push_back(std::move(record));
-	tally_.association_s += association_s;
-	tally_.pairs_dropped += outcome.pairs_dropped;
-	tally_.jcbb_nodes += outcome.jcbb_nodes;
-	tally_.jcbb_fallbacks += outcome.jcbb_fallbacks;
-	tally_.id_gate_rejected += outcome.id_gate_rejected;
-	tally_.candidates += outcome.candidates;
+	outcome.tally.seconds = association_s;
+	outcome.tally.features_rejected = rejectedCount(outcome.decisions);
+	tally_.association += outcome.tally;
 	tally_.maps_selected += outcome.maps_selected;
 
 	if (params_.smoothing == Smoothing::EveryKMaps &&
@@ -227,14 +223,8 @@ CostFigures Slsjf::costFigures() const
 	c.info_nnz = sparse.information_nnz;
 	c.counters = sparse.list();
 	c.counters.emplace_back("local_maps_fused", static_cast<double>(records_.size()));
-	c.counters.emplace_back("association_s", tally_.association_s);
-	c.counters.emplace_back("association_candidates", static_cast<double>(tally_.candidates));
+	tally_.association.appendCounters(c.counters);
 	c.counters.emplace_back("association_maps_selected", static_cast<double>(tally_.maps_selected));
-	c.counters.emplace_back("association_pairs_dropped", static_cast<double>(tally_.pairs_dropped));
-	c.counters.emplace_back("features_rejected", static_cast<double>(tally_.features_rejected));
-	c.counters.emplace_back("jcbb_nodes", static_cast<double>(tally_.jcbb_nodes));
-	c.counters.emplace_back("jcbb_fallbacks", static_cast<double>(tally_.jcbb_fallbacks));
-	c.counters.emplace_back("id_gate_rejected", static_cast<double>(tally_.id_gate_rejected));
 	c.counters.emplace_back("smoothing_runs", static_cast<double>(tally_.smoothing_runs));
 	c.counters.emplace_back("smoothing_iterations", static_cast<double>(tally_.smoothing_iterations));
 	c.counters.emplace_back("smoothing_s", tally_.smoothing_s);

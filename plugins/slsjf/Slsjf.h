@@ -83,9 +83,9 @@ class Slsjf : public PluginWithParams<slsjf::SlsjfParams, MapJoiningPlugin>
 
 	struct Tally
 	{
-		std::size_t features_rejected = 0, pairs_dropped = 0, jcbb_nodes = 0, candidates = 0, maps_selected = 0,
-					smoothing_runs = 0, smoothing_iterations = 0, jcbb_fallbacks = 0, id_gate_rejected = 0;
-		double association_s = 0, smoothing_s = 0;
+		MapAssociationTally association;
+		std::size_t maps_selected = 0, smoothing_runs = 0, smoothing_iterations = 0;
+		double smoothing_s = 0;
 	} tally_;
 };
 

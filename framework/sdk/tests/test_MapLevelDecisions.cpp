@@ -3,9 +3,12 @@
 // ones are matched, one far from every candidate is new, and one between
 // the gates, too close to a candidate to be new yet not it, is left out.
 
+#include <esif/localmap/LandmarkIdAllocator.h>
 #include <esif/localmap/MapLevelDecisions.h>
 
 #include <gtest/gtest.h>
+
+#include <set>
 
 namespace
 {
@@ -58,5 +61,62 @@ TEST(MapLevelDecisions, AJointlyIncompatibleShiftIsNotMatched)
 	const auto far = decideMapFeatures(shifted(0.4), MapLevelAssociationParams{});
 	EXPECT_GT(far.pairs_dropped, 0u);
 	EXPECT_NE(std::count(far.outcome.begin(), far.outcome.end(), MapFeatureOutcome::Matched), 4);
+}
+}  // namespace
+
+namespace
+{
+TEST(MapLevelDecisions, AppliedToTheFeaturesThatWereAssociatedOnly)
+{
+	// Features 0 and 2 were associated (slots), 1 was known by its ID:
+	// feature 0 matches candidate 1 (global 71), feature 2 is poorly observed.
+	MapLevelDecisions result;
+	result.outcome = {MapFeatureOutcome::Matched, MapFeatureOutcome::PoorlyObserved};
+	result.candidate_of = {1, -1};
+	result.pairs_dropped = 2;
+	result.jcbb_nodes = 9;
+	result.fell_back = true;
+	StepReport decisions;
+	decisions.associations = {
+		{Association::Kind::New, 5}, {Association::Kind::Matched, 40}, {Association::Kind::New, 7}};
+	MapAssociationTally tally;
+	applyMapLevelDecisions(result, {0, 2}, {70, 71}, decisions, tally);
+	EXPECT_EQ(decisions.associations[0].kind, Association::Kind::Matched);
+	EXPECT_EQ(decisions.associations[0].id, 71);
+	EXPECT_EQ(decisions.associations[1].id, 40);
+	EXPECT_EQ(decisions.associations[2].kind, Association::Kind::Rejected);
+	EXPECT_EQ(rejectedCount(decisions), 1u);
+	EXPECT_EQ(tally.pairs_dropped, 2u);
+	EXPECT_EQ(tally.jcbb_nodes, 9u);
+	EXPECT_EQ(tally.jcbb_fallbacks, 1u);
+
+	MapAssociationTally run;
+	run += tally;
+	run += tally;
+	run -= tally;
+	EXPECT_EQ(run.jcbb_nodes, 9u);
+	std::vector<std::pair<std::string, double>> counters;
+	run.appendCounters(counters);
+	ASSERT_EQ(counters.size(), 7u);
+	EXPECT_EQ(counters[4].first, "jcbb_nodes");
+	EXPECT_EQ(counters[4].second, 9.0);
+}
+
+TEST(LandmarkIdAllocator, KeepsAFreeProposedIdElseTheNextAboveEveryIdGiven)
+{
+	std::set<LandmarkId> used = {1, 2, 10};
+	const auto taken = [&](LandmarkId id) { return used.count(id) > 0; };
+	LandmarkIdAllocator ids;
+	const auto give = [&](LandmarkId proposed) {
+		const LandmarkId id = ids.allocate(proposed, taken);
+		used.insert(id);
+		return id;
+	};
+	EXPECT_EQ(give(7), 7);	 // free: kept
+	EXPECT_EQ(give(7), 8);	 // taken: the next free above every ID given (7)
+	EXPECT_EQ(give(-1), 9);	 // none proposed
+	EXPECT_EQ(give(2), 11);	 // 10 is taken too
+	EXPECT_EQ(give(40), 40);
+	EXPECT_EQ(give(-1), 41);
 }
 }  // namespace

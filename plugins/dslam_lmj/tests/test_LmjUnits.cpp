@@ -166,7 +166,7 @@ TEST(LmjUnits, IdMatchedFeatureFailingTheGateIsLeftOut)
 		lmj::DslamLmjParams params;
 		const auto out = lmj::associateByIds(c.map, c.local_cov, c.global, params);
 		ASSERT_EQ(out.decisions.associations.size(), 6u);
-		EXPECT_EQ(out.id_gate_rejected, 1u) << misread;
+		EXPECT_EQ(out.tally.id_gate_rejected, 1u) << misread;
 		for (int i = 0; i < 6; ++i)
 			EXPECT_EQ(out.decisions.associations[i].kind,
 					  i + 1 == misread ? Association::Kind::Rejected : Association::Kind::Matched)
@@ -174,7 +174,7 @@ TEST(LmjUnits, IdMatchedFeatureFailingTheGateIsLeftOut)
 		// Disabled gate: IDs trusted, everything matched.
 		params.id_gate_chi2_quantile = 1;
 		const auto trusted = lmj::associateByIds(c.map, c.local_cov, c.global, params);
-		EXPECT_EQ(trusted.id_gate_rejected, 0u);
+		EXPECT_EQ(trusted.tally.id_gate_rejected, 0u);
 	}
 }
 

@@ -22,4 +22,63 @@ MapLevelDecisions decideMapFeatures(const PointSets& sets, const MapLevelAssocia
 	return out;
 }
 
+MapAssociationTally& MapAssociationTally::operator+=(const MapAssociationTally& o)
+{
+	seconds += o.seconds;
+	candidates += o.candidates;
+	pairs_dropped += o.pairs_dropped;
+	features_rejected += o.features_rejected;
+	jcbb_nodes += o.jcbb_nodes;
+	jcbb_fallbacks += o.jcbb_fallbacks;
+	id_gate_rejected += o.id_gate_rejected;
+	return *this;
+}
+
+MapAssociationTally& MapAssociationTally::operator-=(const MapAssociationTally& o)
+{
+	seconds -= o.seconds;
+	candidates -= o.candidates;
+	pairs_dropped -= o.pairs_dropped;
+	features_rejected -= o.features_rejected;
+	jcbb_nodes -= o.jcbb_nodes;
+	jcbb_fallbacks -= o.jcbb_fallbacks;
+	id_gate_rejected -= o.id_gate_rejected;
+	return *this;
+}
+
+void MapAssociationTally::appendCounters(std::vector<std::pair<std::string, double>>& counters) const
+{
+	counters.emplace_back("association_s", seconds);
+	counters.emplace_back("association_candidates", static_cast<double>(candidates));
+	counters.emplace_back("association_pairs_dropped", static_cast<double>(pairs_dropped));
+	counters.emplace_back("features_rejected", static_cast<double>(features_rejected));
+	counters.emplace_back("jcbb_nodes", static_cast<double>(jcbb_nodes));
+	counters.emplace_back("jcbb_fallbacks", static_cast<double>(jcbb_fallbacks));
+	counters.emplace_back("id_gate_rejected", static_cast<double>(id_gate_rejected));
+}
+
+void applyMapLevelDecisions(
+	const MapLevelDecisions& result, const std::vector<int>& slots, const std::vector<LandmarkId>& candidate_ids,
+	StepReport& decisions, MapAssociationTally& tally)
+{
+	tally.pairs_dropped += result.pairs_dropped;
+	tally.jcbb_nodes += result.jcbb_nodes;
+	tally.jcbb_fallbacks += result.fell_back ? 1 : 0;
+	for (std::size_t u = 0; u < slots.size(); ++u)
+	{
+		auto& decision = decisions.associations[slots[u]];
+		if (result.outcome[u] == MapFeatureOutcome::Matched)
+			decision = {Association::Kind::Matched, candidate_ids[result.candidate_of[u]]};
+		else if (result.outcome[u] == MapFeatureOutcome::PoorlyObserved)
+			decision = {Association::Kind::Rejected, -1};
+	}
+}
+
+std::size_t rejectedCount(const StepReport& decisions)
+{
+	std::size_t n = 0;
+	for (const auto& a : decisions.associations) n += a.kind == Association::Kind::Rejected;
+	return n;
+}
+
 }  // namespace esif

@@ -15,8 +15,11 @@
 /// the plugin's own.
 
 #include <esif/association/PointSetAssociation.h>
+#include <esif/core/Estimate.h>
 #include <esif/localmap/MapLevelAssociationParams.h>
 
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace esif
@@ -42,5 +45,37 @@ struct MapLevelDecisions
 /// Associates `sets` with the method and gates of `params` (association
 /// jcbb or auto: JCBB; nn: nearest neighbour) and decides each feature.
 MapLevelDecisions decideMapFeatures(const PointSets& sets, const MapLevelAssociationParams& params);
+
+/// What the map-level associations of a run found, the counters both
+/// map-joining filters report (stats.json plugin_<name>): per fusion, and
+/// summed over the run with +=.
+struct MapAssociationTally
+{
+	double seconds = 0;	 ///< association_s
+	std::size_t candidates = 0;	 ///< global features compared
+	std::size_t pairs_dropped = 0;	///< MRPT pairs the exact joint test removed
+	std::size_t features_rejected = 0;	///< local features left out (poorly observed, failed ID gate)
+	std::size_t jcbb_nodes = 0;
+	std::size_t jcbb_fallbacks = 0;	 ///< maps too ambiguous for JCBB (SearchBounds): nearest neighbour instead
+	std::size_t id_gate_rejected = 0;  ///< ID-matched local features that failed the ID gate
+
+	MapAssociationTally& operator+=(const MapAssociationTally& other);
+	MapAssociationTally& operator-=(const MapAssociationTally& other);	///< a withdrawn fusion's
+	/// Appends association_s, association_candidates, association_pairs_dropped,
+	/// features_rejected, jcbb_nodes, jcbb_fallbacks and id_gate_rejected.
+	void appendCounters(std::vector<std::pair<std::string, double>>& counters) const;
+};
+
+/// Writes `result` into `decisions`: observed point u, the local feature
+/// whose decision is `decisions.associations[slots[u]]`, becomes Matched to
+/// `candidate_ids[result.candidate_of[u]]`, or Rejected (id -1) when poorly
+/// observed; a new one keeps the decision it had (New, its proposed ID).
+/// Adds the search's counters to `tally`.
+void applyMapLevelDecisions(
+	const MapLevelDecisions& result, const std::vector<int>& slots, const std::vector<LandmarkId>& candidate_ids,
+	StepReport& decisions, MapAssociationTally& tally);
+
+/// The number of Rejected decisions in `decisions` (features_rejected).
+std::size_t rejectedCount(const StepReport& decisions);
 
 }  // namespace esif
