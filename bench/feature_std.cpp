@@ -14,7 +14,7 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
 #include <esif/render/FigureWriter.h>
-#include <esif/run/PluginLoader.h>
+#include <esif/loader/PluginLoader.h>
 #include <esif/safeio/AtomicFile.h>
 
 #include <cmath>

@@ -6,7 +6,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 
-#include <esif/bench/SparseBenchmark.h>
+#include <esif/sparsebench/SparseBenchmark.h>
 #include <esif/core/Errors.h>
 
 #include <algorithm>

@@ -2,9 +2,9 @@
 
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
-#include <esif/run/LocalMapRunPipeline.h>
-#include <esif/run/PluginLoader.h>
-#include <esif/run/RunSetup.h>
+#include <esif/localmaps/LocalMapRunPipeline.h>
+#include <esif/loader/PluginLoader.h>
+#include <esif/run/RunConfig.h>
 
 #include <filesystem>
 

@@ -2,7 +2,7 @@
 #include "Commands.h"
 
 #include <esif/core/Errors.h>
-#include <esif/run/G2oExport.h>
+#include <esif/interop/G2oExport.h>
 
 #include <iostream>
 

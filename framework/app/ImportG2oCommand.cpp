@@ -1,7 +1,7 @@
 #include "CommandLine.h"
 #include "Commands.h"
 
-#include <esif/run/G2oImport.h>
+#include <esif/interop/G2oImport.h>
 
 #include <iostream>
 

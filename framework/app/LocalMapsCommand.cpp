@@ -5,8 +5,8 @@
 #include <esif/eval/LocalMapFolderSummary.h>
 #include <esif/eval/MonteCarloStatistics.h>
 #include <esif/formats/LocalMapFiles.h>
-#include <esif/run/LocalMapBuild.h>
-#include <esif/run/LocalMapCheck.h>
+#include <esif/localmaps/LocalMapBuild.h>
+#include <esif/localmaps/LocalMapCheck.h>
 
 #include <cstdio>
 #include <cstring>

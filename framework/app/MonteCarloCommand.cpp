@@ -8,12 +8,11 @@
 #include "Commands.h"
 #include "ConfigCheck.h"
 #include "PluginPreload.h"
-#include "MonteCarloJobs.h"
+#include <esif/montecarlo/MonteCarloJobs.h>
 
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
-#include <esif/run/MonteCarloCollect.h>
-#include <esif/run/RunSetup.h>
+#include <esif/montecarlo/MonteCarloCollect.h>
 #include <esif/safeio/AtomicFile.h>
 #include <esif/safeio/FileSet.h>
 #include <esif/safeio/FolderLock.h>

@@ -1,6 +1,6 @@
 #include "PluginPreload.h"
 
-#include <esif/run/PluginLoader.h>
+#include <esif/loader/PluginLoader.h>
 
 #include <sstream>
 

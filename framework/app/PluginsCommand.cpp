@@ -2,7 +2,7 @@
 #include "Commands.h"
 
 #include <esif/run/HostParams.h>
-#include <esif/run/PluginLoader.h>
+#include <esif/loader/PluginLoader.h>
 
 #include <iostream>
 #include <sstream>

@@ -3,7 +3,7 @@
 
 #include <esif/core/Errors.h>
 #include <esif/formats/StatsJson.h>
-#include <esif/run/LocalMapRunPipeline.h>
+#include <esif/localmaps/LocalMapRunPipeline.h>
 #include <esif/run/RunPipeline.h>
 
 #include <iostream>

@@ -10,7 +10,7 @@
 #include <esif/core/Errors.h>
 #include <esif/formats/GroundTruth.h>
 #include <esif/run/RawlogOutput.h>
-#include <esif/sim/MeasurementTruth.h>
+#include <esif/formats/MeasurementTruth.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>
 

@@ -12,7 +12,7 @@
 #include <esif/formats/LocalMapFiles.h>
 #include <esif/formats/RunOutputReader.h>
 #include <esif/models/Se2.h>
-#include <esif/run/LocalMapBuild.h>
+#include <esif/localmaps/LocalMapBuild.h>
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 
 #include <EsifTestSupport.h>
 
-#include <esif/eval/MonteCarloTables.h>
+#include <esif/montecarlo/MonteCarloTables.h>
 #include <esif/eval/SuspectResult.h>
 #include <esif/formats/StatsJson.h>
 

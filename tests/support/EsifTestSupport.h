@@ -9,7 +9,7 @@
 #include <esif/formats/GroundTruth.h>
 #include <esif/formats/RawlogReader.h>
 #include <esif/formats/StatsJson.h>
-#include <esif/run/PluginLoader.h>
+#include <esif/loader/PluginLoader.h>
 #include <esif/run/Replay.h>
 #include <esif/sim/Scenario.h>
 

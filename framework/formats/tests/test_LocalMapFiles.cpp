@@ -2,7 +2,7 @@
 
 #include <esif/core/Errors.h>
 #include <esif/formats/LocalMapFiles.h>
-#include <esif/run/LocalMapBuild.h>
+#include <esif/localmaps/LocalMapBuild.h>
 
 #include <gtest/gtest.h>
 #include <algorithm>

@@ -2,8 +2,8 @@
 // the first of several with a warning, and each run's accuracy as a ratio of
 // the baseline's.
 
-#include <esif/eval/BaselineComparison.h>
-#include <esif/eval/ComparisonTable.h>
+#include <esif/compare/BaselineComparison.h>
+#include <esif/compare/ComparisonTable.h>
 
 #include <gtest/gtest.h>
 

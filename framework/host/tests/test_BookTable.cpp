@@ -1,7 +1,7 @@
 // The book's Table 5.1 layout: book columns in the book's order filled by
 // formulation (or "not available"), then the other runs by label.
 
-#include <esif/eval/BookTable.h>
+#include <esif/compare/BookTable.h>
 
 #include <gtest/gtest.h>
 #include <sstream>

@@ -2,9 +2,9 @@
 // the first sweep maps everything and later sweeps revisit it, and that the
 // core recovers it like the dense reference and the other methods.
 
-#include <esif/bench/DslamLikeSequence.h>
-#include <esif/bench/DslamSequenceFeeder.h>
-#include <esif/bench/SparseBenchmark.h>
+#include <esif/sparsebench/DslamLikeSequence.h>
+#include <esif/sparsebench/DslamSequenceFeeder.h>
+#include <esif/sparsebench/SparseBenchmark.h>
 #include <esif/core/Errors.h>
 #include <esif/sparse/SparseInformationCore.h>
 

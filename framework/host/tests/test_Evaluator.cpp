@@ -1,6 +1,6 @@
 #include <esif/association/Chi2.h>
 #include <esif/eval/AssociationAudit.h>
-#include <esif/eval/ComparisonTable.h>
+#include <esif/compare/ComparisonTable.h>
 #include <esif/eval/Evaluator.h>
 #include <esif/formats/StatsJson.h>
 

@@ -9,7 +9,7 @@
 
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
-#include <esif/run/LocalMapReplay.h>
+#include <esif/localmaps/LocalMapReplay.h>
 
 #include <gtest/gtest.h>
 

@@ -10,8 +10,8 @@
 #include <esif/core/Errors.h>
 #include <esif/eval/EstimationErrorFiles.h>
 #include <esif/eval/MonteCarloStatistics.h>
-#include <esif/eval/MonteCarloTables.h>
-#include <esif/run/MonteCarloCollect.h>
+#include <esif/montecarlo/MonteCarloTables.h>
+#include <esif/montecarlo/MonteCarloCollect.h>
 #include <esif/safeio/AtomicFile.h>
 
 #include <gtest/gtest.h>

@@ -5,15 +5,15 @@
 
 #include <EsifTestSupport.h>
 
-#include <esif/eval/BaselineComparison.h>
+#include <esif/compare/BaselineComparison.h>
 #include <esif/eval/ColumnMeanings.h>
-#include <esif/eval/ComparisonTable.h>
-#include <esif/eval/MonteCarloTables.h>
+#include <esif/compare/ComparisonTable.h>
+#include <esif/montecarlo/MonteCarloTables.h>
 #include <esif/eval/ReferenceResultDifference.h>
 #include <esif/eval/RunDifference.h>
-#include <esif/report/ComparisonPage.h>
+#include <esif/compare/ComparisonPage.h>
 #include <esif/report/Html.h>
-#include <esif/report/MonteCarloPage.h>
+#include <esif/montecarlo/MonteCarloPage.h>
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 #include <EsifTestSupport.h>
 
 #include <esif/core/Errors.h>
-#include <esif/eval/ComparisonTable.h>
+#include <esif/compare/ComparisonTable.h>
 #include <esif/eval/RunDifference.h>
 #include <esif/formats/MapWriter.h>
 #include <esif/formats/RunOutputReader.h>

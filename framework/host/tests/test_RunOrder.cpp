@@ -3,7 +3,7 @@
 // self-reference, an ambiguous label or a cycle is one ConfigError.
 
 #include <esif/core/Errors.h>
-#include <esif/run/RunOrder.h>
+#include <esif/compare/RunOrder.h>
 
 #include <gtest/gtest.h>
 

@@ -21,7 +21,7 @@
 #include <esif/formats/GroundTruth.h>
 #include <esif/formats/RawlogReader.h>
 #include <esif/models/Se2.h>
-#include <esif/sim/MeasurementTruth.h>
+#include <esif/formats/MeasurementTruth.h>
 #include <esif/sim/Scenario.h>
 #include <esif/sim/Simulator.h>
 

@@ -3,8 +3,8 @@
 // recovery at each, checked against a fresh factorisation along the way
 // and against the dense inverse at the end (slow: a dense 2450 x 2450 inverse).
 
-#include <esif/bench/DslamLikeSequence.h>
-#include <esif/bench/DslamSequenceFeeder.h>
+#include <esif/sparsebench/DslamLikeSequence.h>
+#include <esif/sparsebench/DslamSequenceFeeder.h>
 #include <esif/sparse/SparseInformationCore.h>
 
 #include <Eigen/Dense>

@@ -18,7 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-namespace esif::app
+namespace esif
 {
 namespace
 {
@@ -127,4 +127,4 @@ ChildResult runEsifChild(const std::vector<std::string>& args, ChildOutput outpu
 	return result;
 }
 
-}  // namespace esif::app
+}  // namespace esif

@@ -26,7 +26,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-namespace esif::app
+namespace esif
 {
 namespace
 {
@@ -253,4 +253,4 @@ int waitServedRun(ServedRun& run)
 	return reported ? status : SIGKILL;	 // a wait status with WIFSIGNALED, WTERMSIG == SIGKILL
 }
 
-}  // namespace esif::app
+}  // namespace esif

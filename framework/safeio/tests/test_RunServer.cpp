@@ -21,9 +21,9 @@
 
 namespace
 {
-using esif::app::ChildOutput;
-using esif::app::runEsifChild;
-using esif::app::RunServer;
+using esif::ChildOutput;
+using esif::runEsifChild;
+using esif::RunServer;
 
 /// The runs' entry point: argv = {"esif", what, argument}.
 int testEntry(int argc, char** argv)
@@ -51,7 +51,7 @@ int testEntry(int argc, char** argv)
 TEST(RunServer, EachRunIsAProcessOfItsOwnForkedByTheServer)
 {
 	const RunServer server(testEntry);
-	ASSERT_TRUE(esif::app::runServerStarted());
+	ASSERT_TRUE(esif::runServerStarted());
 	const auto result = runEsifChild({"esif", "whoami"}, ChildOutput::Kept, "test");
 	EXPECT_EQ(result.exit_code, 7);
 	pid_t pid = 0, parent = 0;
@@ -74,7 +74,7 @@ TEST(RunServer, TheErrorLineAndTheKillingSignalComeBack)
 TEST(RunServer, ConcurrentRunsKeepTheirOwnStderr)
 {
 	const RunServer server(testEntry);
-	esif::app::ChildResult a, b;
+	esif::ChildResult a, b;
 	std::thread first([&] { a = runEsifChild({"esif", "echo", "first"}, ChildOutput::Kept, "test"); });
 	std::thread second([&] { b = runEsifChild({"esif", "echo", "second"}, ChildOutput::Kept, "test"); });
 	first.join();
@@ -93,7 +93,7 @@ TEST(RunServer, NoProcessOutlivesTheServer)
 		const RunServer server(testEntry);
 		for (int i = 0; i < 3; ++i) EXPECT_EQ(runEsifChild({"esif", "whoami"}, ChildOutput::Kept, "test").exit_code, 7);
 	}
-	EXPECT_FALSE(esif::app::runServerStarted());
+	EXPECT_FALSE(esif::runServerStarted());
 	int status = 0;
 	EXPECT_EQ(::waitpid(-1, &status, WNOHANG), -1) << "a process of the server was left";
 	EXPECT_EQ(errno, ECHILD);

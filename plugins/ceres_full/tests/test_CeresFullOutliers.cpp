@@ -9,7 +9,7 @@
 #include <esif/formats/AssociationFile.h>
 #include <esif/formats/RunOutputReader.h>
 #include <esif/formats/StatsJson.h>
-#include <esif/sim/MeasurementTruth.h>
+#include <esif/formats/MeasurementTruth.h>
 
 #include <gtest/gtest.h>
 

@@ -14,7 +14,7 @@
 #include <esif/formats/GroundTruth.h>
 #include <esif/models/Se2.h>
 #include <esif/run/InitialRun.h>
-#include <esif/run/RunSetup.h>
+#include <esif/run/RunConfig.h>
 #include <esif/sim/Simulator.h>
 
 #include <Eigen/Eigenvalues>

@@ -8,7 +8,7 @@
 #include <esif/formats/RunOutputReader.h>
 #include <esif/safeio/AtomicFile.h>
 #include <esif/safeio/FileSet.h>
-#include <esif/sim/MeasurementTruth.h>
+#include <esif/formats/MeasurementTruth.h>
 
 #include <filesystem>
 

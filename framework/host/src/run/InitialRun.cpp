@@ -1,7 +1,7 @@
 #include <esif/core/Errors.h>
 #include <esif/formats/RunOutputReader.h>
 #include <esif/run/InitialRun.h>
-#include <esif/run/RunSetup.h>
+#include <esif/run/RunConfig.h>
 
 #include <filesystem>
 

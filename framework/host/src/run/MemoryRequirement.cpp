@@ -1,5 +1,5 @@
 #include <esif/core/Errors.h>
-#include <esif/run/PluginName.h>
+#include <esif/loader/PluginName.h>
 #include <esif/run/MemoryRequirement.h>
 
 #include <algorithm>

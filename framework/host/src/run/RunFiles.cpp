@@ -3,7 +3,8 @@
 #include <esif/formats/AssociationFile.h>
 #include <esif/render/FigureWriter.h>
 #include <esif/run/MapOutputs.h>
-#include <esif/run/RunSetup.h>
+#include <esif/run/RunConfig.h>
+#include <esif/run/RunStats.h>
 #include <esif/safeio/AtomicFile.h>
 
 #include <filesystem>

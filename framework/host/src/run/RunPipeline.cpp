@@ -17,8 +17,9 @@
 #include <esif/run/MemoryRequirement.h>
 #include <esif/run/Replay.h>
 #include <esif/run/RunPipeline.h>
-#include <esif/run/RunSetup.h>
-#include <esif/sim/MeasurementTruth.h>
+#include <esif/run/RunConfig.h>
+#include <esif/run/RunStats.h>
+#include <esif/formats/MeasurementTruth.h>
 
 #include <chrono>
 #include <filesystem>

@@ -3,7 +3,7 @@
 #include <esif/formats/GzArchive.h>
 #include <esif/formats/RawlogWriter.h>
 #include <esif/safeio/AtomicFile.h>
-#include <esif/sim/MeasurementTruth.h>
+#include <esif/formats/MeasurementTruth.h>
 #include <esif/sim/Simulator.h>
 #include "FeatureGrid.h"
 

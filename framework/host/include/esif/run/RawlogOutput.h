@@ -11,7 +11,7 @@
 
 #include <esif/formats/GroundTruth.h>
 #include <esif/safeio/FileSet.h>
-#include <esif/sim/MeasurementTruth.h>
+#include <esif/formats/MeasurementTruth.h>
 
 #include <string>
 #include <vector>

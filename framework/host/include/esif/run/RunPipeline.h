@@ -3,7 +3,7 @@
 /// One `esif run`: config -> plugin -> rawlog replay -> evaluation -> outputs.
 
 #include <esif/formats/StatsJson.h>
-#include <esif/run/PluginLoader.h>
+#include <esif/loader/PluginLoader.h>
 
 #include <optional>
 #include <string>

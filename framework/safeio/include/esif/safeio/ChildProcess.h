@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace esif::app
+namespace esif
 {
 /// What a child run left behind: its exit code (128 + N when killed by
 /// signal N) and the line of its stderr that says why it failed.
@@ -39,4 +39,4 @@ ChildResult runEsifChild(const std::vector<std::string>& args, ChildOutput outpu
 /// message, or the signal that killed the run).
 std::string firstErrorLine(const std::string& text);
 
-}  // namespace esif::app
+}  // namespace esif

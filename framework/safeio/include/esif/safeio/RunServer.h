@@ -18,7 +18,7 @@
 #include <sys/types.h>
 #include <vector>
 
-namespace esif::app
+namespace esif
 {
 /// esif's entry point as a child run calls it: argv as main() receives it
 /// ("esif", "<command>", ...); returns the exit code.
@@ -62,4 +62,4 @@ ServedRun startServedRun(const std::vector<std::string>& args, int stderr_fd, bo
 /// status reads as a run killed by SIGKILL.
 int waitServedRun(ServedRun& run);
 
-}  // namespace esif::app
+}  // namespace esif
