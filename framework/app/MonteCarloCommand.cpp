@@ -6,7 +6,7 @@
 
 #include "CommandLine.h"
 #include "Commands.h"
-#include "ConfigCheck.h"
+#include <esif/run/ConfigCheck.h>
 #include "PluginPreload.h"
 #include <esif/montecarlo/MonteCarloJobs.h>
 

@@ -9,8 +9,6 @@ namespace
 {
 constexpr const char* kBaselineFormulation = "full_slam";
 
-std::string labelOf(const Stats& run) { return run.text("label").value_or("?"); }
-
 /// run's `key` over the baseline's; nullopt when either is missing or the quotient is not finite.
 std::optional<double> ratio(const Stats& run, const Stats& baseline, const std::string& key)
 {
@@ -21,6 +19,8 @@ std::optional<double> ratio(const Stats& run, const Stats& baseline, const std::
 	return std::isfinite(r) ? std::optional<double>(r) : std::nullopt;
 }
 }  // namespace
+
+std::string labelOf(const Stats& run) { return run.text("label").value_or("?"); }
 
 std::string runFormulation(const Stats& run) { return run.text("formulation").value_or("other"); }
 

@@ -96,13 +96,6 @@ std::optional<StateNees> truthStateNees(
 }
 }  // namespace
 
-LocalMapJoiner& requireLocalMapJoiner(FilterPlugin& plugin, const std::string& config, const std::string& name)
-{
-	if (auto* joiner = asLocalMapJoiner(plugin)) return *joiner;
-	throw ConfigError(
-		config + ": plugin " + name + " cannot join local maps (--local-maps needs a local-map joining plugin)");
-}
-
 namespace
 {
 /// The whole run, writing into request.out_dir (the partial folder).

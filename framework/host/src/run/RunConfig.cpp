@@ -63,6 +63,13 @@ FilterPlugin::Ptr createConfiguredPlugin(const ConfigFile& cfg, const HostParams
 
 LocalMapJoiner* asLocalMapJoiner(FilterPlugin& plugin) { return dynamic_cast<LocalMapJoiner*>(&plugin); }
 
+LocalMapJoiner& requireLocalMapJoiner(FilterPlugin& plugin, const std::string& config, const std::string& name)
+{
+	if (auto* joiner = asLocalMapJoiner(plugin)) return *joiner;
+	throw ConfigError(
+		config + ": plugin " + name + " cannot join local maps (--local-maps needs a local-map joining plugin)");
+}
+
 RawlogReadOptions readOptionsOf(const HostParams& host)
 {
 	RawlogReadOptions options;

@@ -17,6 +17,9 @@ namespace esif
 /// "other" for stats.json files written before the key existed.
 std::string runFormulation(const Stats& run);
 
+/// The run's label; "?" when it has none.
+std::string labelOf(const Stats& run);
+
 /// Which run is the optimization baseline.
 struct BaselineChoice
 {

@@ -22,11 +22,6 @@ struct LocalMapRunRequest
 	bool progress_bar = true;
 };
 
-/// The plugin as a map-joining filter; throws ConfigError "`config`: plugin
-/// `name` cannot join local maps (--local-maps needs a local-map joining
-/// plugin)" when it is not one.
-LocalMapJoiner& requireLocalMapJoiner(FilterPlugin& plugin, const std::string& config, const std::string& name);
-
 /// Runs the whole pipeline and writes into request.out_dir what a rawlog
 /// run writes, each atomically, with the end poses of the maps in place of
 /// the trajectory: landmarks.gz, landmarks.txt, trajectory.tum (end pose k

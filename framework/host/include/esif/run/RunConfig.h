@@ -36,6 +36,11 @@ FilterPlugin::Ptr createConfiguredPlugin(const ConfigFile& cfg, const HostParams
 /// The plugin as a map-joining filter, or nullptr when it is not one.
 LocalMapJoiner* asLocalMapJoiner(FilterPlugin& plugin);
 
+/// The plugin as a map-joining filter; throws ConfigError "`config`: plugin
+/// `name` cannot join local maps (--local-maps needs a local-map joining
+/// plugin)" when it is not one.
+LocalMapJoiner& requireLocalMapJoiner(FilterPlugin& plugin, const std::string& config, const std::string& name);
+
 /// How the rawlog is turned into plugin input ([esif] hide_landmark_ids,
 /// sensor-noise overrides, CObservationOdometry noise).
 RawlogReadOptions readOptionsOf(const HostParams& host);

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace esif::app
+namespace esif
 {
 /// What checking a config found out before any run.
 struct CheckedConfig
@@ -29,4 +29,4 @@ std::vector<CheckedConfig> checkConfigs(const std::vector<std::string>& configs,
 										const std::optional<std::string>& plugin_dir = std::nullopt,
 										bool local_maps = false);
 
-}  // namespace esif::app
+}  // namespace esif

@@ -1,14 +1,13 @@
-#include "ConfigCheck.h"
+#include <esif/run/ConfigCheck.h>
 
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
-#include <esif/localmaps/LocalMapRunPipeline.h>
 #include <esif/loader/PluginLoader.h>
 #include <esif/run/RunConfig.h>
 
 #include <filesystem>
 
-namespace esif::app
+namespace esif
 {
 namespace
 {
@@ -45,4 +44,4 @@ std::vector<CheckedConfig> checkConfigs(const std::vector<std::string>& configs,
 	return checked;
 }
 
-}  // namespace esif::app
+}  // namespace esif
