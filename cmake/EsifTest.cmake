@@ -9,6 +9,22 @@ include(GoogleTest)
 
 set(ESIF_MRPT_DATASETS /usr/share/mrpt/datasets)
 
+# esif_add_sdk_test(<name> LABEL fast|slow SOURCES ...)
+# A unit test of the SDK: it links the SDK alone (what a plugin links) and
+# sees the SDK's private headers (framework/sdk/src), so it tests the
+# internals a plugin cannot reach without the host in between.
+function(esif_add_sdk_test name)
+  cmake_parse_arguments(ARG "" "LABEL" "SOURCES" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE esif::sdk GTest::gtest_main)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support ${PROJECT_SOURCE_DIR}/framework/sdk/src)
+  set_target_properties(${name} PROPERTIES BUILD_RPATH "${CMAKE_BINARY_DIR}/lib" UNITY_BUILD OFF)
+  gtest_discover_tests(${name}
+    WORKING_DIRECTORY ${CMAKE_BINARY_DIR}
+    PROPERTIES LABELS ${ARG_LABEL}
+    DISCOVERY_TIMEOUT 60)
+endfunction()
+
 function(esif_add_test name)
   cmake_parse_arguments(ARG "" "LABEL" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})

@@ -2,7 +2,7 @@
 // with drop tolerance 0, an approximation that drops small entries
 // otherwise, and a reported breakdown on indefinite input.
 
-#include <esif/sparse/IncompleteCholesky.h>
+#include "sparse/IncompleteCholesky.h"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

@@ -5,8 +5,8 @@
 
 #include "SparseTestProblem.h"
 
-#include <esif/sparse/IncrementalCholesky.h>
-#include <esif/sparse/IncrementalPreconditioner.h>
+#include "sparse/IncrementalCholesky.h"
+#include "sparse/IncrementalPreconditioner.h"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // The Takahashi sparse inverse against the dense inverse, on CHOLMOD
 // factors of every kind (simplicial LDL^T, LL^T, supernodal).
 
-#include <esif/sparse/Cholmod.h>
-#include <esif/sparse/SparseInverse.h>
+#include "sparse/Cholmod.h"
+#include "sparse/SparseInverse.h"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

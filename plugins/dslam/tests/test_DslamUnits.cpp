@@ -33,7 +33,6 @@
 #include <esif/relative/FeatureMap.h>
 #include <esif/relative/ReferencePair.h>
 #include <esif/relative/RelativeGeometry.h>
-#include <esif/sparse/PatternExport.h>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #include <esif/core/Errors.h>
-#include <esif/sparse/Cholmod.h>
+#include "sparse/Cholmod.h"
 
 #include <algorithm>
 

@@ -5,8 +5,8 @@
 /// square-root SAM, book Fig. 3.22) would do. Also the factor behind the
 /// marginals of methods that keep no complete factor.
 
-#include <esif/sparse/Cholmod.h>
-#include <esif/sparse/RecoverySolver.h>
+#include "sparse/Cholmod.h"
+#include "sparse/RecoverySolver.h"
 #include <esif/sparse/SparseCounters.h>
 #include <esif/sparse/SparseRecoveryParams.h>
 

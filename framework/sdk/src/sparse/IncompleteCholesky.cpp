@@ -1,4 +1,4 @@
-#include <esif/sparse/IncompleteCholesky.h>
+#include "sparse/IncompleteCholesky.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #include <esif/core/Errors.h>
-#include <esif/sparse/IncrementalCholesky.h>
+#include "sparse/IncrementalCholesky.h"
 #include "sparse/PivotCheck.h"
 
 #include <algorithm>

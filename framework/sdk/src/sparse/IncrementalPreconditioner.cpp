@@ -1,6 +1,6 @@
 #include <esif/core/Errors.h>
-#include <esif/sparse/IncompleteCholesky.h>
-#include <esif/sparse/IncrementalPreconditioner.h>
+#include "sparse/IncompleteCholesky.h"
+#include "sparse/IncrementalPreconditioner.h"
 #include "sparse/PivotCheck.h"
 
 #include <Eigen/Dense>

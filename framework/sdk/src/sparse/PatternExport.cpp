@@ -1,4 +1,4 @@
-#include <esif/sparse/PatternExport.h>
+#include "sparse/PatternExport.h"
 
 #include <vector>
 

@@ -5,8 +5,8 @@
 /// preconditioner of eq. (3.27)-(3.31). The state solve starts from the
 /// previous estimate and covariance columns from zero (Sec. 3.3.1.2).
 
-#include <esif/sparse/IncrementalPreconditioner.h>
-#include <esif/sparse/RecoverySolver.h>
+#include "sparse/IncrementalPreconditioner.h"
+#include "sparse/RecoverySolver.h"
 
 namespace esif
 {

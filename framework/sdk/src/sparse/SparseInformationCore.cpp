@@ -1,10 +1,10 @@
 #include <esif/core/Errors.h>
 #include "sparse/FreshCholesky.h"
-#include <esif/sparse/IncrementalCholesky.h>
-#include <esif/sparse/PatternExport.h>
+#include "sparse/IncrementalCholesky.h"
+#include "sparse/PatternExport.h"
 #include "sparse/PcgSolver.h"
 #include <esif/sparse/SparseInformationCore.h>
-#include <esif/sparse/SparseInverse.h>
+#include "sparse/SparseInverse.h"
 
 #include <chrono>
 
@@ -40,9 +40,16 @@ std::unique_ptr<RecoverySolver> makeSolver(const SparseRecoveryParams& params, S
 }
 }  // namespace
 
-SparseInformationCore::SparseInformationCore(const SparseRecoveryParams& params)
-	: params_(params), solver_(makeSolver(params_, counters_, cholmod_))
+struct SparseInformationCore::Solver
 {
+	CholmodCommon cholmod;	// before every CHOLMOD object: destroyed last
+	std::unique_ptr<RecoverySolver> method;
+};
+
+SparseInformationCore::SparseInformationCore(const SparseRecoveryParams& params)
+	: params_(params), solver_(std::make_unique<Solver>())
+{
+	solver_->method = makeSolver(params_, counters_, solver_->cholmod);
 }
 
 SparseInformationCore::~SparseInformationCore() = default;
@@ -82,7 +89,7 @@ void SparseInformationCore::withdraw(const UpdateTerm& term)
 {
 	ScopedTimer t(counters_.update_time_s);
 	info_.subtract(term);
-	solver_->noteWithdrawal();
+	solver_->method->noteWithdrawal();
 }
 
 void SparseInformationCore::addPrior(VarId v, const Eigen::VectorXd& mean, const Eigen::MatrixXd& information)
@@ -93,13 +100,13 @@ void SparseInformationCore::addPrior(VarId v, const Eigen::VectorXd& mean, const
 
 void SparseInformationCore::noteUpdate(const UpdateTerm& term)
 {
-	solver_->noteUpdate(info_, term);
+	solver_->method->noteUpdate(info_, term);
 }
 
 void SparseInformationCore::refresh()
 {
 	ScopedTimer t(counters_.factor_time_s);
-	solver_->refresh(info_, reference_);
+	solver_->method->refresh(info_, reference_);
 }
 
 const Eigen::VectorXd& SparseInformationCore::recoverState()
@@ -107,7 +114,7 @@ const Eigen::VectorXd& SparseInformationCore::recoverState()
 	refresh();
 	ScopedTimer t(counters_.recovery_time_s);
 	Eigen::VectorXd x = info_.estimate();
-	solver_->solveState(info_, x);
+	solver_->method->solveState(info_, x);
 	if (!x.allFinite()) throw NumericalError("sparse recovery: the recovered state is not finite");
 	info_.setEstimate(x);
 	return info_.estimate();
@@ -122,7 +129,7 @@ Eigen::MatrixXd SparseInformationCore::covariance(const std::vector<VarId>& vars
 {
 	refresh();
 	ScopedTimer t(counters_.recovery_time_s);
-	const Eigen::MatrixXd P = solver_->solveCovarianceBlock(info_, info_.scalarIndices(vars));
+	const Eigen::MatrixXd P = solver_->method->solveCovarianceBlock(info_, info_.scalarIndices(vars));
 	if (!P.allFinite()) throw NumericalError("sparse recovery: a recovered covariance is not finite");
 	return 0.5 * (P + P.transpose());
 }
@@ -131,16 +138,16 @@ std::vector<Eigen::MatrixXd> SparseInformationCore::marginalCovariances()
 {
 	refresh();
 	ScopedTimer t(counters_.recovery_time_s);
-	cholmod_factor* L = solver_->choleskyFactor();
+	cholmod_factor* L = solver_->method->choleskyFactor();
 	SparseCounters scratch;  // a one-off factorisation, not a reordering of the method's own
 	std::unique_ptr<FreshCholesky> fresh;
 	if (!L)
 	{
-		fresh = std::make_unique<FreshCholesky>(params_, scratch, cholmod_);
+		fresh = std::make_unique<FreshCholesky>(params_, scratch, solver_->cholmod);
 		fresh->refresh(info_, reference_);
 		L = fresh->choleskyFactor();
 	}
-	const SparseInverse Z(*L, cholmod_);
+	const SparseInverse Z(*L, solver_->cholmod);
 	std::vector<Eigen::MatrixXd> out;
 	out.reserve(info_.variableCount());
 	for (int v = 0; v < info_.variableCount(); ++v) out.push_back(Z.block(info_.scalarIndices({VarId{v}})));
@@ -172,12 +179,12 @@ InformationPattern SparseInformationCore::pattern()
 	const char* order = params_.recovery == RecoveryMethod::FreshCholesky ? "AMD ordering"
 		: params_.reordering == Reordering::Camd								? "CAMD reordering"
 																				: "distance reordering";
-	if (cholmod_factor* L = solver_->choleskyFactor())
+	if (cholmod_factor* L = solver_->method->choleskyFactor())
 	{
-		out.factor = toEigenSparse(*L, n, cholmod_);
+		out.factor = toEigenSparse(*L, n, solver_->cholmod);
 		out.factor_order = std::string("Cholesky factor, ") + order;
 	}
-	else if (const LowerCsc* Lic = solver_->incompleteFactor())
+	else if (const LowerCsc* Lic = solver_->method->incompleteFactor())
 	{
 		out.factor = toEigenSparse(*Lic, n);
 		out.factor_order = std::string("incomplete Cholesky preconditioner, ") + order;
@@ -189,7 +196,7 @@ SparseCounters SparseInformationCore::counters() const
 {
 	SparseCounters c = counters_;
 	c.information_nnz = info_.matrix().nonZeros();
-	c.factor_nnz = solver_->factorNonZeros();
+	c.factor_nnz = solver_->method->factorNonZeros();
 	return c;
 }
 

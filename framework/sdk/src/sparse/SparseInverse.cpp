@@ -1,5 +1,5 @@
 #include <esif/core/Errors.h>
-#include <esif/sparse/SparseInverse.h>
+#include "sparse/SparseInverse.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include <esif/sparse/TrailingUpdates.h>
+#include "sparse/TrailingUpdates.h"
 
 #include <algorithm>
 

@@ -1,5 +1,5 @@
 #include <esif/core/Errors.h>
-#include <esif/sparse/VariableOrdering.h>
+#include "sparse/VariableOrdering.h"
 
 #include <algorithm>
 #include <numeric>

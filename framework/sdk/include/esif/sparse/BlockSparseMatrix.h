@@ -10,6 +10,7 @@
 #include <esif/sparse/LowerCsc.h>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -80,5 +81,10 @@ class BlockSparseMatrix
 	int scalar_dim_ = 0;
 	std::size_t nnz_ = 0;
 };
+
+/// The block matrix, both triangles, natural scalar order; structurally
+/// present entries are kept even when their value is zero (pictures of the
+/// sparsity, book Fig. 3.12-3.13, and tests of the pattern).
+Eigen::SparseMatrix<double> toEigenSparse(const BlockSparseMatrix& M);
 
 }  // namespace esif

@@ -13,9 +13,7 @@
 
 #include <esif/core/InformationPattern.h>
 #include <esif/core/StateInformation.h>
-#include <esif/sparse/Cholmod.h>
 #include <esif/sparse/InformationForm.h>
-#include <esif/sparse/RecoverySolver.h>
 #include <esif/sparse/SparseCounters.h>
 #include <esif/sparse/SparseRecoveryParams.h>
 
@@ -100,11 +98,14 @@ class SparseInformationCore
 	void noteUpdate(const UpdateTerm& term);
 	void refresh();
 
+	/// CHOLMOD's workspace and the recovery method (RecoverySolver.h),
+	/// private to the SDK: no plugin sees cholmod.h.
+	struct Solver;
+
 	SparseRecoveryParams params_;
 	SparseCounters counters_;
-	CholmodCommon cholmod_;  // before every CHOLMOD object: destroyed last
 	InformationForm info_;
-	std::unique_ptr<RecoverySolver> solver_;
+	std::unique_ptr<Solver> solver_;
 	Eigen::Vector2d reference_ = Eigen::Vector2d::Zero();
 };
 

@@ -12,7 +12,7 @@
 /// and all diagonal blocks of A^-1 (every landmark's 2x2, every pose's 3x3
 /// marginal covariance) come out of one pass instead of one solve each.
 
-#include <esif/sparse/Cholmod.h>
+#include "sparse/Cholmod.h"
 
 #include <Eigen/Core>
 #include <vector>

@@ -23,12 +23,12 @@
 /// out, the variables are reordered (distance or CAMD) and factored afresh
 /// (Case ii).
 
-#include <esif/sparse/Cholmod.h>
-#include <esif/sparse/RecoverySolver.h>
+#include "sparse/Cholmod.h"
+#include "sparse/RecoverySolver.h"
 #include <esif/sparse/SparseCounters.h>
 #include <esif/sparse/SparseRecoveryParams.h>
-#include <esif/sparse/TrailingUpdates.h>
-#include <esif/sparse/VariableOrdering.h>
+#include "sparse/TrailingUpdates.h"
+#include "sparse/VariableOrdering.h"
 
 namespace esif
 {

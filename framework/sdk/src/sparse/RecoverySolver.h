@@ -5,7 +5,7 @@
 /// preconditioner current, and solves I x = b for the state (eq. 3.24) and
 /// for covariance columns (eq. 3.25).
 
-#include <esif/sparse/Cholmod.h>
+#include "sparse/Cholmod.h"
 #include <esif/sparse/InformationForm.h>
 #include <esif/sparse/LowerCsc.h>
 

@@ -14,13 +14,13 @@
 ///  - Case (ii): the variables are reordered (distance or CAMD) and the
 ///    whole reordered I gets a fresh incomplete factorisation.
 
-#include <esif/sparse/Cholmod.h>
+#include "sparse/Cholmod.h"
 #include <esif/sparse/InformationForm.h>
 #include <esif/sparse/LowerCsc.h>
 #include <esif/sparse/SparseCounters.h>
 #include <esif/sparse/SparseRecoveryParams.h>
-#include <esif/sparse/TrailingUpdates.h>
-#include <esif/sparse/VariableOrdering.h>
+#include "sparse/TrailingUpdates.h"
+#include "sparse/VariableOrdering.h"
 
 #include <Eigen/Core>
 

@@ -7,7 +7,7 @@
 /// trailing part of the factor (Case i). Variables stay contiguous (block
 /// orderings), as CHOLMOD's supernodes would group them anyway.
 
-#include <esif/sparse/Cholmod.h>
+#include "sparse/Cholmod.h"
 #include <esif/sparse/InformationForm.h>
 #include <esif/sparse/SparseRecoveryParams.h>
 

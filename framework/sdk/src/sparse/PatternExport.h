@@ -4,17 +4,13 @@
 /// sparsity (book Fig. 3.12-3.13) and for tests that check the pattern.
 
 #include <esif/sparse/BlockSparseMatrix.h>
-#include <esif/sparse/Cholmod.h>
+#include "sparse/Cholmod.h"
 #include <esif/sparse/LowerCsc.h>
 
 #include <Eigen/SparseCore>
 
 namespace esif
 {
-/// The block matrix, both triangles, natural scalar order; structurally
-/// present entries are kept even when their value is zero.
-Eigen::SparseMatrix<double> toEigenSparse(const BlockSparseMatrix& M);
-
 /// The unit-lower-triangular L of a CHOLMOD factor (as LDL^T; the diagonal
 /// holds D), in the factor's own (permuted) order, restricted to its first
 /// `n` positions (the rest are padding rows for variables yet to come).
