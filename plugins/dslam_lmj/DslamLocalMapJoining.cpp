@@ -6,7 +6,6 @@
 #include <esif/association/Chi2.h>
 #include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
-#include <esif/localmap/LocalMapMerge.h>
 
 #include <algorithm>
 #include <chrono>
@@ -29,21 +28,6 @@ double mahalanobis2(const PoseEstimate& a, const PoseEstimate& b)
 	Eigen::Vector3d d = toPose2(a.mean) - toPose2(b.mean);
 	d(2) = wrapAngle(d(2));
 	return d.dot((a.cov + b.cov).ldlt().solve(d));
-}
-
-/// x (+) r with first-order covariance; the two independent.
-PoseEstimate composeIndependent(const PoseEstimate& x, const PoseEstimate& r)
-{
-	const Pose2 a = toPose2(x.mean), b = toPose2(r.mean);
-	const auto J = composeJacobians(a, b);
-	const Eigen::Matrix3d P = J.d_a * x.cov * J.d_a.transpose() + J.d_b * r.cov * J.d_b.transpose();
-	return {toTPose2D(compose(a, b)), 0.5 * (P + P.transpose())};
-}
-
-/// Rows of the local state [robot; features] for the robot and features a, b.
-std::vector<Eigen::Index> robotAndPairRows(int a, int b)
-{
-	return {0, 1, 2, 3 + 2 * a, 4 + 2 * a, 3 + 2 * b, 4 + 2 * b};
 }
 
 std::vector<Eigen::Index> featureRows(const std::vector<int>& features)
@@ -95,41 +79,27 @@ void DslamLocalMapJoining::fuseLocalMap(const LocalMap& closed)
 	for (const auto& f : closed.features) ids.push_back(f.id);
 	feature_ids_of_map_[closed.index] = ids;
 
-	LocalMap map = closed;
-	std::vector<std::size_t> originals = {closed.index};
-	AbsorbedEnds absorbed;
+	JoinedMaps maps = single(closed);
 	if (pending_)
 	{
 		// The first map had too few features: join it with this one, in its frame.
-		LocalMap earlier = *pending_;
-		earlier.index = closed.index - 1;
-		map = mergeConsecutiveLocalMaps(earlier, closed);
-		map.index = pending_->index;
-		originals = pending_maps_;
-		originals.push_back(closed.index);
-		absorbed = pending_absorbed_;
-		absorbed.emplace_back(pending_->end_pose, pending_->covarianceMatrix().topLeftCorner<3, 3>());
+		maps = joinConsecutive(*pending_, maps);
 		++tally_.maps_merged;
 		pending_.reset();
 	}
-	if (tryFuse(map, originals, absorbed, 0, std::nullopt)) return;
+	if (tryFuse(maps, 0, std::nullopt)) return;
 	// Sec. 4.4.4 fails: fewer than two of the map's features are in the
 	// global map. Join it with the map fused last, through their shared pose,
 	// and fuse the two anew (the previous map's features give the pair).
-	if (!fusions_.empty() && fusions_.back().f1 >= 0 && joinWithLastFusion(map, originals, absorbed)) return;
-	pending_ = map;
-	pending_maps_ = originals;
-	pending_absorbed_ = absorbed;
+	if (!fusions_.empty() && fusions_.back().f1 >= 0 && joinWithLastFusion(maps)) return;
+	pending_ = std::move(maps);
 }
 
-bool DslamLocalMapJoining::joinWithLastFusion(
-	const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed)
+bool DslamLocalMapJoining::joinWithLastFusion(const JoinedMaps& maps)
 {
 	const Fusion& last = fusions_.back();
-	LocalMap earlier = last.map;
-	earlier.index = map.index - 1;
-	LocalMap joined = mergeConsecutiveLocalMaps(earlier, map);
-	joined.index = last.map.index;
+	const JoinedMaps joined_maps = joinConsecutive(last.source, maps);
+	const LocalMap& joined = joined_maps.map;
 
 	// Decide everything before the last fusion is withdrawn: its features
 	// have no information until the joined map is fused, so no covariance
@@ -167,21 +137,8 @@ bool DslamLocalMapJoining::joinWithLastFusion(
 	tally_.association.features_rejected -= withdrawn.rejected;
 	costs_.pop_back();
 	pair_cov_cache_.clear();
-
-	AbsorbedEnds ends = withdrawn.absorbed;
-	ends.emplace_back(withdrawn.map.end_pose, withdrawn.map.covarianceMatrix().topLeftCorner<3, 3>());
-	const Eigen::Matrix3d earlier_end_cov = ends.back().second;
-	for (const auto& [pose, cov] : absorbed)
-	{
-		// End poses the later map absorbed are in its frame: carry them into the earlier one's.
-		const PoseEstimate moved =
-			composeIndependent({toTPose2D(withdrawn.map.end_pose), earlier_end_cov}, {toTPose2D(pose), cov});
-		ends.emplace_back(toPose2(moved.mean), moved.cov);
-	}
-	std::vector<std::size_t> maps = withdrawn.maps;
-	maps.insert(maps.end(), originals.begin(), originals.end());
 	++tally_.maps_merged;
-	if (!tryFuse(joined, maps, ends, withdrawn.seconds, std::move(decided)))
+	if (!tryFuse(joined_maps, withdrawn.seconds, std::move(decided)))
 		throw std::logic_error("D-SLAM map joining: local maps joined with map " + std::to_string(joined.index) +
 							   " could not be fused again");  // the checks above rule this out
 	return true;
@@ -227,10 +184,10 @@ LandmarkId DslamLocalMapJoining::freshId(LandmarkId proposed, std::vector<Landma
 }
 
 bool DslamLocalMapJoining::tryFuse(
-	const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed, double seconds_before,
-	std::optional<UpperLevelOutcome> decided)
+	const JoinedMaps& maps, double seconds_before, std::optional<UpperLevelOutcome> decided)
 {
 	const auto t0 = Clock::now();
+	const LocalMap& map = maps.map;
 	const Eigen::MatrixXd P = map.covarianceMatrix();
 	const auto n = static_cast<int>(map.features.size());
 	const Eigen::MatrixXd P_ff = P.bottomRightCorner(2 * n, 2 * n);	 // the robot marginalised (eq. 4.12)
@@ -238,9 +195,7 @@ bool DslamLocalMapJoining::tryFuse(
 	for (const auto& f : map.features) points.push_back(f.position);
 
 	Fusion fusion;
-	fusion.maps = originals;
-	fusion.map = map;
-	fusion.absorbed = absorbed;
+	fusion.source = maps;
 	for (const auto& f : map.features) fusion.local_ids.push_back(f.id);
 	std::vector<int> order;	 // local features in update order: [f1, f2, others kept]
 	double association_s = 0;
@@ -324,13 +279,13 @@ bool DslamLocalMapJoining::tryFuse(
 	fusion.f1 = fusion.decisions.associations[order[0]].id;
 	fusion.f2 = fusion.decisions.associations[order[1]].id;
 	pair_cov_cache_.clear();
-	recordEnds(fusion, originals, P(robotAndPairRows(order[0], order[1]), robotAndPairRows(order[0], order[1])));
+	recordEnds(fusion, P(robotAndPairRows(order[0], order[1]), robotAndPairRows(order[0], order[1])));
 	locateEnds(fusion);
-	for (const std::size_t k : originals) fusion_of_map_[k] = fusions_.size();
+	for (const std::size_t k : maps.originals) fusion_of_map_[k] = fusions_.size();
 	tally_.association.features_rejected += fusion.rejected;
 	tally_.association.seconds += association_s;
 	fusion.seconds = seconds_before + secondsSince(t0);
-	costs_.push_back({originals.front(), fusion.seconds, association_s, global_->featureCount() * 2});
+	costs_.push_back({maps.originals.front(), fusion.seconds, association_s, global_->featureCount() * 2});
 	fusions_.push_back(std::move(fusion));
 	return true;
 }
@@ -350,12 +305,11 @@ void DslamLocalMapJoining::relinearise(const Eigen::Vector2d& reference)
 		global_->relineariseUntilSettled(params_.relinearise_threshold_m, params_.relinearise_iterations, reference);
 }
 
-void DslamLocalMapJoining::recordEnds(Fusion& fusion, const std::vector<std::size_t>& originals,
-									  const Eigen::MatrixXd& pair_cov) const
+void DslamLocalMapJoining::recordEnds(Fusion& fusion, const Eigen::MatrixXd& pair_cov) const
 {
 	// An absorbed map's end pose: its own covariance, the pair's from the
 	// joined map (their correlation is not kept by the join).
-	for (const auto& [pose, cov] : fusion.absorbed)
+	for (const auto& [pose, cov] : fusion.source.absorbed)
 	{
 		Eigen::MatrixXd local_cov = pair_cov;
 		local_cov.topRightCorner<3, 4>().setZero();
@@ -363,8 +317,8 @@ void DslamLocalMapJoining::recordEnds(Fusion& fusion, const std::vector<std::siz
 		local_cov.topLeftCorner<3, 3>() = cov;
 		fusion.ends.push_back({0, pose, local_cov, {}});
 	}
-	fusion.ends.push_back({0, fusion.map.end_pose, pair_cov, {}});
-	for (std::size_t j = 0; j < fusion.ends.size(); ++j) fusion.ends[j].map = originals[j];
+	fusion.ends.push_back({0, fusion.source.map.end_pose, pair_cov, {}});
+	for (std::size_t j = 0; j < fusion.ends.size(); ++j) fusion.ends[j].map = fusion.source.originals[j];
 }
 
 void DslamLocalMapJoining::finishJoining()
@@ -381,24 +335,24 @@ void DslamLocalMapJoining::giveUpPendingMap()
 	// reported, never dropped silently: its features rejected
 	// (associations.txt, da_rejected), counted in local_maps_unjoinable, its
 	// end poses carried from the global frame's origin.
+	const LocalMap& map = pending_->map;
 	Fusion fusion;
-	fusion.maps = pending_maps_;
-	fusion.map = *pending_;
-	for (const auto& f : pending_->features)
+	fusion.source = *pending_;
+	for (const auto& f : map.features)
 	{
 		fusion.local_ids.push_back(f.id);
 		fusion.decisions.associations.push_back({Association::Kind::Rejected, -1});
 	}
-	AbsorbedEnds ends = pending_absorbed_;
-	ends.emplace_back(pending_->end_pose, pending_->covarianceMatrix().topLeftCorner<3, 3>());
+	AbsorbedEnds ends = pending_->absorbed;
+	ends.emplace_back(map.end_pose, map.covarianceMatrix().topLeftCorner<3, 3>());
+	const std::vector<std::size_t>& originals = pending_->originals;
 	for (std::size_t j = 0; j < ends.size(); ++j)
-		fusion.ends.push_back({pending_maps_[j], ends[j].first, Eigen::MatrixXd(),
+		fusion.ends.push_back({originals[j], ends[j].first, Eigen::MatrixXd(),
 							   composeIndependent(lastEndPose(), {toTPose2D(ends[j].first), ends[j].second})});
-	tally_.maps_unjoinable += pending_maps_.size();
-	for (const std::size_t k : pending_maps_) fusion_of_map_[k] = fusions_.size();
+	tally_.maps_unjoinable += originals.size();
+	for (const std::size_t k : originals) fusion_of_map_[k] = fusions_.size();
 	fusions_.push_back(std::move(fusion));
 	pending_.reset();
-	pending_absorbed_.clear();
 }
 
 Eigen::Matrix4d DslamLocalMapJoining::pairCovariance(LandmarkId f1, LandmarkId f2) const
@@ -429,7 +383,8 @@ PoseEstimate DslamLocalMapJoining::openMapFrame() const
 	// a pending one carried from the last fused.
 	const PoseEstimate last = lastEndPose();
 	if (!pending_) return last;
-	return composeIndependent(last, {toTPose2D(pending_->end_pose), pending_->covarianceMatrix().topLeftCorner<3, 3>()});
+	const LocalMap& map = pending_->map;
+	return composeIndependent(last, {toTPose2D(map.end_pose), map.covarianceMatrix().topLeftCorner<3, 3>()});
 }
 
 std::optional<LandmarkId> DslamLocalMapJoining::globalIdOfOpenFeature(LandmarkId id) const
@@ -519,7 +474,8 @@ StepReport DslamLocalMapJoining::mapReport(std::size_t k) const
 std::vector<MapJoiningPlugin::SettledFusion> DslamLocalMapJoining::settledFusions() const
 {
 	std::vector<SettledFusion> out;
-	for (const auto& fusion : fusions_) out.push_back({fusion.map.step_reports, fusion.local_ids, fusion.decisions});
+	for (const auto& fusion : fusions_)
+		out.push_back({fusion.source.map.step_reports, fusion.local_ids, fusion.decisions});
 	return out;
 }
 
@@ -546,7 +502,7 @@ CostFigures DslamLocalMapJoining::costFigures() const
 	c.info_nnz = sparse.information_nnz;
 	c.counters = sparse.list();
 	std::size_t fused = 0;
-	for (const auto& fusion : fusions_) fused += fusion.f1 >= 0 ? fusion.maps.size() : 0;
+	for (const auto& fusion : fusions_) fused += fusion.f1 >= 0 ? fusion.source.originals.size() : 0;
 	c.counters.emplace_back("local_maps_fused", static_cast<double>(fused));
 	c.counters.emplace_back("local_maps_merged", static_cast<double>(tally_.maps_merged));
 	c.counters.emplace_back("local_maps_unjoinable", static_cast<double>(tally_.maps_unjoinable));

@@ -21,6 +21,7 @@
 /// authors' later code does; the estimate lags by one map (Sec. 4.6.1).
 
 #include "DslamLmjParams.h"
+#include "JoinedMaps.h"
 #include "UpperLevelAssociation.h"
 
 #include <esif/localmap/LandmarkIdAllocator.h>
@@ -73,20 +74,14 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 		PoseEstimate global;
 	};
 
-	/// End poses of the maps a joined map absorbed, in its frame, each with
-	/// its own 3x3 covariance.
-	using AbsorbedEnds = std::vector<std::pair<Pose2, Eigen::Matrix3d>>;
-
 	/// One fusion: one local map, or several joined through their shared poses.
 	struct Fusion
 	{
-		std::vector<std::size_t> maps;	///< original indices k fused here
-		LocalMap map;  ///< what was fused (kept to join it with a later map if needed)
+		lmj::JoinedMaps source;	 ///< what was fused (kept to join it with a later map if needed)
 		std::vector<LandmarkId> local_ids;	///< its feature IDs, in order
 		StepReport decisions;  ///< one per feature: global id or rejected
 		relative::MapUpdate update;	 ///< to withdraw it
 		bool anchor = false;  ///< the first map: the global map's only absolute information
-		AbsorbedEnds absorbed;
 		Eigen::Vector2d f1_local = Eigen::Vector2d::Zero(), f2_local = Eigen::Vector2d::Zero();
 		LandmarkId f1 = -1, f2 = -1;  ///< the pair that locates the end poses (-1: not fused)
 		std::vector<EndPose> ends;
@@ -98,10 +93,8 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 	/// Fuses `map` (association `decided` when already made); false, with
 	/// nothing changed, when fewer than two of its features are usable in
 	/// the global map.
-	bool tryFuse(const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed,
-				 double seconds_before, std::optional<lmj::UpperLevelOutcome> decided);
-	bool joinWithLastFusion(const LocalMap& map, const std::vector<std::size_t>& originals,
-							const AbsorbedEnds& absorbed);
+	bool tryFuse(const lmj::JoinedMaps& maps, double seconds_before, std::optional<lmj::UpperLevelOutcome> decided);
+	bool joinWithLastFusion(const lmj::JoinedMaps& maps);
 	bool useIds(const LocalMap& map) const;
 	/// Keeps in a joined map's update the features the withdrawn fusion created.
 	void keepFeaturesOfWithdrawnFusion(const LocalMap& joined, const std::vector<LandmarkId>& created,
@@ -110,7 +103,7 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 	LandmarkId freshId(LandmarkId proposed, std::vector<LandmarkId>& taken_now);
 	/// Gauss-Newton passes over the global map (relinearise_after_fusion).
 	void relinearise(const Eigen::Vector2d& reference);
-	void recordEnds(Fusion& fusion, const std::vector<std::size_t>& originals, const Eigen::MatrixXd& pair_cov) const;
+	void recordEnds(Fusion& fusion, const Eigen::MatrixXd& pair_cov) const;
 	void locateEnds(Fusion& fusion) const;
 	void giveUpPendingMap();
 	Eigen::Matrix4d pairCovariance(LandmarkId f1, LandmarkId f2) const;
@@ -126,9 +119,7 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 	std::map<LandmarkId, LandmarkId> global_of_local_;	// a fused feature's local ID -> global ID
 	bool anchored_ = false;	 // the first map is in
 	// The first map, when it has fewer than two usable features, waits for the next.
-	std::optional<LocalMap> pending_;
-	std::vector<std::size_t> pending_maps_;	 // the original maps in it
-	AbsorbedEnds pending_absorbed_;
+	std::optional<lmj::JoinedMaps> pending_;
 	/// Global covariance of a feature pair, for the robot pose of each step (cleared by every fusion).
 	mutable std::map<std::pair<LandmarkId, LandmarkId>, Eigen::Matrix4d> pair_cov_cache_;
 	std::vector<LocalMapFusionCost> costs_;
