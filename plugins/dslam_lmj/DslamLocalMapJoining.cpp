@@ -6,11 +6,9 @@
 #include <esif/association/Chi2.h>
 #include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
-#include <esif/localmap/LocalMapMerge.h>
 
 #include <algorithm>
 #include <chrono>
-#include <set>
 
 IMPLEMENTS_MRPT_OBJECT(DslamLocalMapJoining, FilterPlugin, esif)
 
@@ -31,38 +29,17 @@ double mahalanobis2(const PoseEstimate& a, const PoseEstimate& b)
 	return d.dot((a.cov + b.cov).ldlt().solve(d));
 }
 
-/// x (+) r with first-order covariance; the two independent.
-PoseEstimate composeIndependent(const PoseEstimate& x, const PoseEstimate& r)
+/// Covariance of a local map's features, the robot marginalised (eq. 4.12).
+Eigen::MatrixXd featureCovariance(const LocalMap& map)
 {
-	const Pose2 a = toPose2(x.mean), b = toPose2(r.mean);
-	const auto J = composeJacobians(a, b);
-	const Eigen::Matrix3d P = J.d_a * x.cov * J.d_a.transpose() + J.d_b * r.cov * J.d_b.transpose();
-	return {toTPose2D(compose(a, b)), 0.5 * (P + P.transpose())};
-}
-
-/// Rows of the local state [robot; features] for the robot and features a, b.
-std::vector<Eigen::Index> robotAndPairRows(int a, int b)
-{
-	return {0, 1, 2, 3 + 2 * a, 4 + 2 * a, 3 + 2 * b, 4 + 2 * b};
-}
-
-std::vector<Eigen::Index> featureRows(const std::vector<int>& features)
-{
-	std::vector<Eigen::Index> rows;
-	for (const int i : features)
-	{
-		rows.push_back(2 * i);
-		rows.push_back(2 * i + 1);
-	}
-	return rows;
+	const auto n = static_cast<Eigen::Index>(2 * map.features.size());
+	return map.covarianceMatrix().bottomRightCorner(n, n);
 }
 }  // namespace
 
 void DslamLocalMapJoining::start()
 {
-	global_ = std::make_unique<relative::FeatureMap>(params_.recovery);
-	global_->shareLinearisationPoints(params_.map_linearisation == relative::MapLinearisation::Shared);
-	global_->keepRelativeTerms(params_.relinearise_after_fusion);
+	global_ = std::make_unique<GlobalFeatureMap>(params_);
 }
 
 void DslamLocalMapJoining::requireConfigured() const
@@ -95,96 +72,71 @@ void DslamLocalMapJoining::fuseLocalMap(const LocalMap& closed)
 	for (const auto& f : closed.features) ids.push_back(f.id);
 	feature_ids_of_map_[closed.index] = ids;
 
-	LocalMap map = closed;
-	std::vector<std::size_t> originals = {closed.index};
-	AbsorbedEnds absorbed;
+	JoinedMaps maps = single(closed);
 	if (pending_)
 	{
 		// The first map had too few features: join it with this one, in its frame.
-		LocalMap earlier = *pending_;
-		earlier.index = closed.index - 1;
-		map = mergeConsecutiveLocalMaps(earlier, closed);
-		map.index = pending_->index;
-		originals = pending_maps_;
-		originals.push_back(closed.index);
-		absorbed = pending_absorbed_;
-		absorbed.emplace_back(pending_->end_pose, pending_->covarianceMatrix().topLeftCorner<3, 3>());
+		maps = joinConsecutive(*pending_, maps);
 		++tally_.maps_merged;
 		pending_.reset();
 	}
-	if (tryFuse(map, originals, absorbed, 0, std::nullopt)) return;
+	if (tryFuse(maps, 0, std::nullopt)) return;
 	// Sec. 4.4.4 fails: fewer than two of the map's features are in the
 	// global map. Join it with the map fused last, through their shared pose,
 	// and fuse the two anew (the previous map's features give the pair).
-	if (!fusions_.empty() && fusions_.back().f1 >= 0 && joinWithLastFusion(map, originals, absorbed)) return;
-	pending_ = map;
-	pending_maps_ = originals;
-	pending_absorbed_ = absorbed;
+	const auto& fusions = global_->fusions();
+	if (!fusions.empty() && fusions.back().f1 >= 0 && joinWithLastFusion(maps)) return;
+	pending_ = std::move(maps);
 }
 
-bool DslamLocalMapJoining::joinWithLastFusion(
-	const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed)
+bool DslamLocalMapJoining::joinWithLastFusion(const JoinedMaps& maps)
 {
-	const Fusion& last = fusions_.back();
-	LocalMap earlier = last.map;
-	earlier.index = map.index - 1;
-	LocalMap joined = mergeConsecutiveLocalMaps(earlier, map);
-	joined.index = last.map.index;
-
+	const Fusion& last = global_->fusions().back();
+	JoinedMaps joined = joinConsecutive(last.source, maps);
 	// Decide everything before the last fusion is withdrawn: its features
 	// have no information until the joined map is fused, so no covariance
-	// could be recovered then. The association sees the last map's
-	// information twice (in the global map and in the joined map), a small
-	// over-confidence of the test only. The pair of the update must not be
-	// one of the features the last fusion created.
+	// could be recovered then.
 	std::optional<UpperLevelOutcome> decided;
 	if (!last.anchor)
 	{
-		const auto n = static_cast<int>(joined.features.size());
-		decided = associate(joined, joined.covarianceMatrix().bottomRightCorner(2 * n, 2 * n));
+		decided = associateBeforeWithdrawing(joined.map, last.update.new_features);
 		if (!decided) return false;
-		const auto& created = last.update.new_features;
-		keepFeaturesOfWithdrawnFusion(joined, created, *decided);
-		std::vector<Eigen::Vector2d> points;
-		std::vector<int> usable;
-		for (int i = 0; i < n; ++i)
-		{
-			points.push_back(joined.features[i].position);
-			const auto& a = decided->decisions.associations[i];
-			if (a.kind == Association::Kind::Matched && global_->supported(a.id) &&
-				std::find(created.begin(), created.end(), a.id) == created.end())
-				usable.push_back(i);
-		}
-		if (!chooseReferenceFeatures(points, usable, params_.reference_min_separation_m,
-									 params_.reference_min_clearance_m))
-			return false;
 	}
 
-	Fusion withdrawn = std::move(fusions_.back());
-	fusions_.pop_back();
-	global_->withdraw(withdrawn.update);  // its features stay, without its information, until fused again
-	if (withdrawn.anchor) anchored_ = false;
+	const Fusion withdrawn = global_->withdrawLast();
 	tally_.association.features_rejected -= withdrawn.rejected;
+	const double withdrawn_seconds = costs_.back().total_s;	 // carried into the joined map's cost
 	costs_.pop_back();
-	pair_cov_cache_.clear();
-
-	AbsorbedEnds ends = withdrawn.absorbed;
-	ends.emplace_back(withdrawn.map.end_pose, withdrawn.map.covarianceMatrix().topLeftCorner<3, 3>());
-	const Eigen::Matrix3d earlier_end_cov = ends.back().second;
-	for (const auto& [pose, cov] : absorbed)
-	{
-		// End poses the later map absorbed are in its frame: carry them into the earlier one's.
-		const PoseEstimate moved =
-			composeIndependent({toTPose2D(withdrawn.map.end_pose), earlier_end_cov}, {toTPose2D(pose), cov});
-		ends.emplace_back(toPose2(moved.mean), moved.cov);
-	}
-	std::vector<std::size_t> maps = withdrawn.maps;
-	maps.insert(maps.end(), originals.begin(), originals.end());
 	++tally_.maps_merged;
-	if (!tryFuse(joined, maps, ends, withdrawn.seconds, std::move(decided)))
-		throw std::logic_error("D-SLAM map joining: local maps joined with map " + std::to_string(joined.index) +
+	if (!tryFuse(joined, withdrawn_seconds, std::move(decided)))
+		throw std::logic_error("D-SLAM map joining: local maps joined with map " + std::to_string(joined.map.index) +
 							   " could not be fused again");  // the checks above rule this out
 	return true;
+}
+
+std::optional<UpperLevelOutcome> DslamLocalMapJoining::associateBeforeWithdrawing(
+	const LocalMap& joined, const std::vector<LandmarkId>& created)
+{
+	// The association sees the last map's information twice (in the global
+	// map and in the joined map), a small over-confidence of the test only.
+	// The pair of the update must not be one of the features the last
+	// fusion created.
+	auto decided = associate(joined, featureCovariance(joined));
+	if (!decided) return std::nullopt;
+	keepFeaturesOfWithdrawnFusion(joined, created, *decided);
+	std::vector<Eigen::Vector2d> points;
+	std::vector<int> usable;
+	for (std::size_t i = 0; i < joined.features.size(); ++i)
+	{
+		points.push_back(joined.features[i].position);
+		const auto& a = decided->decisions.associations[i];
+		if (a.kind == Association::Kind::Matched && global_->features().supported(a.id) &&
+			std::find(created.begin(), created.end(), a.id) == created.end())
+			usable.push_back(static_cast<int>(i));
+	}
+	if (!chooseReferenceFeatures(points, usable, params_.reference_min_separation_m, params_.reference_min_clearance_m))
+		return std::nullopt;
+	return decided;
 }
 
 void DslamLocalMapJoining::keepFeaturesOfWithdrawnFusion(
@@ -196,13 +148,14 @@ void DslamLocalMapJoining::keepFeaturesOfWithdrawnFusion(
 	// next recovery would fail on a singular information matrix. Its global
 	// estimate came from this very map, so failing a test against it says
 	// nothing about a misread ID or a wrong match: it is kept, matched to itself.
+	const auto& global_of_local = global_->globalOfLocal();
 	for (std::size_t i = 0; i < joined.features.size(); ++i)
 	{
 		auto& a = decided.decisions.associations[i];
 		if (a.kind != Association::Kind::Rejected) continue;
 		const LandmarkId local = joined.features[i].id;
-		const auto known = global_of_local_.find(local);
-		const LandmarkId global = useIds(joined) ? local : known != global_of_local_.end() ? known->second : -1;
+		const auto known = global_of_local.find(local);
+		const LandmarkId global = useIds(joined) ? local : known != global_of_local.end() ? known->second : -1;
 		if (std::find(created.begin(), created.end(), global) == created.end()) continue;
 		a = {Association::Kind::Matched, global};
 		if (decided.tally.id_gate_rejected > 0) --decided.tally.id_gate_rejected;
@@ -211,167 +164,41 @@ void DslamLocalMapJoining::keepFeaturesOfWithdrawnFusion(
 
 std::optional<UpperLevelOutcome> DslamLocalMapJoining::associate(const LocalMap& map, const Eigen::MatrixXd& feature_cov)
 {
-	if (useIds(map)) return associateByIds(map, feature_cov, *global_, params_);
-	const auto known = knownGlobalIds(map, false, global_of_local_, *global_);
-	return associateInPairFrame(map, feature_cov, known, *global_, params_);
-}
-
-LandmarkId DslamLocalMapJoining::freshId(LandmarkId proposed, std::vector<LandmarkId>& taken_now)
-{
-	const LandmarkId id = ids_.allocate(proposed, [&](LandmarkId candidate) {
-		return global_->contains(candidate) ||
-			   std::find(taken_now.begin(), taken_now.end(), candidate) != taken_now.end();
-	});
-	taken_now.push_back(id);
-	return id;
+	relative::FeatureMap& global = global_->features();
+	if (useIds(map)) return associateByIds(map, feature_cov, global, params_);
+	const auto known = knownGlobalIds(map, false, global_->globalOfLocal(), global);
+	return associateInPairFrame(map, feature_cov, known, global, params_);
 }
 
 bool DslamLocalMapJoining::tryFuse(
-	const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed, double seconds_before,
-	std::optional<UpperLevelOutcome> decided)
+	const JoinedMaps& maps, double seconds_before, std::optional<UpperLevelOutcome> decided)
 {
 	const auto t0 = Clock::now();
-	const Eigen::MatrixXd P = map.covarianceMatrix();
-	const auto n = static_cast<int>(map.features.size());
-	const Eigen::MatrixXd P_ff = P.bottomRightCorner(2 * n, 2 * n);	 // the robot marginalised (eq. 4.12)
-	std::vector<Eigen::Vector2d> points;
-	for (const auto& f : map.features) points.push_back(f.position);
-
-	Fusion fusion;
-	fusion.maps = originals;
-	fusion.map = map;
-	fusion.absorbed = absorbed;
-	for (const auto& f : map.features) fusion.local_ids.push_back(f.id);
-	std::vector<int> order;	 // local features in update order: [f1, f2, others kept]
 	double association_s = 0;
-	if (!anchored_)
+	if (!global_->anchored())
 	{
-		// The first map: its features, robot marginalised, are the global map
-		// (Sec. 4.3); the only absolute information it ever gets.
-		if (n < 2) return false;
-		const auto pair = chooseReferenceFeatures(points, [&] {
-			std::vector<int> all(n);
-			for (int i = 0; i < n; ++i) all[i] = i;
-			return all;
-		}(), params_.reference_min_separation_m, params_.reference_min_clearance_m);
-		if (!pair) return false;
-		std::vector<LandmarkId> taken, ids;
-		for (const auto& f : map.features)
-		{
-			// A feature of an anchor withdrawn to be joined keeps its global ID.
-			const auto known = global_of_local_.find(f.id);
-			ids.push_back(known != global_of_local_.end() && global_->contains(known->second) ? known->second
-																							  : freshId(f.id, taken));
-			fusion.decisions.associations.push_back({Association::Kind::New, ids.back()});
-		}
-		relative::PointSet all{map.state().tail(2 * n), P_ff};
-		fusion.update = global_->updateAnchor(ids, all);
-		fusion.anchor = anchored_ = true;
-		order = {pair->first, pair->second};
+		if (!global_->fuseAnchor(maps)) return false;
 	}
 	else
 	{
 		const auto t_association = Clock::now();
-		auto outcome = decided ? std::move(decided) : associate(map, P_ff);
+		if (!decided) decided = associate(maps.map, featureCovariance(maps.map));
 		association_s = secondsSince(t_association);
-		if (!outcome) return false;
-		// The reference pair among the kept features already mapped (eq. 4.9).
-		std::vector<int> mapped;
-		for (int i = 0; i < n; ++i)
-			if (const auto& a = outcome->decisions.associations[i];
-				a.kind == Association::Kind::Matched && global_->supported(a.id))
-				mapped.push_back(i);
-		const auto pair = chooseReferenceFeatures(
-			points, mapped, params_.reference_min_separation_m, params_.reference_min_clearance_m);
-		if (!pair) return false;
-		tally_.association += outcome->tally;
-		fusion.decisions = outcome->decisions;
-		order = {pair->first, pair->second};
-		std::vector<LandmarkId> taken;
-		for (int i = 0; i < n; ++i)
-		{
-			auto& a = fusion.decisions.associations[i];
-			if (a.kind == Association::Kind::Rejected) continue;
-			if (a.kind == Association::Kind::New) a.id = freshId(a.id, taken);
-			if (i != pair->first && i != pair->second) order.push_back(i);
-		}
-		// Eq. 4.10-4.17: z_map of the kept features about (f1, f2), R_map =
-		// J P_ff J^T, new features by eq. 4.16, the EIF update.
-		std::vector<LandmarkId> ids;
-		relative::PointSet kept{Eigen::VectorXd(2 * order.size()), P_ff(featureRows(order), featureRows(order))};
-		for (std::size_t j = 0; j < order.size(); ++j)
-		{
-			ids.push_back(fusion.decisions.associations[order[j]].id);
-			kept.xy.segment<2>(2 * j) = points[order[j]];
-		}
-		fusion.update = global_->updateRelative(ids, kept);
+		if (!decided || !global_->fuseRelative(maps, decided->decisions)) return false;
+		tally_.association += decided->tally;
 	}
-	const Eigen::Vector2d reference = global_->position(fusion.decisions.associations[order[0]].id);
-	global_->recover(reference);
-	relinearise(reference);
-
-	for (int i = 0; i < n; ++i)
-	{
-		const auto& a = fusion.decisions.associations[i];
-		if (a.kind == Association::Kind::Rejected)
-			++fusion.rejected;
-		else
-			global_of_local_[map.features[i].id] = a.id;
-	}
-	// Sec. 4.4.1: every original map's end pose through the pair (f1, f2).
-	fusion.f1_local = points[order[0]];
-	fusion.f2_local = points[order[1]];
-	fusion.f1 = fusion.decisions.associations[order[0]].id;
-	fusion.f2 = fusion.decisions.associations[order[1]].id;
-	pair_cov_cache_.clear();
-	recordEnds(fusion, originals, P(robotAndPairRows(order[0], order[1]), robotAndPairRows(order[0], order[1])));
-	locateEnds(fusion);
-	for (const std::size_t k : originals) fusion_of_map_[k] = fusions_.size();
-	tally_.association.features_rejected += fusion.rejected;
+	tally_.association.features_rejected += global_->fusions().back().rejected;
 	tally_.association.seconds += association_s;
-	fusion.seconds = seconds_before + secondsSince(t0);
-	costs_.push_back({originals.front(), fusion.seconds, association_s, global_->featureCount() * 2});
-	fusions_.push_back(std::move(fusion));
+	const double seconds = seconds_before + secondsSince(t0);
+	costs_.push_back({maps.originals.front(), seconds, association_s, global_->features().featureCount() * 2});
 	return true;
-}
-
-void DslamLocalMapJoining::relinearise(const Eigen::Vector2d& reference)
-{
-	// Each map's update (eq. 4.17) is linearised at the estimate before its
-	// fusion. A map fused across a long stretch without landmarks, before the
-	// loop closes, is linearised metres away from where the loop closure
-	// later puts its features: its Jacobian then carries information in the
-	// wrong directions, and the map is biased and over-confident (long_gap).
-	// Evaluating the updates again at the current estimate is a Gauss-Newton
-	// step of the static map problem (no robot, no prediction: nothing is
-	// marginalised, so nothing is lost by doing so).
-	if (!params_.relinearise_after_fusion) return;
-	tally_.relinearised_terms +=
-		global_->relineariseUntilSettled(params_.relinearise_threshold_m, params_.relinearise_iterations, reference);
-}
-
-void DslamLocalMapJoining::recordEnds(Fusion& fusion, const std::vector<std::size_t>& originals,
-									  const Eigen::MatrixXd& pair_cov) const
-{
-	// An absorbed map's end pose: its own covariance, the pair's from the
-	// joined map (their correlation is not kept by the join).
-	for (const auto& [pose, cov] : fusion.absorbed)
-	{
-		Eigen::MatrixXd local_cov = pair_cov;
-		local_cov.topRightCorner<3, 4>().setZero();
-		local_cov.bottomLeftCorner<4, 3>().setZero();
-		local_cov.topLeftCorner<3, 3>() = cov;
-		fusion.ends.push_back({0, pose, local_cov, {}});
-	}
-	fusion.ends.push_back({0, fusion.map.end_pose, pair_cov, {}});
-	for (std::size_t j = 0; j < fusion.ends.size(); ++j) fusion.ends[j].map = originals[j];
 }
 
 void DslamLocalMapJoining::finishJoining()
 {
 	requireConfigured();
 	if (pending_) giveUpPendingMap();
-	for (auto& fusion : fusions_) locateEnds(fusion);
+	global_->locateAllEnds();
 }
 
 void DslamLocalMapJoining::giveUpPendingMap()
@@ -381,64 +208,30 @@ void DslamLocalMapJoining::giveUpPendingMap()
 	// reported, never dropped silently: its features rejected
 	// (associations.txt, da_rejected), counted in local_maps_unjoinable, its
 	// end poses carried from the global frame's origin.
-	Fusion fusion;
-	fusion.maps = pending_maps_;
-	fusion.map = *pending_;
-	for (const auto& f : pending_->features)
-	{
-		fusion.local_ids.push_back(f.id);
-		fusion.decisions.associations.push_back({Association::Kind::Rejected, -1});
-	}
-	AbsorbedEnds ends = pending_absorbed_;
-	ends.emplace_back(pending_->end_pose, pending_->covarianceMatrix().topLeftCorner<3, 3>());
-	for (std::size_t j = 0; j < ends.size(); ++j)
-		fusion.ends.push_back({pending_maps_[j], ends[j].first, Eigen::MatrixXd(),
-							   composeIndependent(lastEndPose(), {toTPose2D(ends[j].first), ends[j].second})});
-	tally_.maps_unjoinable += pending_maps_.size();
-	for (const std::size_t k : pending_maps_) fusion_of_map_[k] = fusions_.size();
-	fusions_.push_back(std::move(fusion));
+	global_->addUnjoinable(*pending_);
+	tally_.maps_unjoinable += pending_->originals.size();
 	pending_.reset();
-	pending_absorbed_.clear();
-}
-
-Eigen::Matrix4d DslamLocalMapJoining::pairCovariance(LandmarkId f1, LandmarkId f2) const
-{
-	const auto key = std::make_pair(f1, f2);
-	if (const auto it = pair_cov_cache_.find(key); it != pair_cov_cache_.end()) return it->second;
-	return pair_cov_cache_[key] = global_->covariance({f1, f2});
-}
-
-void DslamLocalMapJoining::locateEnds(Fusion& fusion) const
-{
-	if (fusion.f1 < 0) return;	// a map that could not be fused keeps its carried poses
-	const Eigen::Matrix4d G = pairCovariance(fusion.f1, fusion.f2);
-	for (auto& end : fusion.ends)
-		end.global = robotFromPairs(end.local, fusion.f1_local, fusion.f2_local, end.local_cov,
-									global_->position(fusion.f1), global_->position(fusion.f2), G);
-}
-
-PoseEstimate DslamLocalMapJoining::lastEndPose() const
-{
-	if (fusions_.empty()) return {};  // the global frame is map 1's start
-	return fusions_.back().ends.back().global;
 }
 
 PoseEstimate DslamLocalMapJoining::openMapFrame() const
 {
 	// The open map starts at the last closed map's end pose: a fused one, or
 	// a pending one carried from the last fused.
-	const PoseEstimate last = lastEndPose();
+	const PoseEstimate last = global_->lastEndPose();
 	if (!pending_) return last;
-	return composeIndependent(last, {toTPose2D(pending_->end_pose), pending_->covarianceMatrix().topLeftCorner<3, 3>()});
+	const LocalMap& map = pending_->map;
+	return composeIndependent(last, {toTPose2D(map.end_pose), map.covarianceMatrix().topLeftCorner<3, 3>()});
 }
 
 std::optional<LandmarkId> DslamLocalMapJoining::globalIdOfOpenFeature(LandmarkId id) const
 {
 	const bool ids = params_.association == MapAssociationMethod::KnownIds ||
 		(params_.association == MapAssociationMethod::Auto && !sawMeasurementWithoutId());
-	if (ids) return global_->supported(id) ? std::optional<LandmarkId>(id) : std::nullopt;
-	const auto it = global_of_local_.find(id);
-	if (it != global_of_local_.end() && global_->supported(it->second)) return it->second;
+	const relative::FeatureMap& global = global_->features();
+	if (ids) return global.supported(id) ? std::optional<LandmarkId>(id) : std::nullopt;
+	const auto& global_of_local = global_->globalOfLocal();
+	const auto it = global_of_local.find(id);
+	if (it != global_of_local.end() && global.supported(it->second)) return it->second;
 	return std::nullopt;
 }
 
@@ -447,7 +240,7 @@ PoseEstimate DslamLocalMapJoining::robotPose() const
 	requireConfigured();
 	const auto& open = builder().openMap();
 	const PoseEstimate local = open.robotPose();
-	if (fusions_.empty() && !pending_) return local;  // map 1 is the global frame
+	if (global_->fusions().empty() && !pending_) return local;  // map 1 is the global frame
 	// Sec. 4.4.1: two mapped features of the open map place the robot ...
 	std::vector<Eigen::Vector2d> points;
 	std::vector<int> mapped;
@@ -470,8 +263,9 @@ PoseEstimate DslamLocalMapJoining::robotPose() const
 		const auto rows = robotAndPairRows(a, b);
 		const Eigen::MatrixXd local_cov = Eigen::MatrixXd(open.core().covariance())(rows, rows);
 		const LandmarkId g1 = global_ids[a], g2 = global_ids[b];
-		const PoseEstimate placed = robotFromPairs(toPose2(local.mean), points[a], points[b], local_cov,
-												   global_->position(g1), global_->position(g2), pairCovariance(g1, g2));
+		const PoseEstimate placed =
+			robotFromPairs(toPose2(local.mean), points[a], points[b], local_cov, global_->features().position(g1),
+						   global_->features().position(g2), global_->pairCovariance(g1, g2));
 		// A feature mapped from a misread carries a neighbour's ID: a pair
 		// holding it puts the robot metres from where the open map's start
 		// puts it (configs/sim/wrong_ids.ini). Such a pair is passed over
@@ -488,24 +282,21 @@ Estimate DslamLocalMapJoining::estimate() const
 	requireConfigured();
 	// The global map only: a feature enters it when its map is fused (the
 	// book's fusion delay, Sec. 4.6.1).
-	return {robotPose(), global_->landmarks()};
+	return {robotPose(), global_->features().landmarks()};
 }
 
 std::vector<PoseEstimate> DslamLocalMapJoining::endPoses() const
 {
-	std::map<std::size_t, PoseEstimate> by_map;
-	for (const auto& fusion : fusions_)
-		for (const auto& end : fusion.ends) by_map[end.map] = end.global;
-	std::vector<PoseEstimate> out;
-	for (const auto& [k, pose] : by_map) out.push_back(pose);
-	return out;
+	requireConfigured();
+	return global_->endPoses();
 }
 
 StepReport DslamLocalMapJoining::mapReport(std::size_t k) const
 {
-	const auto fusion = fusion_of_map_.find(k);
-	if (fusion == fusion_of_map_.end()) return {};
-	const Fusion& f = fusions_[fusion->second];
+	requireConfigured();
+	const Fusion* fusion = global_->fusionOf(k);
+	if (!fusion) return {};
+	const Fusion& f = *fusion;
 	StepReport out;
 	for (const LandmarkId id : feature_ids_of_map_.at(k))
 	{
@@ -518,40 +309,42 @@ StepReport DslamLocalMapJoining::mapReport(std::size_t k) const
 
 std::vector<MapJoiningPlugin::SettledFusion> DslamLocalMapJoining::settledFusions() const
 {
+	requireConfigured();
 	std::vector<SettledFusion> out;
-	for (const auto& fusion : fusions_) out.push_back({fusion.map.step_reports, fusion.local_ids, fusion.decisions});
+	for (const auto& fusion : global_->fusions())
+		out.push_back({fusion.source.map.step_reports, fusion.local_ids, fusion.decisions});
 	return out;
 }
 
 SparseInformationCore& DslamLocalMapJoining::globalInformation() const
 {
 	requireConfigured();
-	return global_->core();
+	return global_->features().core();
 }
 
 std::optional<StateInformation> DslamLocalMapJoining::stateInformation() const
 {
 	requireConfigured();
-	if (global_->featureCount() == 0) return std::nullopt;
-	return global_->stateInformation();	 // features only (eq. 4.1)
+	const relative::FeatureMap& global = global_->features();
+	if (global.featureCount() == 0) return std::nullopt;
+	return global.stateInformation();	 // features only (eq. 4.1)
 }
 
 CostFigures DslamLocalMapJoining::costFigures() const
 {
 	requireConfigured();
 	CostFigures c;
-	const SparseCounters sparse = global_->core().counters();
-	c.state_dim = 2 * global_->featureCount();
+	const relative::FeatureMap& global = global_->features();
+	const SparseCounters sparse = global.core().counters();
+	c.state_dim = 2 * global.featureCount();
 	c.poses_in_state = 0;  // features only (eq. 4.1)
 	c.info_nnz = sparse.information_nnz;
 	c.counters = sparse.list();
-	std::size_t fused = 0;
-	for (const auto& fusion : fusions_) fused += fusion.f1 >= 0 ? fusion.maps.size() : 0;
-	c.counters.emplace_back("local_maps_fused", static_cast<double>(fused));
+	c.counters.emplace_back("local_maps_fused", static_cast<double>(global_->mapsFused()));
 	c.counters.emplace_back("local_maps_merged", static_cast<double>(tally_.maps_merged));
 	c.counters.emplace_back("local_maps_unjoinable", static_cast<double>(tally_.maps_unjoinable));
 	tally_.association.appendCounters(c.counters);
-	c.counters.emplace_back("relinearised_terms", static_cast<double>(tally_.relinearised_terms));
+	c.counters.emplace_back("relinearised_terms", static_cast<double>(global_->relinearisedTerms()));
 	return c;
 }
 

@@ -21,12 +21,12 @@
 /// authors' later code does; the estimate lags by one map (Sec. 4.6.1).
 
 #include "DslamLmjParams.h"
+#include "GlobalFeatureMap.h"
+#include "JoinedMaps.h"
 #include "UpperLevelAssociation.h"
 
-#include <esif/localmap/LandmarkIdAllocator.h>
 #include <esif/plugin/MapJoiningPlugin.h>
 #include <esif/plugin/PluginWithParams.h>
-#include <esif/relative/FeatureMap.h>
 
 #include <map>
 #include <memory>
@@ -35,6 +35,9 @@
 
 namespace esif
 {
+/// The global map and its fusions are lmj::GlobalFeatureMap's; this class
+/// decides what is fused when: which association, and what to do with a map
+/// that cannot be fused alone.
 class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoiningPlugin>
 {
 	DEFINE_MRPT_OBJECT(DslamLocalMapJoining, esif)
@@ -64,80 +67,36 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 
    private:
 	void start() override;
-	/// The end pose of one original local map, as needed for Sec. 4.4.1.
-	struct EndPose
-	{
-		std::size_t map = 0;  ///< k
-		Pose2 local = Pose2::Zero();  ///< in the frame of the fused map it belongs to
-		Eigen::MatrixXd local_cov;	///< joint covariance of (end pose, f1, f2) in that frame (7 x 7)
-		PoseEstimate global;
-	};
-
-	/// End poses of the maps a joined map absorbed, in its frame, each with
-	/// its own 3x3 covariance.
-	using AbsorbedEnds = std::vector<std::pair<Pose2, Eigen::Matrix3d>>;
-
-	/// One fusion: one local map, or several joined through their shared poses.
-	struct Fusion
-	{
-		std::vector<std::size_t> maps;	///< original indices k fused here
-		LocalMap map;  ///< what was fused (kept to join it with a later map if needed)
-		std::vector<LandmarkId> local_ids;	///< its feature IDs, in order
-		StepReport decisions;  ///< one per feature: global id or rejected
-		relative::MapUpdate update;	 ///< to withdraw it
-		bool anchor = false;  ///< the first map: the global map's only absolute information
-		AbsorbedEnds absorbed;
-		Eigen::Vector2d f1_local = Eigen::Vector2d::Zero(), f2_local = Eigen::Vector2d::Zero();
-		LandmarkId f1 = -1, f2 = -1;  ///< the pair that locates the end poses (-1: not fused)
-		std::vector<EndPose> ends;
-		std::size_t rejected = 0;
-		double seconds = 0;
-	};
-
 	void requireConfigured() const;
-	/// Fuses `map` (association `decided` when already made); false, with
+	/// Fuses `maps` (association `decided` when already made); false, with
 	/// nothing changed, when fewer than two of its features are usable in
 	/// the global map.
-	bool tryFuse(const LocalMap& map, const std::vector<std::size_t>& originals, const AbsorbedEnds& absorbed,
-				 double seconds_before, std::optional<lmj::UpperLevelOutcome> decided);
-	bool joinWithLastFusion(const LocalMap& map, const std::vector<std::size_t>& originals,
-							const AbsorbedEnds& absorbed);
+	bool tryFuse(const lmj::JoinedMaps& maps, double seconds_before, std::optional<lmj::UpperLevelOutcome> decided);
+	bool joinWithLastFusion(const lmj::JoinedMaps& maps);
+	/// The joined map's association, made while the last fusion is still in;
+	/// nullopt when it leaves no reference pair outside `created`.
+	std::optional<lmj::UpperLevelOutcome> associateBeforeWithdrawing(
+		const LocalMap& joined, const std::vector<LandmarkId>& created);
 	bool useIds(const LocalMap& map) const;
 	/// Keeps in a joined map's update the features the withdrawn fusion created.
 	void keepFeaturesOfWithdrawnFusion(const LocalMap& joined, const std::vector<LandmarkId>& created,
 									   lmj::UpperLevelOutcome& decided) const;
 	std::optional<lmj::UpperLevelOutcome> associate(const LocalMap& map, const Eigen::MatrixXd& feature_cov);
-	LandmarkId freshId(LandmarkId proposed, std::vector<LandmarkId>& taken_now);
-	/// Gauss-Newton passes over the global map (relinearise_after_fusion).
-	void relinearise(const Eigen::Vector2d& reference);
-	void recordEnds(Fusion& fusion, const std::vector<std::size_t>& originals, const Eigen::MatrixXd& pair_cov) const;
-	void locateEnds(Fusion& fusion) const;
 	void giveUpPendingMap();
-	Eigen::Matrix4d pairCovariance(LandmarkId f1, LandmarkId f2) const;
-	PoseEstimate lastEndPose() const;
 	PoseEstimate openMapFrame() const;
 	std::optional<LandmarkId> globalIdOfOpenFeature(LandmarkId id) const;
 
 	// Behind const robotPose()/estimate(): recovery caches.
-	std::unique_ptr<relative::FeatureMap> global_;
-	std::vector<Fusion> fusions_;
+	std::unique_ptr<lmj::GlobalFeatureMap> global_;
 	std::map<std::size_t, std::vector<LandmarkId>> feature_ids_of_map_;	 // original map k -> its feature IDs
-	std::map<std::size_t, std::size_t> fusion_of_map_;	// original map k -> fusions_ index
-	std::map<LandmarkId, LandmarkId> global_of_local_;	// a fused feature's local ID -> global ID
-	bool anchored_ = false;	 // the first map is in
 	// The first map, when it has fewer than two usable features, waits for the next.
-	std::optional<LocalMap> pending_;
-	std::vector<std::size_t> pending_maps_;	 // the original maps in it
-	AbsorbedEnds pending_absorbed_;
-	/// Global covariance of a feature pair, for the robot pose of each step (cleared by every fusion).
-	mutable std::map<std::pair<LandmarkId, LandmarkId>, Eigen::Matrix4d> pair_cov_cache_;
-	std::vector<LocalMapFusionCost> costs_;
-	LandmarkIdAllocator ids_;
+	std::optional<lmj::JoinedMaps> pending_;
+	std::vector<LocalMapFusionCost> costs_;	 // one per fusion in the global map, in order
 
 	struct Tally
 	{
 		MapAssociationTally association;
-		std::size_t maps_merged = 0, maps_unjoinable = 0, relinearised_terms = 0;
+		std::size_t maps_merged = 0, maps_unjoinable = 0;
 	} tally_;
 };
 

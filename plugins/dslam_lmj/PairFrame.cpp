@@ -38,4 +38,9 @@ PoseEstimate robotFromPairs(const Pose2& robot_local, const Eigen::Vector2d& f1_
 	return {toTPose2D(compose(global.pose, in_pair.value)), 0.5 * (P + P.transpose())};
 }
 
+std::vector<Eigen::Index> robotAndPairRows(int a, int b)
+{
+	return {0, 1, 2, 3 + 2 * a, 4 + 2 * a, 3 + 2 * b, 4 + 2 * b};
+}
+
 }  // namespace esif::lmj

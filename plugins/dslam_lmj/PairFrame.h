@@ -13,6 +13,7 @@
 #include <esif/models/Se2.h>
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace esif::lmj
 {
@@ -33,5 +34,9 @@ PairFrame pairFrame(const Eigen::Vector2d& f1, const Eigen::Vector2d& f2);
 PoseEstimate robotFromPairs(const Pose2& robot_local, const Eigen::Vector2d& f1_local, const Eigen::Vector2d& f2_local,
 							const Eigen::MatrixXd& local_cov, const Eigen::Vector2d& f1_global,
 							const Eigen::Vector2d& f2_global, const Eigen::Matrix4d& global_cov);
+
+/// Rows of a local state [robot; features] for the robot and features a, b:
+/// the local_cov of robotFromPairs is the covariance at these rows.
+std::vector<Eigen::Index> robotAndPairRows(int a, int b);
 
 }  // namespace esif::lmj

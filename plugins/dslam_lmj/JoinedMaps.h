@@ -1,0 +1,43 @@
+#pragma once
+/// \file JoinedMaps.h
+/// What is offered to the global map in one fusion: one closed local map,
+/// or several consecutive ones joined through their shared poses
+/// (mergeConsecutiveLocalMaps). A map sharing fewer than two features with
+/// the global map cannot be fused alone (Sec. 4.4.4 fails: map 132 of the
+/// authors' Victoria Park maps); joined with its neighbour, as the authors'
+/// later code does, it can. The joined map is in the frame of the first; the
+/// end poses of the maps it absorbed are kept beside it, since each original
+/// map's end pose must still be located in the global map (Sec. 4.4.1).
+
+#include <esif/core/Estimate.h>
+#include <esif/localmap/LocalMap.h>
+#include <esif/models/Se2.h>
+
+#include <Eigen/Core>
+#include <utility>
+#include <vector>
+
+namespace esif::lmj
+{
+/// End poses of the maps a joined map absorbed, in its frame, each with
+/// its own 3x3 covariance.
+using AbsorbedEnds = std::vector<std::pair<Pose2, Eigen::Matrix3d>>;
+
+struct JoinedMaps
+{
+	LocalMap map;  ///< in the frame of the first original map, numbered as it
+	std::vector<std::size_t> originals;	 ///< original indices k, in order
+	AbsorbedEnds absorbed;	///< end poses of all originals but the last (that is map.end_pose)
+};
+
+/// One closed local map on its own.
+JoinedMaps single(const LocalMap& map);
+
+/// `earlier` and `later` (consecutive: later's first map starts where
+/// earlier's last ends) as one map in the frame of `earlier`.
+JoinedMaps joinConsecutive(const JoinedMaps& earlier, const JoinedMaps& later);
+
+/// x (+) r with first-order covariance; the two independent.
+PoseEstimate composeIndependent(const PoseEstimate& x, const PoseEstimate& r);
+
+}  // namespace esif::lmj
