@@ -61,7 +61,7 @@ struct HostParams
 			   "also another config's label); empty = the rawlog's IDs");
 		b.text("initial_run", initial_run,
 			   "run folder (trajectory.tum, landmarks.txt) whose estimate the plugin starts from, for plugins "
-			   "that take one (ceres_full); empty = none");
+			   "that take one (the full-SLAM baseline); empty = none");
 		b.text("calibration", calibration,
 			   "calibration file of the rawlog's noise (esif calibrate), relative to this config's folder; empty = "
 			   "the rawlog's noise");
