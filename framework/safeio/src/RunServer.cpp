@@ -34,6 +34,26 @@ namespace
 /// handful of paths and options.
 constexpr std::size_t kMaxRequestBytes = 64 * 1024;
 
+/// One request on the server socket: the payload and, as SCM_RIGHTS, two
+/// descriptors (the reply socket and the run's stderr). Not copyable: the
+/// header points into the object itself.
+struct TwoFdMessage
+{
+	alignas(cmsghdr) std::array<char, CMSG_SPACE(2 * sizeof(int))> control{};
+	iovec io{};
+	msghdr header{};
+
+	TwoFdMessage(void* payload, std::size_t size) : io{payload, size}
+	{
+		header.msg_iov = &io;
+		header.msg_iovlen = 1;
+		header.msg_control = control.data();
+		header.msg_controllen = control.size();
+	}
+	TwoFdMessage(const TwoFdMessage&) = delete;
+	TwoFdMessage& operator=(const TwoFdMessage&) = delete;
+};
+
 int& serverSocket()
 {
 	static int fd = -1;
@@ -139,21 +159,15 @@ bool parseRequest(const char* data, std::size_t size, bool& discard_stdout, std:
 	std::vector<char> payload(kMaxRequestBytes);
 	for (;;)
 	{
-		alignas(cmsghdr) std::array<char, CMSG_SPACE(2 * sizeof(int))> control{};
-		iovec io{payload.data(), payload.size()};
-		msghdr message{};
-		message.msg_iov = &io;
-		message.msg_iovlen = 1;
-		message.msg_control = control.data();
-		message.msg_controllen = control.size();
-		const ssize_t n = ::recvmsg(fd, &message, MSG_CMSG_CLOEXEC);
+		TwoFdMessage message(payload.data(), payload.size());
+		const ssize_t n = ::recvmsg(fd, &message.header, MSG_CMSG_CLOEXEC);
 		if (n < 0 && errno == EINTR) continue;
 		if (n <= 0) waitForHelpersAndExit();  // esif has closed its end
 		int status = 0;
 		while (::waitpid(-1, &status, WNOHANG) > 0)
 		{
 		}
-		const cmsghdr* header = CMSG_FIRSTHDR(&message);
+		const cmsghdr* header = CMSG_FIRSTHDR(&message.header);
 		if (!header || header->cmsg_type != SCM_RIGHTS || header->cmsg_len != CMSG_LEN(2 * sizeof(int))) continue;
 		int fds[2];
 		std::memcpy(fds, CMSG_DATA(header), sizeof(fds));
@@ -215,21 +229,15 @@ ServedRun startServedRun(const std::vector<std::string>& args, int stderr_fd, bo
 	if (serverSocket() < 0 || payload.size() > kMaxRequestBytes ||
 		::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, reply) != 0)
 		return run;
-	alignas(cmsghdr) std::array<char, CMSG_SPACE(2 * sizeof(int))> control{};
-	iovec io{payload.data(), payload.size()};
-	msghdr message{};
-	message.msg_iov = &io;
-	message.msg_iovlen = 1;
-	message.msg_control = control.data();
-	message.msg_controllen = control.size();
-	cmsghdr* header = CMSG_FIRSTHDR(&message);
+	TwoFdMessage message(payload.data(), payload.size());
+	cmsghdr* header = CMSG_FIRSTHDR(&message.header);
 	header->cmsg_level = SOL_SOCKET;
 	header->cmsg_type = SCM_RIGHTS;
 	header->cmsg_len = CMSG_LEN(2 * sizeof(int));
 	const int passed[2] = {reply[1], stderr_fd};
 	std::memcpy(CMSG_DATA(header), passed, sizeof(passed));
 	ssize_t sent;
-	while ((sent = ::sendmsg(serverSocket(), &message, MSG_NOSIGNAL)) < 0 && errno == EINTR)
+	while ((sent = ::sendmsg(serverSocket(), &message.header, MSG_NOSIGNAL)) < 0 && errno == EINTR)
 	{
 	}
 	::close(reply[1]);
