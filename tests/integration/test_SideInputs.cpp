@@ -281,16 +281,18 @@ TEST_F(SideInputs, LocalMapGroundTruthAndReferenceValuesAreBounded)
 	const std::string truth = readText(maps + "/ground_truth_landmarks.txt");
 	ASSERT_FALSE(truth.empty());
 	std::ofstream(maps + "/ground_truth_landmarks.txt") << "1 1e9 0\n";
-	expectOneErrorLine(runEsif(runOnMaps(maps, dir.file("out"))), "ground_truth_landmarks.txt:1: x 1e9 is beyond +-1e+07 m");
+	expectOneErrorLine(runEsif(runOnMaps(maps, dir.file("out"))),
+					   "ground_truth_landmarks.txt:1: column 2 (x) = 1e+09: must be within +-1e+07 m");
 	std::ofstream(maps + "/ground_truth_landmarks.txt") << truth;
 	std::ofstream(maps + "/ground_truth_end_poses.txt") << "1 0 0 1e300\n";
-	expectOneErrorLine(runEsif(runOnMaps(maps, dir.file("out"))), "ground_truth_end_poses.txt:1: phi 1e300 is beyond +-1e+06 rad");
+	expectOneErrorLine(runEsif(runOnMaps(maps, dir.file("out"))),
+					   "ground_truth_end_poses.txt:1: column 4 (phi) = 1e+300: must be within +-1e+06 rad");
 	fs::remove(maps + "/ground_truth_end_poses.txt");
 
 	fs::create_directory(dir.file("ref"));
 	std::ofstream(dir.file("ref/feature.txt")) << "1 1e300 0\n";
 	expectOneErrorLine(runEsif(runOnMaps(maps, dir.file("out"), "--reference-result " + quoted(dir.file("ref")))),
-				  "feature.txt:1: x 1e300 is beyond +-1e+07 m");
+				  "feature.txt:1: column 2 (x) = 1e+300: must be within +-1e+07 m");
 }
 
 /// A solver's output of another problem: no landmarks, shifted IDs or an

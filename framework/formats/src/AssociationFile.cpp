@@ -6,6 +6,7 @@
 
 #include <esif/core/Errors.h>
 #include <esif/core/InputBounds.h>
+#include <esif/core/NumberToken.h>
 #include <esif/core/TextInput.h>
 #include <esif/formats/AssociationFile.h>
 #include <esif/safeio/AtomicFile.h>
@@ -42,7 +43,7 @@ std::optional<std::size_t> stepCountOf(
 	const std::vector<std::string>& toks, const TextLineReader& in, std::size_t rawlog_steps)
 {
 	if (toks.size() < 2 || toks[0] != "#" || toks[1] != "steps") return std::nullopt;
-	const auto n = toks.size() == 3 ? wholeToken<std::size_t>(toks[2]) : std::nullopt;
+	const auto n = toks.size() == 3 ? integerToken<std::size_t>(toks[2]) : std::nullopt;
 	if (!n) in.fail("expected '# steps N' with N a whole number");
 	if (*n != rawlog_steps)
 		in.fail("recorded for " + toks[2] + " steps, the rawlog has " + std::to_string(rawlog_steps));
@@ -58,10 +59,10 @@ void readRow(
 	static const std::string kColumns = "'step measurement kind landmark_id'";
 	if (toks.size() != 4)
 		in.fail("expected " + kColumns + ", found " + std::to_string(toks.size()) + " values");
-	const auto step = wholeToken<std::size_t>(toks[0]);
-	const auto index = wholeToken<std::size_t>(toks[1]);
+	const auto step = integerToken<std::size_t>(toks[0]);
+	const auto index = integerToken<std::size_t>(toks[1]);
 	const auto kind = kindOf(toks[2]);
-	const auto id = wholeToken<LandmarkId>(toks[3]);
+	const auto id = integerToken<LandmarkId>(toks[3]);
 	if (!step || !index || !id)
 		in.fail("step, measurement and landmark_id must be whole numbers (expected " + kColumns + ")");
 	if (!kind) in.fail("kind '" + toks[2] + "' is not new, matched or rejected");

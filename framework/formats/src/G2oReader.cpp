@@ -1,11 +1,12 @@
 /// \file G2oReader.cpp
 /// A g2o file read back strictly, like the run outputs (RunOutputReader.cpp):
-/// every token a whole number (std::from_chars), every edge checked against
+/// every token read whole as a number (NumberToken.h), every edge checked against
 /// the vertices, every information matrix positive definite, so a damaged
 /// file or a solver's output of another problem is reported at its line.
 
 #include <esif/core/Errors.h>
 #include <esif/core/InputBounds.h>
+#include <esif/core/NumberToken.h>
 #include <esif/core/TextInput.h>
 #include <esif/formats/G2oFormat.h>
 
@@ -39,14 +40,14 @@ struct Line
 
 	long long id(std::size_t k) const
 	{
-		const auto v = wholeToken<long long>(tokens[k]);
+		const auto v = integerToken<long long>(tokens[k]);
 		if (!v || *v < 0) fail("vertex ID '" + tokens[k] + "' is not a non-negative integer");
 		return *v;
 	}
 
 	double number(std::size_t k) const
 	{
-		const auto v = wholeToken<double>(tokens[k]);
+		const auto v = doubleToken(tokens[k], NonFinite::accepted);
 		if (!v) fail("'" + tokens[k] + "' is not a number");
 		if (!std::isfinite(*v)) fail("'" + tokens[k] + "' is not finite");
 		return *v;

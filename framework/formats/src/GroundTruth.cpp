@@ -24,8 +24,8 @@ bool isBlankOrComment(const std::string& line)
 }
 
 // CLandmarksMap::saveToTextFile's columns, and simul-landmarks' robot path.
-const std::vector<const char*> kLandmarkColumns{"x", "y", "z", "type", "seenCount", "tLastSeen", "ID"};
-const std::vector<const char*> kPathColumns{"x", "y", "z", "yaw", "pitch", "roll"};
+const NumberRow::Columns kLandmarkColumns({"x", "y", "z", "type", "seenCount", "tLastSeen", "ID"});
+const NumberRow::Columns kPathColumns({"x", "y", "z", "yaw", "pitch", "roll"});
 
 std::map<LandmarkId, Eigen::Vector2d> readLandmarks(const std::string& file)
 {

@@ -6,6 +6,7 @@
 
 #include <esif/core/Errors.h>
 #include <esif/core/InputBounds.h>
+#include <esif/core/NumberToken.h>
 #include <esif/core/TextInput.h>
 #include <esif/formats/LandmarkIdentityFile.h>
 #include <esif/safeio/AtomicFile.h>
@@ -32,10 +33,10 @@ LandmarkIdentity identityRow(const std::vector<std::string>& toks, const TextLin
 {
 	static const std::string kColumns = "'landmark_id true_id votes measurements'";
 	if (toks.size() != 4) in.fail("expected " + kColumns + ", found " + std::to_string(toks.size()) + " values");
-	const auto landmark = wholeToken<LandmarkId>(toks[0]);
-	const auto true_id = wholeToken<LandmarkId>(toks[1]);
-	const auto votes = wholeToken<std::size_t>(toks[2]);
-	const auto measurements = wholeToken<std::size_t>(toks[3]);
+	const auto landmark = integerToken<LandmarkId>(toks[0]);
+	const auto true_id = integerToken<LandmarkId>(toks[1]);
+	const auto votes = integerToken<std::size_t>(toks[2]);
+	const auto measurements = integerToken<std::size_t>(toks[3]);
 	if (!landmark || !true_id || !votes || !measurements)
 		in.fail("every value must be a whole number (expected " + kColumns + ")");
 	const std::string range = " is not a landmark ID in [0, " + std::to_string(kMaxLandmarkId) + "]";

@@ -4,21 +4,21 @@
 /// first problem is reported as one InputError "file:line: what is wrong", so
 /// a damaged or hand-edited map is never joined with a silent shift.
 
-#include <esif/config/ConfigSection.h>
 #include <esif/core/Errors.h>
 #include <esif/core/InputBounds.h>
+#include <esif/core/NumberToken.h>
 #include <esif/core/TextInput.h>
 #include <esif/formats/LocalMapFiles.h>
 #include <esif/safeio/AtomicFile.h>
+#include "NumberRow.h"
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <new>
 #include <set>
-#include <sstream>
+#include <string_view>
 #include <system_error>
 
 namespace fs = std::filesystem;
@@ -50,82 +50,36 @@ std::string number17(double v) { return formatted("%.17g", v); }
 /// `v` for a message, where three digits say enough.
 std::string short3(double v) { return formatted("%.3g", v); }
 
-/// A text file as lines, for "file:line" errors. Trailing blank lines (a
-/// final newline too many) are dropped; any other blank line is data and is
-/// reported where a value is expected.
-class LineFile
+/// A text file's lines (TextLineReader's rules), read by line number: a
+/// local map's line count is checked before any of its rows. Trailing
+/// blank lines (a final newline too many) are dropped; any other blank line
+/// is data and is reported where a row is expected.
+class FileLines
 {
    public:
-	LineFile(std::string path, const std::string& what) : path_(std::move(path))
+	FileLines(std::string path, const std::string& what) : path_(std::move(path))
 	{
 		TextLineReader in(path_, what);
 		for (std::string line; in.next(line);) lines_.push_back(line);
 		while (!lines_.empty() && lines_.back().find_first_not_of(" \t\r") == std::string::npos) lines_.pop_back();
 	}
 
-	const std::string& path() const { return path_; }
 	std::size_t lineCount() const { return lines_.size(); }
 
-	/// Whitespace-separated tokens of line `lineno` (1-based).
-	std::vector<std::string> tokens(std::size_t lineno) const
+	/// Line `lineno` (1-based) as a row of `columns`.
+	NumberRow row(std::size_t lineno, const NumberRow::Columns& columns) const
 	{
-		std::vector<std::string> out;
-		std::istringstream ss(lines_.at(lineno - 1));
-		for (std::string tok; ss >> tok;) out.push_back(tok);
-		return out;
+		return NumberRow(lines_.at(lineno - 1), columns, where(lineno));
 	}
 
+	/// Throws InputError "FILE:LINE: problem".
 	[[noreturn]] void fail(std::size_t lineno, const std::string& problem) const
 	{
-		throw InputError(path_ + ":" + std::to_string(lineno) + ": " + problem);
-	}
-
-	/// Tokens of `lineno`, which must hold exactly `count` of them (`columns` names them).
-	std::vector<std::string> row(std::size_t lineno, std::size_t count, const std::string& columns) const
-	{
-		auto toks = tokens(lineno);
-		if (toks.empty()) fail(lineno, "empty line, expected " + columns);
-		if (toks.size() != count)
-			fail(lineno, std::string(toks.size() > count ? "extra values" : "too few values") + ": expected " +
-							 columns + ", found " + std::to_string(toks.size()) + " values");
-		return toks;
-	}
-
-	double number(std::size_t lineno, const std::string& tok, const std::string& what) const
-	{
-		const auto v = parseDouble(tok);
-		if (!v) fail(lineno, what + " '" + tok + "' is not a finite number");
-		return *v;
-	}
-
-	/// A coordinate [m] within +-kMaxCoordinate_m.
-	double coordinate(std::size_t lineno, const std::string& tok, const std::string& what) const
-	{
-		return bounded(lineno, tok, what, kMaxCoordinate_m, "m");
-	}
-
-	/// A heading [rad] within +-kMaxHeading_rad (files may hold unwrapped headings).
-	double heading(std::size_t lineno, const std::string& tok, const std::string& what) const
-	{
-		return bounded(lineno, tok, what, kMaxHeading_rad, "rad");
-	}
-
-	long integer(std::size_t lineno, const std::string& tok, const std::string& what) const
-	{
-		const auto v = parseInt(tok);
-		if (!v) fail(lineno, what + " '" + tok + "' is not an integer");
-		return *v;
+		throw InputError(where(lineno) + ": " + problem);
 	}
 
    private:
-	double bounded(std::size_t lineno, const std::string& tok, const std::string& what, double bound,
-				   const char* unit) const
-	{
-		const double v = number(lineno, tok, what);
-		if (std::abs(v) > bound)
-			fail(lineno, what + " " + tok + " is beyond +-" + short3(bound) + " " + unit + " (a corrupt file or the wrong units)");
-		return v;
-	}
+	std::string where(std::size_t lineno) const { return path_ + ":" + std::to_string(lineno); }
 
 	std::string path_;
 	std::vector<std::string> lines_;
@@ -154,7 +108,7 @@ Eigen::Index failingPivot(Eigen::MatrixXd a)
 
 /// Throws at the line of the row holding the largest asymmetry when it
 /// exceeds kSymmetryTolerance relative to the largest entry.
-void checkSymmetric(const LineFile& f, const Eigen::MatrixXd& m, std::size_t first_line)
+void checkSymmetric(const FileLines& f, const Eigen::MatrixXd& m, std::size_t first_line)
 {
 	const double scale = m.cwiseAbs().maxCoeff();
 	double worst = 0;
@@ -178,18 +132,23 @@ void checkSymmetric(const LineFile& f, const Eigen::MatrixXd& m, std::size_t fir
 
 // ---------------------------------------------------------------- one map
 
+// Ref, N and the id of a state line are integers written as such ("7", not "7.0").
+const NumberRow::Columns kRefColumn({"Ref"}, 1);
+const NumberRow::Columns kNColumn({"N"}, 1);
+const NumberRow::Columns kStateColumns({"id", "value"}, 1);
+
 /// Checks lines 1-2 (Ref, N) and the line count; returns N.
-std::size_t readHeader(const LineFile& f, std::size_t k)
+std::size_t readHeader(const FileLines& f, std::size_t k)
 {
 	if (f.lineCount() < 2) f.fail(f.lineCount() + 1, "file ends early: expected 'Ref' on line 1 and 'N' on line 2");
-	const long ref = f.integer(1, f.row(1, 1, "'Ref'")[0], "Ref");
+	const long ref = f.row(1, kRefColumn).integer(0);
 	// LocalMap has no field for another reference pose (map k is expressed
 	// in pose k-1 by construction), so a map expressed in any other pose would be
 	// joined in the wrong frame: reject it instead of misplacing it.
 	if (ref != static_cast<long>(k) - 1)
 		f.fail(1, "Ref " + std::to_string(ref) + ", expected " + std::to_string(k - 1) + " (map " + std::to_string(k) +
 					  " must be expressed in pose k-1)");
-	const long n = f.integer(2, f.row(2, 1, "'N'")[0], "N");
+	const long n = f.row(2, kNColumn).integer(0);
 	if (n < 3 || n % 2 == 0)
 		f.fail(2, "N = " + std::to_string(n) + " is not a state dimension 3 + 2 * features (odd, at least 3)");
 	const std::size_t expected = 2 + 2 * static_cast<std::size_t>(n);
@@ -203,34 +162,36 @@ std::size_t readHeader(const LineFile& f, std::size_t k)
 }
 
 /// Lines 3 .. N+2: `id value`, the end pose (id -k) then feature pairs.
-void readState(const LineFile& f, std::size_t n, LocalMap& map)
+void readState(const FileLines& f, std::size_t n, LocalMap& map)
 {
 	const long pose_id = -static_cast<long>(map.index);
 	std::map<long, std::size_t> first_line_of;	// feature id -> its line
 	for (std::size_t i = 0; i < n; ++i)
 	{
 		const std::size_t line = 3 + i;
-		const auto toks = f.row(line, 2, "'id value'");
-		const long id = f.integer(line, toks[0], "id");
-		const double value = f.number(line, toks[1], "value");
+		const NumberRow row = f.row(line, kStateColumns);
+		const long id = row.integer(0);
+		const double value = row.number(1);
+		const std::string& written_id = row.token(0);
 		if (i < 3)
 		{
 			if (id != pose_id)
-				f.fail(line, "id " + toks[0] + ", expected " + std::to_string(pose_id) + " (the end pose of map " +
+				f.fail(line, "id " + written_id + ", expected " + std::to_string(pose_id) + " (the end pose of map " +
 								 std::to_string(map.index) + " comes first: x, y, phi)");
 			map.end_pose(static_cast<Eigen::Index>(i)) = i == 2 ? wrapAngle(value) : value;
 		}
 		else if ((i - 3) % 2 == 0)
 		{
-			if (id <= 0) f.fail(line, "feature id " + toks[0] + " is not positive");
+			if (id <= 0) f.fail(line, "feature id " + written_id + " is not positive");
 			if (const auto [it, fresh] = first_line_of.emplace(id, line); !fresh)
-				f.fail(line, "feature id " + toks[0] + " appears twice (first on line " + std::to_string(it->second) + ")");
+				f.fail(
+					line, "feature id " + written_id + " appears twice (first on line " + std::to_string(it->second) + ")");
 			map.features.push_back({id, Eigen::Vector2d(value, 0), false});
 		}
 		else
 		{
 			if (id != map.features.back().id)
-				f.fail(line, "id " + toks[0] + ", expected " + std::to_string(map.features.back().id) +
+				f.fail(line, "id " + written_id + ", expected " + std::to_string(map.features.back().id) +
 								 " (a feature's y line follows its x line with the same id)");
 			map.features.back().position.y() = value;
 		}
@@ -238,16 +199,18 @@ void readState(const LineFile& f, std::size_t n, LocalMap& map)
 }
 
 /// Lines N+3 .. 2N+2: the N x N information matrix, row-major.
-Eigen::MatrixXd readMatrix(const LineFile& f, std::size_t n)
+Eigen::MatrixXd readMatrix(const FileLines& f, std::size_t n)
 {
 	Eigen::MatrixXd m(n, n);
-	const std::string columns = std::to_string(n) + " numbers (a row of the N x N information matrix)";
+	const std::string what = std::to_string(n) + " numbers (a row of the N x N information matrix)";
 	for (std::size_t r = 0; r < n; ++r)
 	{
-		const std::size_t line = 3 + n + r;
-		const auto toks = f.row(line, n, columns);
-		for (std::size_t c = 0; c < n; ++c)
-			m(r, c) = f.number(line, toks[c], "matrix entry (" + std::to_string(r + 1) + "," + std::to_string(c + 1) + ")");
+		// Entries are named only for a message: no string is built for a good one.
+		const NumberRow::Columns columns(n, what, [r](std::size_t c) {
+			return "matrix entry (" + std::to_string(r + 1) + "," + std::to_string(c + 1) + ")";
+		});
+		const NumberRow row = f.row(3 + n + r, columns);
+		for (std::size_t c = 0; c < n; ++c) m(r, c) = row.number(c);
 	}
 	return m;
 }
@@ -271,36 +234,43 @@ void validateRead(const LocalMap& map, const std::string& path, std::size_t matr
 
 // ---------------------------------------------------------------- row files
 
-/// Calls `row(tokens, line)` for every line of a file of `count`-column rows.
+// The first column, an ID or a map index, is an integer written as such.
+const NumberRow::Columns kPointColumns({"id", "x", "y"}, 1);
+const NumberRow::Columns kPoseColumns({"k", "x", "y", "phi"}, 1);
+const NumberRow::Columns kLinkColumns({"k", "dx", "dy", "dphi", "c11", "c12", "c13", "c22", "c23", "c33"}, 1);
+
+/// Calls `row(row, line)` for every line of a file of `columns` rows.
 void forEachRow(
-	const LineFile& f, std::size_t count, const std::string& columns,
-	const std::function<void(const std::vector<std::string>&, std::size_t)>& row)
+	const FileLines& f, const NumberRow::Columns& columns,
+	const std::function<void(const NumberRow&, std::size_t)>& row)
 {
-	for (std::size_t line = 1; line <= f.lineCount(); ++line) row(f.row(line, count, columns), line);
+	for (std::size_t line = 1; line <= f.lineCount(); ++line) row(f.row(line, columns), line);
 }
 
-/// A positive id / map index in `tok`, not seen before in this file.
+/// Column 0 of `row`: a positive id / map index not seen before in this file.
 long freshPositive(
-	const LineFile& f, std::size_t line, const std::string& tok, const std::string& what, std::map<long, std::size_t>& seen)
+	const FileLines& f, std::size_t line, const NumberRow& row, const std::string& what,
+	std::map<long, std::size_t>& seen)
 {
-	const long v = f.integer(line, tok, what);
-	if (v <= 0) f.fail(line, what + " " + tok + " is not positive");
+	const long v = row.integer(0);
+	if (v <= 0) f.fail(line, what + " " + row.token(0) + " is not positive");
 	if (const auto [it, fresh] = seen.emplace(v, line); !fresh)
-		f.fail(line, "duplicate " + what + " " + tok + " (first on line " + std::to_string(it->second) + ")");
+		f.fail(line, "duplicate " + what + " " + row.token(0) + " (first on line " + std::to_string(it->second) + ")");
 	return v;
 }
 
 /// `id x y` rows (ground truth landmarks, the reference's feature.txt).
 std::map<LandmarkId, Eigen::Vector2d> readPointRows(const std::string& path, const std::string& what)
 {
-	const LineFile f(path, what);
+	const FileLines f(path, what);
 	std::map<LandmarkId, Eigen::Vector2d> out;
 	std::map<long, std::size_t> seen;
-	forEachRow(f, 3, "'id x y'", [&](const auto& t, std::size_t line) {
-		const long id = freshPositive(f, line, t[0], "id", seen);
+	forEachRow(f, kPointColumns, [&](const NumberRow& row, std::size_t line) {
+		const long id = freshPositive(f, line, row, "id", seen);
 		if (id > kMaxLandmarkId)
-			f.fail(line, "id " + t[0] + " is beyond " + std::to_string(kMaxLandmarkId) + " (MRPT's landmark IDs)");
-		out[id] = {f.coordinate(line, t[1], "x"), f.coordinate(line, t[2], "y")};
+			f.fail(
+				line, "id " + row.token(0) + " is beyond " + std::to_string(kMaxLandmarkId) + " (MRPT's landmark IDs)");
+		out[id] = {row.coordinate(1), row.coordinate(2)};
 	});
 	return out;
 }
@@ -310,15 +280,14 @@ std::map<LandmarkId, Eigen::Vector2d> readPointRows(const std::string& path, con
 /// `last_map`: largest k accepted (0: any).
 std::map<std::size_t, Pose2> readPoseRows(const std::string& path, const std::string& what, std::size_t last_map)
 {
-	const LineFile f(path, what);
+	const FileLines f(path, what);
 	std::map<std::size_t, Pose2> out;
 	std::map<long, std::size_t> seen;
-	forEachRow(f, 4, "'k x y phi'", [&](const auto& t, std::size_t line) {
-		const long k = freshPositive(f, line, t[0], "map index", seen);
+	forEachRow(f, kPoseColumns, [&](const NumberRow& row, std::size_t line) {
+		const long k = freshPositive(f, line, row, "map index", seen);
 		if (last_map && static_cast<std::size_t>(k) > last_map)
-			f.fail(line, "map index " + t[0] + " but the folder has maps 1.." + std::to_string(last_map));
-		out[static_cast<std::size_t>(k)] = {
-			f.coordinate(line, t[1], "x"), f.coordinate(line, t[2], "y"), f.heading(line, t[3], "phi")};
+			f.fail(line, "map index " + row.token(0) + " but the folder has maps 1.." + std::to_string(last_map));
+		out[static_cast<std::size_t>(k)] = {row.coordinate(1), row.coordinate(2), row.heading(3)};
 	});
 	return out;
 }
@@ -326,21 +295,17 @@ std::map<std::size_t, Pose2> readPoseRows(const std::string& path, const std::st
 /// links.txt: `k dx dy dphi c11 c12 c13 c22 c23 c33` into maps[k-1].link.
 void readLinks(const std::string& path, std::vector<LocalMap>& maps)
 {
-	const LineFile f(path, "local-map links");
+	const FileLines f(path, "local-map links");
 	std::map<long, std::size_t> seen;
-	forEachRow(f, 10, "'k dx dy dphi c11 c12 c13 c22 c23 c33'", [&](const auto& t, std::size_t line) {
-		const long k = freshPositive(f, line, t[0], "map index", seen);
+	forEachRow(f, kLinkColumns, [&](const NumberRow& row, std::size_t line) {
+		const long k = freshPositive(f, line, row, "map index", seen);
 		if (static_cast<std::size_t>(k) > maps.size())
-			f.fail(line, "map index " + t[0] + " but the folder has maps 1.." + std::to_string(maps.size()));
-		double v[9];
-		static const char* const names[9] = {"dx", "dy", "dphi", "c11", "c12", "c13", "c22", "c23", "c33"};
-		for (int i = 0; i < 9; ++i)
-			v[i] = i < 2 ? f.coordinate(line, t[1 + i], names[i])
-				 : i == 2 ? f.heading(line, t[1 + i], names[i])
-						  : f.number(line, t[1 + i], names[i]);
+			f.fail(line, "map index " + row.token(0) + " but the folder has maps 1.." + std::to_string(maps.size()));
+		const double dx = row.coordinate(1), dy = row.coordinate(2), dphi = row.heading(3);
 		OdometryIncrement link;
-		link.delta = mrpt::math::TPose2D(v[0], v[1], v[2]);
-		link.cov << v[3], v[4], v[5], v[4], v[6], v[7], v[5], v[7], v[8];
+		link.delta = mrpt::math::TPose2D(dx, dy, dphi);
+		const auto c = [&](std::size_t i) { return row.number(i); };  // c11 c12 c13 c22 c23 c33: columns 4..9
+		link.cov << c(4), c(5), c(6), c(5), c(7), c(8), c(6), c(8), c(9);
 		if (failingPivot(link.cov) >= 0) f.fail(line, "link covariance is not positive definite");
 		maps[static_cast<std::size_t>(k) - 1].link = link;
 	});
@@ -359,7 +324,8 @@ std::size_t lastMapIndex(const std::string& dir)
 		if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
 			name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
 			continue;
-		const auto k = parseInt(name.substr(prefix.size(), name.size() - prefix.size() - suffix.size()));
+		const auto k = integerToken<long>(
+			std::string_view(name).substr(prefix.size(), name.size() - prefix.size() - suffix.size()));
 		// Only canonical names count ("localmap_07.txt" is not map 7).
 		if (k && *k > 0 && mapFileName(static_cast<std::size_t>(*k)) == name)
 			last = std::max(last, static_cast<std::size_t>(*k));
@@ -483,7 +449,7 @@ void writeContents(const LocalMapFolder& folder, const fs::path& dir)
 LocalMap readLocalMapFile(const std::string& path, std::size_t k)
 {
 	if (k == 0) throw InputError(path + ": local map index 0 (maps are numbered from 1)");
-	const LineFile f(path, "local map");
+	const FileLines f(path, "local map");
 	LocalMap map;
 	map.index = k;
 	const std::size_t n = readHeader(f, k);

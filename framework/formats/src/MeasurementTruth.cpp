@@ -1,9 +1,12 @@
 #include <esif/core/Errors.h>
 #include <esif/core/InputBounds.h>
+#include <esif/core/NumberToken.h>
 #include <esif/core/TextInput.h>
 #include <esif/safeio/AtomicFile.h>
 #include <esif/formats/MeasurementTruth.h>
 
+#include <array>
+#include <optional>
 #include <sstream>
 
 namespace esif
@@ -12,6 +15,22 @@ namespace
 {
 /// The file's value for "no landmark" (MRPT's INVALID_LANDMARK_ID).
 constexpr long long kNoLandmark = -1;
+
+/// The integers of a row 'step measurement rawlog_id true_id'; nullopt
+/// unless `line` holds exactly four.
+std::optional<std::array<long long, 4>> rowOf(const std::string& line)
+{
+	const auto tokens = whitespaceTokens(line);
+	std::array<long long, 4> out{};
+	if (tokens.size() != out.size()) return std::nullopt;
+	for (std::size_t i = 0; i < out.size(); ++i)
+	{
+		const auto v = integerToken<long long>(tokens[i]);
+		if (!v) return std::nullopt;
+		out[i] = *v;
+	}
+	return out;
+}
 }  // namespace
 
 std::string measurementTruthFileOf(const std::string& prefix) { return prefix + "_ground_truth_measurement_ids.txt"; }
@@ -39,14 +58,12 @@ std::optional<std::vector<std::vector<std::optional<LandmarkId>>>> loadMeasureme
 	{
 		const auto first = line.find_first_not_of(" \t\r");
 		if (first == std::string::npos || line[first] == '%') continue;
-		std::istringstream row(line);
-		long long step = -1, index = -1, rawlog_id = 0, true_id = 0;
-		std::string rest;
-		if (!(row >> step >> index >> rawlog_id >> true_id) || (row >> rest) || step < 0 || index < 0 ||
-			true_id < kNoLandmark || true_id > kMaxLandmarkId)
+		const auto row = rowOf(line);
+		if (!row || (*row)[0] < 0 || (*row)[1] < 0 || (*row)[3] < kNoLandmark || (*row)[3] > kMaxLandmarkId)
 			in.fail(
 				"expected 'step measurement rawlog_id true_id' (integers, true_id -1 or a landmark ID in [0, " +
 				std::to_string(kMaxLandmarkId) + "])");
+		const auto [step, index, rawlog_id, true_id] = *row;
 		if (static_cast<unsigned long long>(step) >= steps)
 			in.fail("step " + std::to_string(step) + " but the rawlog has " + std::to_string(steps) + " steps");
 		const auto k = static_cast<std::size_t>(step);

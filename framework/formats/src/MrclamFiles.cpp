@@ -32,11 +32,11 @@ bool isBlankOrComment(const std::string& line)
 
 /// Calls `row(NumberRow)` for every data line of `path` (`what` names the file's kind).
 template <class OnRow>
-void forEachRow(const std::string& path, const std::string& what, const std::vector<const char*>& names, OnRow&& row)
+void forEachRow(const std::string& path, const std::string& what, const NumberRow::Columns& columns, OnRow&& row)
 {
 	TextLineReader in(path, what);
 	for (std::string line; in.next(line);)
-		if (!isBlankOrComment(line)) row(NumberRow(line, names, in.where()));
+		if (!isBlankOrComment(line)) row(NumberRow(line, columns, in.where()));
 }
 
 /// Column 0 of `row` as a time that does not go back from `previous` (updated).
@@ -48,11 +48,11 @@ double timeOf(const NumberRow& row, double& previous)
 	return t;
 }
 
-const std::vector<const char*> kBarcodeColumns{"subject", "barcode"};
-const std::vector<const char*> kLandmarkColumns{"subject", "x", "y", "std_x", "std_y"};
-const std::vector<const char*> kOdometryColumns{"time", "v", "w"};
-const std::vector<const char*> kMeasurementColumns{"time", "barcode", "range", "bearing"};
-const std::vector<const char*> kTruthColumns{"time", "x", "y", "theta"};
+const NumberRow::Columns kBarcodeColumns({"subject", "barcode"});
+const NumberRow::Columns kLandmarkColumns({"subject", "x", "y", "std_x", "std_y"});
+const NumberRow::Columns kOdometryColumns({"time", "v", "w"});
+const NumberRow::Columns kMeasurementColumns({"time", "barcode", "range", "bearing"});
+const NumberRow::Columns kTruthColumns({"time", "x", "y", "theta"});
 
 std::string robotFile(const std::string& dir, int robot, const char* kind)
 {
@@ -65,8 +65,8 @@ std::map<long, long> readBarcodes(const std::string& path)
 	std::map<long, long> subject_of;
 	std::set<long> subjects;
 	forEachRow(path, "MRCLAM barcode table", kBarcodeColumns, [&](const NumberRow& row) {
-		const long subject = row.integer(0, 1, kLastSubject);
-		const long barcode = row.integer(1, 0, kMaxBarcode);
+		const long subject = row.wholeNumber(0, 1, kLastSubject);
+		const long barcode = row.wholeNumber(1, 0, kMaxBarcode);
 		if (!subjects.insert(subject).second) row.fail(0, "subject listed twice");
 		if (!subject_of.emplace(barcode, subject).second) row.fail(1, "barcode listed twice");
 	});
@@ -79,7 +79,7 @@ std::vector<TrueLandmark> readLandmarkTruth(const std::string& path)
 	std::vector<TrueLandmark> out;
 	std::set<long> seen;
 	forEachRow(path, "MRCLAM landmark ground truth", kLandmarkColumns, [&](const NumberRow& row) {
-		const long subject = row.integer(0, kFirstLandmarkSubject, kLastSubject);
+		const long subject = row.wholeNumber(0, kFirstLandmarkSubject, kLastSubject);
 		if (!seen.insert(subject).second) row.fail(0, "landmark listed twice");
 		out.push_back({subject, row.coordinate(1), row.coordinate(2)});
 	});
@@ -111,7 +111,7 @@ std::vector<BarcodeMeasurement> readMeasurements(const std::string& path)
 		const double before = previous;
 		const double t = timeOf(row, previous);
 		if (t != before) read_now.clear();
-		const long barcode = row.integer(1, 0, kMaxBarcode);
+		const long barcode = row.wholeNumber(1, 0, kMaxBarcode);
 		if (const auto [first, fresh] = read_now.emplace(barcode, row.where()); !fresh)
 			row.fail(1, "read twice at the same time (first on line " + first->second.substr(first->second.rfind(':') + 1) +
 							"): a repeated line");

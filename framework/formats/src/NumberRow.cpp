@@ -4,34 +4,65 @@
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
 #include <esif/core/InputBounds.h>
+#include <esif/core/NumberToken.h>
 #include <esif/core/TextInput.h>
 #include "NumberRow.h"
 
 #include <cmath>
-#include <cstdlib>
 
 namespace esif
 {
-NumberRow::NumberRow(const std::string& line, const std::vector<const char*>& names, std::string where)
-	: names_(names), where_(std::move(where))
+namespace
 {
-	tokens_ = whitespaceTokens(line);
-	if (tokens_.size() != names.size())
+/// Why a coordinate or heading beyond its bound is refused: no real one is that far.
+const char* const kImplausible = " (a corrupt file or the wrong units)";
+}  // namespace
+
+NumberRow::Columns::Columns(std::vector<std::string> names, std::size_t integers)
+	: count_(names.size()), integers_(integers)
+{
+	std::string list;
+	for (const auto& n : names) list += (list.empty() ? "" : " ") + n;
+	what_ = std::to_string(count_) + (count_ == 1 ? " column '" : " columns '") + list + "'";
+	name_ = [names = std::move(names)](std::size_t i) { return names[i]; };
+}
+
+NumberRow::Columns::Columns(std::size_t count, std::string what, std::function<std::string(std::size_t)> name)
+	: count_(count), what_(std::move(what)), name_(std::move(name))
+{
+}
+
+NumberRow::NumberRow(const std::string& line, const Columns& columns, std::string where)
+	: columns_(columns), where_(std::move(where)), tokens_(whitespaceTokens(line))
+{
+	requireCount();
+	for (std::size_t i = 0; i < tokens_.size(); ++i) read(i);
+}
+
+void NumberRow::requireCount() const
+{
+	const std::size_t found = tokens_.size(), expected = columns_.size();
+	if (found == expected) return;
+	if (found == 0) throw InputError(where_ + ": empty line, expected " + columns_.what());
+	throw InputError(
+		where_ + ": " + (found > expected ? "extra values" : "too few values") + ": expected " + columns_.what() +
+		", found " + std::to_string(found));
+}
+
+void NumberRow::read(std::size_t i)
+{
+	if (columns_.isInteger(i))
 	{
-		std::string list;
-		for (const char* n : names) list += (list.empty() ? "" : " ") + std::string(n);
-		throw InputError(
-			where_ + ": expected " + std::to_string(names.size()) + " columns '" + list + "', found " +
-			std::to_string(tokens_.size()));
+		const auto v = integerToken<long>(tokens_[i]);
+		if (!v) fail(i, "not an integer");
+		integers_.push_back(*v);
+		values_.push_back(static_cast<double>(*v));
+		return;
 	}
-	for (std::size_t i = 0; i < tokens_.size(); ++i)
-	{
-		char* end = nullptr;
-		const double v = std::strtod(tokens_[i].c_str(), &end);
-		if (end == tokens_[i].c_str() || *end != '\0') fail(i, "not a number");
-		if (!std::isfinite(v)) fail(i, "not a finite number");
-		values_.push_back(v);
-	}
+	const auto v = doubleToken(tokens_[i], NonFinite::accepted);
+	if (!v) fail(i, "not a number");
+	if (!std::isfinite(*v)) fail(i, "not a finite number");
+	values_.push_back(*v);
 }
 
 double NumberRow::bounded(std::size_t i, double lo, double hi, const std::string& unit, const std::string& why) const
@@ -43,17 +74,19 @@ double NumberRow::bounded(std::size_t i, double lo, double hi, const std::string
 
 double NumberRow::coordinate(std::size_t i) const
 {
-	if (std::abs(values_[i]) > kMaxCoordinate_m) fail(i, "must be within +-" + formatNumber(kMaxCoordinate_m) + " m");
+	if (std::abs(values_[i]) > kMaxCoordinate_m)
+		fail(i, "must be within +-" + formatNumber(kMaxCoordinate_m) + " m" + kImplausible);
 	return values_[i];
 }
 
 double NumberRow::heading(std::size_t i) const
 {
-	if (std::abs(values_[i]) > kMaxHeading_rad) fail(i, "must be within +-" + formatNumber(kMaxHeading_rad) + " rad");
+	if (std::abs(values_[i]) > kMaxHeading_rad)
+		fail(i, "must be within +-" + formatNumber(kMaxHeading_rad) + " rad" + kImplausible);
 	return values_[i];
 }
 
-long NumberRow::integer(std::size_t i, long lo, long hi) const
+long NumberRow::wholeNumber(std::size_t i, long lo, long hi) const
 {
 	const double v = values_[i];
 	if (v != std::floor(v)) fail(i, "must be a whole number");
@@ -73,9 +106,14 @@ LandmarkId NumberRow::landmarkId(std::size_t i) const
 
 void NumberRow::fail(std::size_t i, const std::string& rule) const
 {
-	// The value as read while it is not a finite number; as parsed after.
-	const std::string value = i < values_.size() ? formatNumber(values_[i]) : "'" + tokens_[i] + "'";
-	throw InputError(where_ + ": column " + std::to_string(i + 1) + " (" + names_[i] + ") = " + value + ": " + rule);
+	// The token as written while it is not read; after, the value read.
+	std::string value = "'" + tokens_[i] + "'";
+	if (i < integers_.size())
+		value = std::to_string(integers_[i]);
+	else if (i < values_.size())
+		value = formatNumber(values_[i]);
+	throw InputError(
+		where_ + ": column " + std::to_string(i + 1) + " (" + columns_.name(i) + ") = " + value + ": " + rule);
 }
 
 }  // namespace esif

@@ -1,10 +1,11 @@
 /// \file RunOutputReader.cpp
-/// trajectory.tum and landmarks.txt read back, strictly: every token must be
-/// a whole number (std::from_chars, locale-independent like the writers'
-/// std::to_chars), so a damaged file is reported at its line, never misread.
+/// trajectory.tum and landmarks.txt read back, strictly: every token must
+/// read whole as a number (NumberToken.h; NaN and infinities too: a diverged
+/// run writes them), so a damaged file is reported at its line, never misread.
 
 #include <esif/core/Errors.h>
 #include <esif/core/InputBounds.h>
+#include <esif/core/NumberToken.h>
 #include <esif/core/TextInput.h>
 #include <esif/formats/NumberText.h>
 #include <esif/formats/RunOutputReader.h>
@@ -45,7 +46,7 @@ std::vector<double> numbersOf(
 	std::vector<double> v;
 	for (std::size_t k = first; k < toks.size(); ++k)
 	{
-		const auto x = wholeToken<double>(toks[k]);
+		const auto x = doubleToken(toks[k], NonFinite::accepted);
 		if (!x) failAt(path, lineno, "'" + toks[k] + "' is not a number (expected " + columns + ")");
 		v.push_back(*x);
 	}
@@ -118,7 +119,7 @@ std::vector<LandmarkEstimate> readLandmarksTxt(const std::string& path, RunRole 
 		const auto v = numbersOf(toks, 1, 5, path, lineno, kColumns);
 		LandmarkEstimate lm;
 		const std::string& id = toks[0];
-		const auto parsed_id = wholeToken<LandmarkId>(id);
+		const auto parsed_id = integerToken<LandmarkId>(id);
 		if (!parsed_id) failAt(path, lineno, "landmark ID '" + id + "' is not an integer (expected " + kColumns + ")");
 		lm.id = *parsed_id;
 		if (const auto [it, added] = line_of_id.emplace(lm.id, lineno); !added)

@@ -2,11 +2,11 @@
 
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
+#include <esif/core/NumberToken.h>
 
 #include <Eigen/Eigenvalues>
 
 #include <cstdio>
-#include <cstdlib>
 #include <sstream>
 #include <vector>
 
@@ -110,12 +110,11 @@ class Fields
    private:
 	double number(std::size_t i, const std::string& token) const
 	{
-		char* end = nullptr;
-		const double v = std::strtod(token.c_str(), &end);
+		const auto v = doubleToken(token, NonFinite::accepted);
 		const std::string head = where_ + ": " + layout_.keyword + " " + layout_.fields[i] + " = '" + token + "': ";
-		if (end == token.c_str() || *end != '\0') throw InputError(head + "not a number");
-		if (!std::isfinite(v)) throw InputError(head + "not a finite number");
-		return v;
+		if (!v) throw InputError(head + "not a number");
+		if (!std::isfinite(*v)) throw InputError(head + "not a finite number");
+		return *v;
 	}
 
 	const Layout& layout_;

@@ -88,20 +88,21 @@ TEST(GroundTruth, MalformedFileNamesFileLineAndColumn)
 		loadError(kLandmark1 + "inf 4 0 5 0 0 2\n"), "g_ground_truth.txt:2: column 1 (x) = 'inf': not a finite number");
 	EXPECT_EQ(
 		loadError(kLandmark1 + "3 1e300 0 5 0 0 2\n"),
-		"g_ground_truth.txt:2: column 2 (y) = 1e+300: must be within +-1e+07 m");
+		"g_ground_truth.txt:2: column 2 (y) = 1e+300: must be within +-1e+07 m (a corrupt file or the wrong units)");
 	EXPECT_EQ(
 		loadError(kLandmark1 + "3 4 0 5 0 2\n"),
-		"g_ground_truth.txt:2: expected 7 columns 'x y z type seenCount tLastSeen ID', found 6");
+		"g_ground_truth.txt:2: too few values: expected 7 columns 'x y z type seenCount tLastSeen ID', found 6");
 	// The robot path: the same rules for its columns.
 	EXPECT_EQ(
 		loadError(kLandmark1, "% comment\n1 2 0 0.5 0 0\n1 2 0 nan 0 0\n"),
 		"g_ground_truth_robot_path.txt:3: column 4 (yaw) = 'nan': not a finite number");
 	EXPECT_EQ(
 		loadError(kLandmark1, "1 2 0 0.5 0\n"),
-		"g_ground_truth_robot_path.txt:1: expected 6 columns 'x y z yaw pitch roll', found 5");
+		"g_ground_truth_robot_path.txt:1: too few values: expected 6 columns 'x y z yaw pitch roll', found 5");
 	EXPECT_EQ(
 		loadError(kLandmark1, "-2e7 2 0 0.5 0 0\n"),
-		"g_ground_truth_robot_path.txt:1: column 1 (x) = -2e+07: must be within +-1e+07 m");
+		"g_ground_truth_robot_path.txt:1: column 1 (x) = -2e+07: must be within +-1e+07 m (a corrupt file or the wrong "
+		"units)");
 	EXPECT_EQ(loadError(kLandmark1, "1 2 0 0.5 0 0\n"), "(no error)");
 }
 

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <unistd.h>
@@ -207,6 +208,21 @@ TEST(LocalMapFiles, FolderRoundTripIsExact)
 	EXPECT_EQ(test::readText(dir.file("maps/links.txt")).substr(0, 2), "2 ");
 }
 
+TEST(LocalMapFiles, SubnormalValuesRoundTrip)
+{
+	// %.17g writes them, so the reader must take them back (it refused them
+	// once as "not a finite number").
+	test::TempDir dir;
+	auto folder = makeFolder();
+	folder.maps[0].features[0].position.x() = std::numeric_limits<double>::denorm_min();
+	folder.maps[0].information(0, 1) = folder.maps[0].information(1, 0) = 1e-310;
+	folder.truth_landmarks->at(4).y() = -1e-320;
+	writeLocalMapFolder(folder, dir.file("maps"));
+	const auto back = readLocalMapFolder(dir.file("maps"));
+	expectSameMaps(folder, back);
+	EXPECT_EQ(*back.truth_landmarks, *folder.truth_landmarks);
+}
+
 TEST(LocalMapFiles, RewriteReplacesTheWholeFolder)
 {
 	test::TempDir dir;
@@ -261,7 +277,7 @@ TEST(LocalMapFiles, BadHeaderAndCounts)
 
 TEST(LocalMapFiles, BadStateLines)
 {
-	expectMapErrorAt([](auto& l) { l[3] = "-2 abc"; }, 4, "'abc' is not a finite number");
+	expectMapErrorAt([](auto& l) { l[3] = "-2 abc"; }, 4, "column 2 (value) = 'abc': not a number");
 	expectMapErrorAt([](auto& l) { l[3] = "-2 nan"; }, 4, "not a finite number");
 	expectMapErrorAt([](auto& l) { l[3] = "-2 1e999"; }, 4, "not a finite number");
 	expectMapErrorAt([](auto& l) { l[3] = "-2.0 1"; }, 4, "not an integer");
@@ -278,8 +294,11 @@ TEST(LocalMapFiles, BadStateLines)
 
 TEST(LocalMapFiles, BadMatrix)
 {
-	expectMapErrorAt([](auto& l) { l[11] = l[11].substr(0, l[11].rfind(' ')); }, 12, "found 6 values");
-	expectMapErrorAt([](auto& l) { setEntry(l, 2, 4, "inf"); }, 11, "'inf' is not a finite number");
+	expectMapErrorAt(
+		[](auto& l) { l[11] = l[11].substr(0, l[11].rfind(' ')); }, 12,
+		"too few values: expected 7 numbers (a row of the N x N information matrix), found 6");
+	expectMapErrorAt(
+		[](auto& l) { setEntry(l, 2, 4, "inf"); }, 11, "column 4 (matrix entry (2,4)) = 'inf': not a finite number");
 	expectMapErrorAt([](auto& l) { setEntry(l, 3, 5, "x"); }, 12, "matrix entry (3,5)");
 	// Two asymmetries: the worst, entry (6,2) against (2,6), names row 2 (line 11).
 	expectMapErrorAt(
@@ -327,12 +346,14 @@ TEST(LocalMapFiles, BadLinksAndGroundTruth)
 		writeLines(maps + "/links.txt", rows);
 		expectErrorAt([&] { readLocalMapFolder(maps); }, "links.txt:" + std::to_string(line), phrase);
 	};
-	expectLinks({"2" + link, "1 0.1 0 0 1 0 0 1 0"}, 2, "found 9 values");
+	expectLinks(
+		{"2" + link, "1 0.1 0 0 1 0 0 1 0"}, 2,
+		"too few values: expected 10 columns 'k dx dy dphi c11 c12 c13 c22 c23 c33', found 9");
 	expectLinks({"2" + link, "2" + link}, 2, "duplicate map index 2 (first on line 1)");
 	expectLinks({"3" + link}, 1, "maps 1..2");
 	expectLinks({"0" + link}, 1, "not positive");
 	expectLinks({"1 0.1 0 0 1 2 0 1 0 1"}, 1, "not positive definite");
-	expectLinks({"1 0.1 0 zero 1 0 0 1 0 1"}, 1, "dphi 'zero'");
+	expectLinks({"1 0.1 0 zero 1 0 0 1 0 1"}, 1, "column 4 (dphi) = 'zero': not a number");
 	writeLines(maps + "/links.txt", {"2" + link});
 	const auto with_link = readLocalMapFolder(maps);
 	ASSERT_TRUE(with_link.maps[1].link);
@@ -343,7 +364,9 @@ TEST(LocalMapFiles, BadLinksAndGroundTruth)
 	writeLines(maps + "/ground_truth_landmarks.txt", {"1 0 0", "2 0 0", "1 5 5"});
 	expectErrorAt([&] { readLocalMapFolder(maps); }, "ground_truth_landmarks.txt:3", "duplicate id 1");
 	writeLines(maps + "/ground_truth_landmarks.txt", {"1 0 0", "2 0"});
-	expectErrorAt([&] { readLocalMapFolder(maps); }, "ground_truth_landmarks.txt:2", "expected 'id x y'");
+	expectErrorAt(
+		[&] { readLocalMapFolder(maps); }, "ground_truth_landmarks.txt:2",
+		"too few values: expected 3 columns 'id x y', found 2");
 	fs::remove(maps + "/ground_truth_landmarks.txt");
 	writeLines(maps + "/ground_truth_end_poses.txt", {"1 0 0 0", "2 0 0 0 0"});
 	expectErrorAt([&] { readLocalMapFolder(maps); }, "ground_truth_end_poses.txt:2", "extra values");

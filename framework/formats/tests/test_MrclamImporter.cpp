@@ -159,7 +159,7 @@ TEST_F(SyntheticRecording, EveryMalformedLineIsOneErrorNamingFileAndLine)
 {
 	const std::string odometry = "# Time v w\n100.0 0.1 0.0\n";
 	const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
-		{"Robot1_Odometry.dat", odometry + "110.0 0.0\n", ":3: expected 3 columns 'time v w', found 2"},
+		{"Robot1_Odometry.dat", odometry + "110.0 0.0\n", ":3: too few values: expected 3 columns 'time v w', found 2"},
 		{"Robot1_Odometry.dat", odometry + "99.0 0.0 0.0\n", ":3: column 1 (time) = 99: goes back in time"},
 		{"Robot1_Odometry.dat", odometry + "110.0 50 0.0\n", ":3: column 2 (v) = 50: must be in [-10, 10] m/s"},
 		{"Robot1_Odometry.dat", odometry + "110.0 nan 0.0\n", ":3: column 2 (v) = 'nan': not a finite number"},

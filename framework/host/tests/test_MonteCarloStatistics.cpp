@@ -10,8 +10,9 @@
 #include <esif/core/Errors.h>
 #include <esif/eval/EstimationErrorFiles.h>
 #include <esif/eval/MonteCarloStatistics.h>
-#include <esif/montecarlo/MonteCarloTables.h>
+#include <esif/montecarlo/MonteCarloCampaign.h>
 #include <esif/montecarlo/MonteCarloCollect.h>
+#include <esif/montecarlo/MonteCarloTables.h>
 #include <esif/safeio/AtomicFile.h>
 
 #include <gtest/gtest.h>
@@ -436,6 +437,30 @@ TEST(MonteCarloCollect, AMalformedErrorFileIsOneLineNamingIt)
 	catch (const esif::InputError& e)
 	{
 		EXPECT_EQ(std::string(e.what()), run + "/pose_errors.csv:2: 'zero' is not a number");
+	}
+}
+
+TEST(MonteCarloCollect, AFailureRecordIsReadStrictly)
+{
+	esif::test::TempDir tmp;
+	const std::string path = tmp.file("failed.txt");
+	esif::writeFailureRecord(path, {-3, "esif: error: x", "stderr\n"});
+	const auto record = esif::readFailureRecord(path);
+	EXPECT_EQ(record.exit_code, -3);
+	EXPECT_EQ(record.error_line, "esif: error: x");
+	// sscanf("exit_code = %d") read a code out of each of these.
+	for (const char* first : {"exit_code = 3x", "exit_code = +3", "exit_code=3", "exit_code =  3", "exit_code = 3.0"})
+	{
+		esif::writeTextAtomically(path, std::string(first) + "\nerror = x\n--- stderr ---\n");
+		try
+		{
+			esif::readFailureRecord(path);
+			ADD_FAILURE() << "no error for '" << first << "'";
+		}
+		catch (const esif::InputError& e)
+		{
+			EXPECT_EQ(std::string(e.what()), path + ":1: expected 'exit_code = N'");
+		}
 	}
 }
 

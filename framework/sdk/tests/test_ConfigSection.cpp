@@ -9,16 +9,19 @@ using namespace esif;
 
 ConfigSection sectionOf(const std::string& text) { return ConfigFile::fromText("[s]\n" + text, "t.ini").section("s"); }
 
+/// One key `x` holding `value` as it is (no trimming by an INI parser).
+ConfigSection keyWithValue(const std::string& value) { return ConfigSection("t.ini", "s", {{"x", value}}); }
+
 TEST(ConfigSection, ParsesNumbersStrictly)
 {
-	EXPECT_EQ(parseDouble("1.5e-3"), 1.5e-3);
-	EXPECT_FALSE(parseDouble("12abc"));	 // MRPT's atof would give 12
-	EXPECT_FALSE(parseDouble("abc"));  // ... and 0 here
-	EXPECT_FALSE(parseDouble(""));
-	EXPECT_FALSE(parseDouble("nan"));
-	EXPECT_FALSE(parseDouble("inf"));
-	EXPECT_EQ(parseInt("42"), 42);
-	EXPECT_FALSE(parseInt("4.2"));
+	EXPECT_EQ(keyWithValue("1.5e-3").getDouble("x"), 1.5e-3);
+	EXPECT_EQ(keyWithValue("1e-310").getDouble("x"), 1e-310);	// subnormal: finite
+	// MRPT's atof would read "12abc" as 12 and "abc" as 0; no '+', no hexadecimal.
+	for (const char* bad : {"12abc", "abc", "", "nan", "inf", "-inf", "1e999", " 1.5", "1.5 ", "+1.5", "0x1p3"})
+		EXPECT_THROW(keyWithValue(bad).getDouble("x"), ConfigError) << "'" << bad << "'";
+	EXPECT_EQ(keyWithValue("42").getInt("x", 0), 42);
+	for (const char* bad : {"4.2", "", " 42", "42 ", "1e3", "+42", "99999999999999999999"})
+		EXPECT_THROW(keyWithValue(bad).getInt("x", 0), ConfigError) << "'" << bad << "'";
 	EXPECT_EQ(parseBool("true"), true);
 	EXPECT_EQ(parseBool("0"), false);
 	EXPECT_FALSE(parseBool("maybe"));

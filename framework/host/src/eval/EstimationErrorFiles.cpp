@@ -3,6 +3,7 @@
 
 #include <esif/core/Errors.h>
 #include <esif/core/InputBounds.h>
+#include <esif/core/NumberToken.h>
 #include <esif/core/TextInput.h>
 #include <esif/eval/EstimationErrorFiles.h>
 #include <esif/safeio/AtomicFile.h>
@@ -47,7 +48,7 @@ std::vector<std::string> fieldsOf(const std::string& line)
 
 double parseNumber(const std::string& field, const std::string& where)
 {
-	const auto v = wholeToken<double>(field);
+	const auto v = doubleToken(field, NonFinite::accepted);
 	if (!v) throw InputError(where + ": '" + field + "' is not a number");
 	return *v;
 }
@@ -65,7 +66,7 @@ double parseError(const std::string& field, const std::string& where)
 
 long long parseInteger(const std::string& field, const std::string& where)
 {
-	const auto v = wholeToken<long long>(field);
+	const auto v = integerToken<long long>(field);
 	if (!v || *v < 0) throw InputError(where + ": '" + field + "' is not a non-negative integer");
 	return *v;
 }

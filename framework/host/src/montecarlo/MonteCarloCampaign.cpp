@@ -5,6 +5,7 @@
 #include <esif/config/ConfigFile.h>
 #include <esif/config/ConfigSection.h>
 #include <esif/core/Errors.h>
+#include <esif/core/NumberToken.h>
 #include <esif/core/Text.h>
 #include <esif/core/TextInput.h>
 #include <esif/montecarlo/MonteCarloCampaign.h>
@@ -17,6 +18,7 @@
 #include <filesystem>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 namespace fs = std::filesystem;
 
@@ -271,8 +273,11 @@ FailureRecord readFailureRecord(const std::string& path)
 	TextLineReader in(path, "failure record");
 	FailureRecord record;
 	std::string line;
-	if (!in.next(line) || std::sscanf(line.c_str(), "exit_code = %d", &record.exit_code) != 1)
-		in.fail("expected 'exit_code = N'");
+	const std::string exit_code = "exit_code = ";
+	const bool has_exit_code = in.next(line) && line.rfind(exit_code, 0) == 0;
+	const auto code = has_exit_code ? integerToken<int>(std::string_view(line).substr(exit_code.size())) : std::nullopt;
+	if (!code) in.fail("expected 'exit_code = N'");
+	record.exit_code = *code;
 	if (!in.next(line) || line.rfind("error = ", 0) != 0) in.fail("expected 'error = ...'");
 	record.error_line = line.substr(8);
 	in.next(line);	// the "--- stderr ---" separator

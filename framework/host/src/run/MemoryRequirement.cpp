@@ -1,8 +1,9 @@
 #include <esif/core/Errors.h>
+#include <esif/core/NumberToken.h>
 #include <esif/loader/PluginName.h>
 #include <esif/run/MemoryRequirement.h>
 
-#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <set>
@@ -25,16 +26,15 @@ void lowerTo(MemoryBudget& budget, double bytes, const char* set_by)
 	if (bytes > 0 && bytes < budget.bytes) budget = {bytes, set_by};
 }
 
-/// The cgroup v2 limit of this process's group, if there is one: a number,
-/// or "max" for none. Read as a short line of a regular file.
+/// The cgroup v2 limit of this process's group, if there is one: a number
+/// of bytes, or "max" for none.
 std::optional<double> cgroupLimit()
 {
 	std::ifstream in("/sys/fs/cgroup/memory.max");
 	std::string word;
-	if (!(in >> word) || word == "max" || word.size() > 20 ||
-		!std::all_of(word.begin(), word.end(), [](char c) { return c >= '0' && c <= '9'; }))
-		return std::nullopt;
-	return std::stod(word);
+	if (!(in >> word)) return std::nullopt;
+	const auto bytes = integerToken<std::uint64_t>(word);
+	return bytes ? std::optional<double>(static_cast<double>(*bytes)) : std::nullopt;
 }
 }  // namespace
 

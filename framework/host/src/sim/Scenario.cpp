@@ -2,13 +2,14 @@
 #include <esif/config/ConfigSection.h>
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
+#include <esif/core/NumberToken.h>
+#include <esif/core/TextInput.h>
 #include <esif/sim/Scenario.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
-#include <sstream>
 #include <string>
 
 namespace esif
@@ -226,11 +227,10 @@ std::vector<Eigen::Vector2d> Scenario::scriptedWaypoints() const
 	{
 		const std::size_t end = waypoints.find(';', begin);
 		const std::string item = waypoints.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
-		std::istringstream in(item);
-		std::vector<std::string> words;
-		for (std::string w; in >> w;) words.push_back(w);
+		const std::vector<std::string> words = whitespaceTokens(item);
 		std::optional<double> x, y;
-		if (words.size() == 2) x = parseDouble(words[0]), y = parseDouble(words[1]);
+		if (words.size() == 2)
+			x = doubleToken(words[0], NonFinite::rejected), y = doubleToken(words[1], NonFinite::rejected);
 		if (!x || !y)
 		{
 			std::string joined;

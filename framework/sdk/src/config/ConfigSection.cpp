@@ -1,34 +1,12 @@
 #include <esif/config/ConfigSection.h>
 #include <esif/core/Errors.h>
+#include <esif/core/NumberToken.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
 
 namespace esif
 {
-std::optional<double> parseDouble(const std::string& text)
-{
-	if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return std::nullopt;
-	errno = 0;
-	char* end = nullptr;
-	const double v = std::strtod(text.c_str(), &end);
-	if (end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v)) return std::nullopt;
-	return v;
-}
-
-std::optional<long> parseInt(const std::string& text)
-{
-	if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return std::nullopt;
-	errno = 0;
-	char* end = nullptr;
-	const long v = std::strtol(text.c_str(), &end, 10);
-	if (end != text.c_str() + text.size() || errno == ERANGE) return std::nullopt;
-	return v;
-}
-
 std::optional<bool> parseBool(const std::string& text)
 {
 	std::string t = text;
@@ -72,7 +50,7 @@ double ConfigSection::getDouble(const std::string& key) const
 {
 	const auto text = raw(key);
 	if (!text) throw ConfigError(describeKey(key, "missing (no default): set it in the INI file"));
-	const auto v = parseDouble(*text);
+	const auto v = doubleToken(*text, NonFinite::rejected);
 	if (!v) throw ConfigError(describe(key, "not a finite number"));
 	return *v;
 }
@@ -86,7 +64,7 @@ long ConfigSection::getInt(const std::string& key, long dflt) const
 {
 	const auto text = raw(key);
 	if (!text) return dflt;
-	const auto v = parseInt(*text);
+	const auto v = integerToken<long>(*text);
 	if (!v) throw ConfigError(describe(key, "not an integer"));
 	return *v;
 }

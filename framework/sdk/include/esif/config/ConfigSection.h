@@ -45,9 +45,7 @@ class ConfigSection
 	std::shared_ptr<std::set<std::string>> used_;  // shared: copies see the same usage
 };
 
-/// Strict number parsing: the whole string must be a finite number.
-std::optional<double> parseDouble(const std::string& text);
-std::optional<long> parseInt(const std::string& text);
+/// `text` as a boolean: true/1/yes/on or false/0/no/off, in any case.
 std::optional<bool> parseBool(const std::string& text);
 
 }  // namespace esif

@@ -9,13 +9,9 @@
 /// no NUL byte (an error naming file:line), so no input grows the process
 /// beyond a bounded multiple of its own size.
 
-#include <charconv>
 #include <cstdint>
 #include <fstream>
-#include <optional>
 #include <string>
-#include <string_view>
-#include <system_error>
 #include <vector>
 
 namespace esif
@@ -36,18 +32,6 @@ std::uintmax_t requireRegularFile(const std::string& path, const std::string& wh
 
 /// The blank-separated tokens of `line` (spaces, tabs, a trailing '\r').
 std::vector<std::string> whitespaceTokens(const std::string& line);
-
-/// `token` read whole as a T (std::from_chars: locale-independent, like the
-/// writers' std::to_chars; "nan" and "inf" are doubles too); nullopt when
-/// it is empty, has anything after the number or is out of T's range.
-template <class T>
-std::optional<T> wholeToken(std::string_view token)
-{
-	T v{};
-	const auto r = std::from_chars(token.data(), token.data() + token.size(), v);
-	if (r.ec != std::errc() || r.ptr != token.data() + token.size()) return std::nullopt;
-	return v;
-}
 
 /// A text file read line by line under the rules above. Lines are returned
 /// without their '\n' (a '\r' before it stays: callers that split on blanks
