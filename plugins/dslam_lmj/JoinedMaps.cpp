@@ -34,12 +34,4 @@ JoinedMaps joinConsecutive(const JoinedMaps& earlier, const JoinedMaps& later)
 	return joined;
 }
 
-PoseEstimate composeIndependent(const PoseEstimate& x, const PoseEstimate& r)
-{
-	const Pose2 a = toPose2(x.mean), b = toPose2(r.mean);
-	const auto J = composeJacobians(a, b);
-	const Eigen::Matrix3d P = J.d_a * x.cov * J.d_a.transpose() + J.d_b * r.cov * J.d_b.transpose();
-	return {toTPose2D(compose(a, b)), 0.5 * (P + P.transpose())};
-}
-
 }  // namespace esif::lmj

@@ -37,7 +37,4 @@ JoinedMaps single(const LocalMap& map);
 /// earlier's last ends) as one map in the frame of `earlier`.
 JoinedMaps joinConsecutive(const JoinedMaps& earlier, const JoinedMaps& later);
 
-/// x (+) r with first-order covariance; the two independent.
-PoseEstimate composeIndependent(const PoseEstimate& x, const PoseEstimate& r);
-
 }  // namespace esif::lmj

@@ -17,14 +17,6 @@ using namespace slsjf;
 namespace
 {
 using Clock = SteadyClock;
-
-/// x (+) r with first-order covariance; the two are independent.
-PoseEstimate composeIndependent(const Pose2& x, const Eigen::Matrix3d& Px, const Pose2& r, const Eigen::Matrix3d& Pr)
-{
-	const auto J = composeJacobians(x, r);
-	Eigen::Matrix3d P = J.d_a * Px * J.d_a.transpose() + J.d_b * Pr * J.d_b.transpose();
-	return {toTPose2D(compose(x, r)), 0.5 * (P + P.transpose())};
-}
 }  // namespace
 
 void Slsjf::start()
@@ -107,7 +99,7 @@ PoseEstimate Slsjf::openMapStart() const
 	if (records_.empty()) return {};
 	const Pose2 end = global_->pose(global_->fusedMaps().back().end);
 	if (const auto& link = builder().openMapLink())
-		return composeIndependent(end, last_end_cov_, toPose2(link->delta), link->cov);
+		return composeIndependent({toTPose2D(end), last_end_cov_}, {link->delta, link->cov});
 	return {toTPose2D(end), last_end_cov_};
 }
 
@@ -118,7 +110,7 @@ PoseEstimate Slsjf::robotPose() const
 	// in the open map: two independent estimates.
 	const PoseEstimate start = openMapStart();
 	const PoseEstimate local = builder().openMap().robotPose();
-	return composeIndependent(toPose2(start.mean), start.cov, toPose2(local.mean), local.cov);
+	return composeIndependent(start, local);
 }
 
 Estimate Slsjf::estimate() const
@@ -186,11 +178,12 @@ std::optional<std::vector<PoseEstimate>> Slsjf::smoothedTrajectory() const
 	for (std::size_t k = 0; k < records_.size(); ++k)
 	{
 		const auto& start = global_->fusedMaps()[k].start;
-		const Pose2 s = global_->startEstimate(start);
-		const Eigen::Matrix3d Ps = start ? Eigen::Matrix3d(P[start->value]) : Eigen::Matrix3d::Zero();
+		const PoseEstimate s{
+			toTPose2D(global_->startEstimate(start)),
+			start ? Eigen::Matrix3d(P[start->value]) : Eigen::Matrix3d::Zero()};
 		const std::size_t first = records_[k].first_step, last = first + records_[k].step_reports.size() - 1;
 		for (std::size_t i = first; i < last && i < poses.size(); ++i)
-			out.push_back(composeIndependent(s, Ps, toPose2(poses[i].mean), poses[i].cov));
+			out.push_back(composeIndependent(s, poses[i]));
 		// The map's last step is its end pose, a variable of the global state.
 		const VarId end = global_->fusedMaps()[k].end;
 		Pose2 e = global_->pose(end);

@@ -3,6 +3,8 @@
 /// Planar rigid-body poses (x, y, phi) as Eigen vectors, with the composition
 /// Jacobians used by every filter (book eq. 1.1, 1.8).
 
+#include <esif/core/Estimate.h>
+
 #include <mrpt/math/TPose2D.h>
 
 #include <Eigen/Core>
@@ -30,6 +32,11 @@ struct ComposeJacobians
 	Eigen::Matrix3d d_b;
 };
 ComposeJacobians composeJacobians(const Pose2& a, const Pose2& b);
+
+/// x (+) r for two independent estimates, with the first-order covariance
+/// J_x P_x J_x^T + J_r P_r J_r^T (symmetrised): a local map's end pose
+/// carried into another frame, a link appended to a chain of poses.
+PoseEstimate composeIndependent(const PoseEstimate& x, const PoseEstimate& r);
 
 /// Point p given in the frame of `pose`, expressed in the parent frame.
 Eigen::Vector2d transformPoint(const Pose2& pose, const Eigen::Vector2d& p);
