@@ -34,18 +34,6 @@ MapAssociationTally& MapAssociationTally::operator+=(const MapAssociationTally& 
 	return *this;
 }
 
-MapAssociationTally& MapAssociationTally::operator-=(const MapAssociationTally& o)
-{
-	seconds -= o.seconds;
-	candidates -= o.candidates;
-	pairs_dropped -= o.pairs_dropped;
-	features_rejected -= o.features_rejected;
-	jcbb_nodes -= o.jcbb_nodes;
-	jcbb_fallbacks -= o.jcbb_fallbacks;
-	id_gate_rejected -= o.id_gate_rejected;
-	return *this;
-}
-
 void MapAssociationTally::appendCounters(std::vector<std::pair<std::string, double>>& counters) const
 {
 	counters.emplace_back("association_s", seconds);

@@ -60,7 +60,6 @@ struct MapAssociationTally
 	std::size_t id_gate_rejected = 0;  ///< ID-matched local features that failed the ID gate
 
 	MapAssociationTally& operator+=(const MapAssociationTally& other);
-	MapAssociationTally& operator-=(const MapAssociationTally& other);	///< a withdrawn fusion's
 	/// Appends association_s, association_candidates, association_pairs_dropped,
 	/// features_rejected, jcbb_nodes, jcbb_fallbacks and id_gate_rejected.
 	void appendCounters(std::vector<std::pair<std::string, double>>& counters) const;
