@@ -180,9 +180,8 @@ Comparison::Comparison(ComparisonRequest request) : request_(std::move(request))
 						  request_.reference_result, outside_reference_ ? outside_reference_->first : ""));
 }
 
-std::vector<Stats> Comparison::runAll(const std::string& staging) const
+std::vector<Stats> Comparison::runAll(const std::vector<std::string>& dirs, const std::string& staging) const
 {
-	const auto dirs = runFolders(request_.configs, staging);
 	const auto optional = [](const std::string& s) { return s.empty() ? std::nullopt : std::optional(s); };
 	ChildSettings settings{
 		request_.rawlog.empty() ? "--local-maps" : "--rawlog", input(), optional(request_.ground_truth),
@@ -211,10 +210,11 @@ std::vector<Stats> Comparison::runAll(const std::string& staging) const
 	return runs;
 }
 
-std::string Comparison::measure(std::vector<Stats>& runs, const std::string& staging) const
+std::string Comparison::measure(
+	std::vector<Stats>& runs, const std::vector<std::string>& dirs, const std::string& staging) const
 {
 	std::string note = measureAgainstBaseline(
-		runs, runFolders(request_.configs, staging), checked_,
+		runs, dirs, checked_,
 		reference_ ? std::optional<std::pair<std::size_t, std::string>>({*reference_, request_.reference}) : std::nullopt,
 		outside_reference_, staging);
 	if (!request_.reference_result.empty())
@@ -224,7 +224,8 @@ std::string Comparison::measure(std::vector<Stats>& runs, const std::string& sta
 }
 
 std::string Comparison::writeTables(
-	const std::vector<Stats>& runs, const std::string& note, const std::string& staging) const
+	const std::vector<Stats>& runs, const std::string& note, const std::vector<std::string>& dirs,
+	const std::string& staging) const
 {
 	// Table 5.1 is about the estimators: failed runs have nothing to show there.
 	std::vector<Stats> succeeded;
@@ -238,7 +239,7 @@ std::string Comparison::writeTables(
 			(note.empty() ? "" : "\n" + markdown::lines(note)) + "\n" + bookTable51Markdown(succeeded));
 	writeComparisonPage(
 		(fs::path(staging) / "comparison.html").string(),
-		{title, runs, runFolders(request_.configs, staging), note, staging});
+		{title, runs, dirs, note, staging});
 	return comparisonText(runs) + note + "\n" + bookTable51Text(succeeded);
 }
 
@@ -248,10 +249,11 @@ std::pair<int, std::string> Comparison::run() const
 	// written inside its partial folder.
 	return writeRunFolder(
 		request_.out, {"comparison.csv", "comparison.md", "comparison.html"}, [&](const std::string& staging) {
-			std::vector<Stats> runs = runAll(staging);
+			const auto dirs = runFolders(request_.configs, staging);
+			std::vector<Stats> runs = runAll(dirs, staging);
 			markSucceededRuns(runs);
-			const std::string note = measure(runs, staging);
-			return std::make_pair(comparisonExitCode(runs), writeTables(runs, note, staging));
+			const std::string note = measure(runs, dirs, staging);
+			return std::make_pair(comparisonExitCode(runs), writeTables(runs, note, dirs, staging));
 		});
 }
 

@@ -171,7 +171,8 @@ std::optional<std::size_t> wholeStateReference(
 	const std::optional<std::size_t>& reference, const std::vector<CheckedConfig>& checked, bool rawlog_input,
 	const std::string& ground_truth, const std::string& rawlog)
 {
-	if (reference || !rawlog_input) return rawlog_input ? reference : std::nullopt;
+	if (!rawlog_input) return std::nullopt;
+	if (reference) return reference;
 	const std::string prefix = ground_truth.empty() ? groundTruthPrefixFor(rawlog) : ground_truth;
 	if (fs::exists(groundTruthFilesOf(prefix).front())) return std::nullopt;
 	for (std::size_t i = 0; i < checked.size(); ++i)

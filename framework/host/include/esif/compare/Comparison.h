@@ -45,12 +45,14 @@ class Comparison
 
    private:
 	std::string input() const { return request_.rawlog.empty() ? request_.local_maps : request_.rawlog; }
-	/// Every run, into `staging`, in run order.
-	std::vector<Stats> runAll(const std::string& staging) const;
+	/// Every run, into its folder of `dirs` (inside `staging`), in run order.
+	std::vector<Stats> runAll(const std::vector<std::string>& dirs, const std::string& staging) const;
 	/// The notes under the tables: baseline, reference, failures.
-	std::string measure(std::vector<Stats>& runs, const std::string& staging) const;
+	std::string measure(std::vector<Stats>& runs, const std::vector<std::string>& dirs, const std::string& staging) const;
 	/// Writes the three tables into `staging`; returns the printed text.
-	std::string writeTables(const std::vector<Stats>& runs, const std::string& note, const std::string& staging) const;
+	std::string writeTables(
+		const std::vector<Stats>& runs, const std::string& note, const std::vector<std::string>& dirs,
+		const std::string& staging) const;
 
 	ComparisonRequest request_;
 	std::vector<PlannedRun> planned_;
