@@ -28,7 +28,7 @@ namespace
 /// rather than adding a pose tied by a constraint that cannot be whitened.
 bool isStandStill(const OdometryIncrement& odometry)
 {
-	return odometry.cov.isZero(0) && odometry.delta.x == 0 && odometry.delta.y == 0 && odometry.delta.phi == 0;
+	return odometry.cov.isZero(0) && odometry.delta.x() == 0 && odometry.delta.y() == 0 && odometry.delta(2) == 0;
 }
 
 /// One line on stderr: the run goes on, its stats say what went wrong.
@@ -94,7 +94,7 @@ StepReport CeresFullSlam::processStep(const StepInput& step)
 	StepReport report;
 	if (step.scan)
 	{
-		const Pose2 sensor = toPose2(step.scan->sensor_on_robot);
+		const Pose2 sensor = step.scan->sensor_on_robot;
 		const auto& ms = step.scan->measurements;
 		for (std::size_t i = 0; i < ms.size(); ++i)
 		{
@@ -111,12 +111,12 @@ StepReport CeresFullSlam::processStep(const StepInput& step)
 Pose2 CeresFullSlam::warmStart(const OdometryIncrement& odometry, const std::optional<Scan>& scan) const
 {
 	const Pose2 previous = graph_->pose(current_pose_);
-	const Pose2 composed = compose(previous, toPose2(odometry.delta));
+	const Pose2 composed = compose(previous, odometry.delta);
 	if (!params_.refine_new_poses || !scan) return composed;
 	std::vector<MappedMeasurement> seen;
 	for (const RangeBearing& m : scan->measurements)
 		if (m.id && graph_->hasLandmark(*m.id))
-			seen.push_back({graph_->landmark(*m.id), m, toPose2(scan->sensor_on_robot)});
+			seen.push_back({graph_->landmark(*m.id), m, scan->sensor_on_robot});
 	return refineNewPose(previous, odometry, composed, seen, graph_->loss());
 }
 
@@ -299,7 +299,7 @@ void CeresFullSlam::computeCovariances()
 PoseEstimate CeresFullSlam::poseEstimate(std::size_t pose) const
 {
 	PoseEstimate p;
-	p.mean = toTPose2D(graph_->pose(pose));
+	p.mean = graph_->pose(pose);
 	const auto it = marginals_.find(graph_->poseBlock(pose));
 	if (it != marginals_.end()) p.cov = it->second;
 	return p;

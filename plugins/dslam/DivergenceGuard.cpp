@@ -9,7 +9,7 @@ namespace esif::dslam
 {
 void DivergenceGuard::travel(const OdometryIncrement& u)
 {
-	const double d = std::hypot(u.delta.x, u.delta.y);
+	const double d = std::hypot(u.delta.x(), u.delta.y());
 	if (std::isfinite(d)) path_m_ += d;
 }
 

@@ -44,7 +44,7 @@ StepReport Dslam::processStep(const StepInput& step)
 	if (!step.scan || step.scan->measurements.empty()) return {};
 	guard_.sense(*step.scan);
 
-	const Pose2 sensor = toPose2(step.scan->sensor_on_robot);
+	const Pose2 sensor = step.scan->sensor_on_robot;
 	StepReport report = associateScan(step);
 	if (params_.admissible == AdmissiblePolicy::Skip && !chain_.rootIsMapFrame() && !observed(*step.scan, report).pair)
 	{
@@ -177,7 +177,7 @@ StepReport Dslam::associateByIds(const StepInput& step) const
 
 void Dslam::holdFirstSightings(const StepInput& step, StepReport& report)
 {
-	const Pose2 sensor = toPose2(step.scan->sensor_on_robot);
+	const Pose2 sensor = step.scan->sensor_on_robot;
 	for (std::size_t i = 0; i < report.associations.size(); ++i)
 	{
 		auto& a = report.associations[i];
@@ -210,7 +210,7 @@ void Dslam::nameNewFeatures(StepReport& report)
 
 void Dslam::rejectOutliers(const Scan& scan, StepReport& report)
 {
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
+	const Pose2 sensor = scan.sensor_on_robot;
 	const auto reject = [&](std::size_t i)
 	{ report.associations[i] = {Association::Kind::Rejected, report.associations[i].id}; };
 
@@ -266,7 +266,7 @@ void Dslam::rejectOutliers(const Scan& scan, StepReport& report)
 
 void Dslam::rejectReobservationOutliers(const Scan& scan, StepReport& report)
 {
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
+	const Pose2 sensor = scan.sensor_on_robot;
 	const double gate = chi2GateBound(params_.id_gate_chi2_quantile, 2);
 	if (std::isinf(gate)) return;
 	for (std::size_t i = 0; i < report.associations.size(); ++i)
@@ -299,7 +299,7 @@ Dslam::Observed Dslam::observed(const Scan& scan, const StepReport& report) cons
 		R.block<2, 2>(2 * n, 2 * n) = m.cov;
 		++n;
 	}
-	obs.points = pointsInRobotFrame(z.head(2 * n), R.topLeftCorner(2 * n, 2 * n), toPose2(scan.sensor_on_robot));
+	obs.points = pointsInRobotFrame(z.head(2 * n), R.topLeftCorner(2 * n, 2 * n), scan.sensor_on_robot);
 
 	std::vector<ReferenceCandidate> candidates;
 	for (int i : obs.mapped) candidates.push_back({obs.points.point(i), map_->mappedOrder(obs.all[i].id)});
@@ -475,7 +475,7 @@ void Dslam::applyVirtualObservation(const Pose2& sensor)
 	++tally_.virtual_updates;
 }
 
-PoseEstimate Dslam::robotPose() const { return {toTPose2D(local_.robot()), local_.robotCov()}; }
+PoseEstimate Dslam::robotPose() const { return {local_.robot(), local_.robotCov()}; }
 
 Estimate Dslam::estimate() const
 {

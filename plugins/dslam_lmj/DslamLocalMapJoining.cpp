@@ -24,7 +24,7 @@ using Clock = SteadyClock;
 /// pose, their errors taken as independent (heading wrapped).
 double mahalanobis2(const PoseEstimate& a, const PoseEstimate& b)
 {
-	Eigen::Vector3d d = toPose2(a.mean) - toPose2(b.mean);
+	Eigen::Vector3d d = a.mean - b.mean;
 	d(2) = wrapAngle(d(2));
 	return d.dot((a.cov + b.cov).ldlt().solve(d));
 }
@@ -220,7 +220,7 @@ PoseEstimate DslamLocalMapJoining::openMapFrame() const
 	const PoseEstimate last = global_->lastEndPose();
 	if (!pending_) return last;
 	const LocalMap& map = pending_->map;
-	return composeIndependent(last, {toTPose2D(map.end_pose), map.covarianceMatrix().topLeftCorner<3, 3>()});
+	return composeIndependent(last, {map.end_pose, map.covarianceMatrix().topLeftCorner<3, 3>()});
 }
 
 std::optional<LandmarkId> DslamLocalMapJoining::globalIdOfOpenFeature(LandmarkId id) const
@@ -264,7 +264,7 @@ PoseEstimate DslamLocalMapJoining::robotPose() const
 		const Eigen::MatrixXd local_cov = Eigen::MatrixXd(open.core().covariance())(rows, rows);
 		const LandmarkId g1 = global_ids[a], g2 = global_ids[b];
 		const PoseEstimate placed =
-			robotFromPairs(toPose2(local.mean), points[a], points[b], local_cov, global_->features().position(g1),
+			robotFromPairs(local.mean, points[a], points[b], local_cov, global_->features().position(g1),
 						   global_->features().position(g2), global_->pairCovariance(g1, g2));
 		// A feature mapped from a misread carries a neighbour's ID: a pair
 		// holding it puts the robot metres from where the open map's start

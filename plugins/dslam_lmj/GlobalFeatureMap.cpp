@@ -224,7 +224,7 @@ void GlobalFeatureMap::addUnjoinable(const JoinedMaps& maps)
 	ends.emplace_back(maps.map.end_pose, maps.map.covarianceMatrix().topLeftCorner<3, 3>());
 	for (std::size_t j = 0; j < ends.size(); ++j)
 		fusion.ends.push_back({maps.originals[j], ends[j].first, Eigen::MatrixXd(),
-							   composeIndependent(lastEndPose(), {toTPose2D(ends[j].first), ends[j].second})});
+							   composeIndependent(lastEndPose(), {ends[j].first, ends[j].second})});
 	for (const std::size_t k : maps.originals) fusion_of_map_[k] = fusions_.size();
 	fusions_.push_back(std::move(fusion));
 }

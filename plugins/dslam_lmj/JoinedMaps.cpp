@@ -28,8 +28,8 @@ JoinedMaps joinConsecutive(const JoinedMaps& earlier, const JoinedMaps& later)
 	{
 		// End poses the later map absorbed are in its frame: carry them into the earlier one's.
 		const PoseEstimate moved =
-			composeIndependent({toTPose2D(earlier.map.end_pose), earlier_end_cov}, {toTPose2D(pose), cov});
-		joined.absorbed.emplace_back(toPose2(moved.mean), moved.cov);
+			composeIndependent({earlier.map.end_pose, earlier_end_cov}, {pose, cov});
+		joined.absorbed.emplace_back(moved.mean, moved.cov);
 	}
 	return joined;
 }

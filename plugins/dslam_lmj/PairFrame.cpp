@@ -35,7 +35,7 @@ PoseEstimate robotFromPairs(const Pose2& robot_local, const Eigen::Vector2d& f1_
 	A.rightCols<4>() = out.d_b * in_pair.d_frame * local.d_pair;
 	const Eigen::Matrix<double, 3, 4> B = out.d_a * global.d_pair;	// d robot_global / d(f1_global, f2_global)
 	Eigen::Matrix3d P = A * local_cov * A.transpose() + B * global_cov * B.transpose();
-	return {toTPose2D(compose(global.pose, in_pair.value)), 0.5 * (P + P.transpose())};
+	return {compose(global.pose, in_pair.value), 0.5 * (P + P.transpose())};
 }
 
 std::vector<Eigen::Index> robotAndPairRows(int a, int b)

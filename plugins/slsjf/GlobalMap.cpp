@@ -68,7 +68,7 @@ std::optional<VarId> GlobalMap::startPose(const LocalMap& map)
 	const std::optional<VarId> previous_end = fused_.empty() ? std::nullopt : std::optional<VarId>(fused_.back().end);
 	if (!map.link) return previous_end;
 	// Eq. (5.4)-(5.6): X_(k+1)s = f(X_ke, u) + w, initialised at f(X_ke^, u).
-	const Pose2 u = toPose2(map.link->delta);
+	const Pose2 u = map.link->delta;
 	const VarId start = newPose(compose(startEstimate(previous_end), u));
 	++poses_;
 	links_.push_back({previous_end, start, u, map.link->cov});

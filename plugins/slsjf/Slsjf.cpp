@@ -99,8 +99,8 @@ PoseEstimate Slsjf::openMapStart() const
 	if (records_.empty()) return {};
 	const Pose2 end = global_->pose(global_->fusedMaps().back().end);
 	if (const auto& link = builder().openMapLink())
-		return composeIndependent({toTPose2D(end), last_end_cov_}, {link->delta, link->cov});
-	return {toTPose2D(end), last_end_cov_};
+		return composeIndependent({end, last_end_cov_}, {link->delta, link->cov});
+	return {end, last_end_cov_};
 }
 
 PoseEstimate Slsjf::robotPose() const
@@ -127,7 +127,7 @@ Estimate Slsjf::estimate() const
 	}
 	// Features of the open map not yet in the global map, placed through the open map's start pose.
 	const PoseEstimate start = openMapStart();
-	const Pose2 s = toPose2(start.mean);
+	const Pose2 s = start.mean;
 	const auto& open = builder().openMap();
 	for (std::size_t i = 0; i < open.ids().size(); ++i)
 	{
@@ -150,7 +150,7 @@ std::vector<PoseEstimate> Slsjf::endPoses() const
 	{
 		Pose2 x = global_->pose(fused.end);
 		x(2) = wrapAngle(x(2));
-		out.push_back({toTPose2D(x), P[fused.end.value]});
+		out.push_back({x, P[fused.end.value]});
 	}
 	return out;
 }
@@ -179,7 +179,7 @@ std::optional<std::vector<PoseEstimate>> Slsjf::smoothedTrajectory() const
 	{
 		const auto& start = global_->fusedMaps()[k].start;
 		const PoseEstimate s{
-			toTPose2D(global_->startEstimate(start)),
+			global_->startEstimate(start),
 			start ? Eigen::Matrix3d(P[start->value]) : Eigen::Matrix3d::Zero()};
 		const std::size_t first = records_[k].first_step, last = first + records_[k].step_reports.size() - 1;
 		for (std::size_t i = first; i < last && i < poses.size(); ++i)
@@ -188,7 +188,7 @@ std::optional<std::vector<PoseEstimate>> Slsjf::smoothedTrajectory() const
 		const VarId end = global_->fusedMaps()[k].end;
 		Pose2 e = global_->pose(end);
 		e(2) = wrapAngle(e(2));
-		out.push_back({toTPose2D(e), P[end.value]});
+		out.push_back({e, P[end.value]});
 	}
 	return out;
 }

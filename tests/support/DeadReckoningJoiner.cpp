@@ -19,10 +19,10 @@ using Clock = SteadyClock;
 /// `a` (+) `b` with first-order covariance, a and b independent.
 PoseEstimate composeEstimates(const PoseEstimate& a, const Pose2& b, const Eigen::Matrix3d& b_cov)
 {
-	const Pose2 pa = toPose2(a.mean);
+	const Pose2 pa = a.mean;
 	const ComposeJacobians J = composeJacobians(pa, b);
 	PoseEstimate out;
-	out.mean = toTPose2D(compose(pa, b));
+	out.mean = compose(pa, b);
 	out.cov = J.d_a * a.cov * J.d_a.transpose() + J.d_b * b_cov * J.d_b.transpose();
 	return out;
 }
@@ -71,9 +71,9 @@ PoseEstimate DeadReckoningJoiner::robotPose() const
 {
 	PoseEstimate start = end_poses_.empty() ? PoseEstimate{} : end_poses_.back();
 	if (!builder_ || builder_->openMapSteps() == 0) return start;
-	if (const auto& link = builder_->openMapLink()) start = composeEstimates(start, toPose2(link->delta), link->cov);
+	if (const auto& link = builder_->openMapLink()) start = composeEstimates(start, link->delta, link->cov);
 	const PoseEstimate local = builder_->openMap().robotPose();
-	return composeEstimates(start, toPose2(local.mean), local.cov);
+	return composeEstimates(start, local.mean, local.cov);
 }
 
 Estimate DeadReckoningJoiner::estimate() const
@@ -112,14 +112,14 @@ PoseEstimate DeadReckoningJoiner::startPoseOf(const LocalMap& map) const
 {
 	const PoseEstimate previous_end = end_poses_.empty() ? PoseEstimate{} : end_poses_.back();
 	if (!map.link) return previous_end;
-	return composeEstimates(previous_end, toPose2(map.link->delta), map.link->cov);
+	return composeEstimates(previous_end, map.link->delta, map.link->cov);
 }
 
 std::vector<DeadReckoningJoiner::PlacedFeature> DeadReckoningJoiner::placeFeatures(
 	const LocalMap& map, const PoseEstimate& start) const
 {
 	const Eigen::MatrixXd P = covarianceOf(map);
-	const Pose2 s = toPose2(start.mean);
+	const Pose2 s = start.mean;
 	const double c = std::cos(s.z()), sn = std::sin(s.z());
 	Eigen::Matrix2d R;
 	R << c, -sn, sn, c;

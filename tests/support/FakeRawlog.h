@@ -26,7 +26,7 @@ inline Rawlog makeRawlog(const std::vector<StepIds>& steps, const std::string& p
 		StepInput step;
 		step.index = k;
 		step.time_s = 0.1 * static_cast<double>(k);
-		step.odometry = OdometryIncrement{mrpt::math::TPose2D(1, 0, 0), Eigen::Matrix3d::Identity() * 1e-4};
+		step.odometry = OdometryIncrement{Pose2(1, 0, 0), Eigen::Matrix3d::Identity() * 1e-4};
 		std::vector<std::optional<LandmarkId>> ids;
 		if (steps[k])
 		{

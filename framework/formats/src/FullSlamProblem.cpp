@@ -73,7 +73,7 @@ void addOdometry(
 	f.step = step.index;
 	f.from = current;
 	f.to = p.poses.size();
-	f.delta = toPose2(u.delta);
+	f.delta = u.delta;
 	f.cov = u.cov;
 	p.odometry.push_back(f);
 	p.poses.push_back(initial ? initial->poseAfterStep(step.index) : compose(p.poses[current], f.delta));
@@ -87,7 +87,7 @@ void addObservations(
 	std::size_t current)
 {
 	if (!step.scan) return;
-	const Pose2 sensor = toPose2(step.scan->sensor_on_robot);
+	const Pose2 sensor = step.scan->sensor_on_robot;
 	const auto& ms = step.scan->measurements;
 	for (std::size_t j = 0; j < ms.size(); ++j)
 	{
@@ -115,7 +115,7 @@ void addObservations(
 
 bool isStandStill(const OdometryIncrement& odometry)
 {
-	return odometry.cov.isZero(0) && odometry.delta.x == 0 && odometry.delta.y == 0 && odometry.delta.phi == 0;
+	return odometry.cov.isZero(0) && odometry.delta.x() == 0 && odometry.delta.y() == 0 && odometry.delta(2) == 0;
 }
 
 FullSlamProblem buildFullSlamProblem(const Rawlog& log, const RunOutputs* initial, const std::string& initial_source)

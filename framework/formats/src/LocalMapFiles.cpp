@@ -303,7 +303,7 @@ void readLinks(const std::string& path, std::vector<LocalMap>& maps)
 			f.fail(line, "map index " + row.token(0) + " but the folder has maps 1.." + std::to_string(maps.size()));
 		const double dx = row.coordinate(1), dy = row.coordinate(2), dphi = row.heading(3);
 		OdometryIncrement link;
-		link.delta = mrpt::math::TPose2D(dx, dy, dphi);
+		link.delta = Pose2(dx, dy, dphi);
 		const auto c = [&](std::size_t i) { return row.number(i); };  // c11 c12 c13 c22 c23 c33: columns 4..9
 		link.cov << c(4), c(5), c(6), c(5), c(7), c(8), c(6), c(8), c(9);
 		if (failingPivot(link.cov) >= 0) f.fail(line, "link covariance is not positive definite");
@@ -379,7 +379,7 @@ std::string linksText(const std::vector<LocalMap>& maps)
 		const auto& d = m.link->delta;
 		const auto& c = m.link->cov;
 		out += std::to_string(m.index);
-		for (const double v : {d.x, d.y, d.phi, c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2)})
+		for (const double v : {d.x(), d.y(), d(2), c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2)})
 			out += " " + number17(v);
 		out += "\n";
 	}

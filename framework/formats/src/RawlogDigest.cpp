@@ -30,9 +30,9 @@ class Crc
 
 void addScan(Crc& crc, const Scan& scan)
 {
-	crc.add(scan.sensor_on_robot.x);
-	crc.add(scan.sensor_on_robot.y);
-	crc.add(scan.sensor_on_robot.phi);
+	crc.add(scan.sensor_on_robot.x());
+	crc.add(scan.sensor_on_robot.y());
+	crc.add(scan.sensor_on_robot(2));
 	crc.add(scan.max_range_m);
 	crc.add(scan.fov_rad);
 	crc.add(scan.measurements.size());
@@ -57,9 +57,9 @@ std::uint32_t digestOf(const Rawlog& log)
 		crc.add(step.odometry.has_value());
 		if (step.odometry)
 		{
-			crc.add(step.odometry->delta.x);
-			crc.add(step.odometry->delta.y);
-			crc.add(step.odometry->delta.phi);
+			crc.add(step.odometry->delta.x());
+			crc.add(step.odometry->delta.y());
+			crc.add(step.odometry->delta(2));
 			crc.addMatrix(step.odometry->cov.data(), 9);
 		}
 		crc.add(step.scan.has_value());

@@ -56,12 +56,12 @@ void checkOdometryCovariance(const Eigen::Matrix3d& cov, const std::string& what
 
 /// Throws InputError naming `what` unless the pose is finite and moves at
 /// most kMaxIncrementM.
-void checkOdometryPose(const mrpt::math::TPose2D& p, const std::string& what, const char* kind, double max_xy)
+void checkOdometryPose(const Pose2& p, const std::string& what, const char* kind, double max_xy)
 {
-	if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.phi))
+	if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p(2)))
 		throw InputError(what + ": " + kind + " is not finite");
-	if (std::abs(p.x) > max_xy || std::abs(p.y) > max_xy)
-		throw InputError(what + ": " + kind + " (" + number_text::text(p.x) + ", " + number_text::text(p.y) + ") is beyond " +
+	if (std::abs(p.x()) > max_xy || std::abs(p.y()) > max_xy)
+		throw InputError(what + ": " + kind + " (" + number_text::text(p.x()) + ", " + number_text::text(p.y()) + ") is beyond " +
 						 number_text::text(max_xy) + " m");
 }
 
@@ -97,13 +97,13 @@ class StepBuilder
 	void onAbsoluteOdometry(const mrpt::poses::CPose2D& reading, double t, const std::string& where)
 	{
 		// Readings are absolute: bounded by the largest plausible world, not one step's motion.
-		checkOdometryPose(reading.asTPose(), where, "odometry reading", 1e7);
 		const Pose2 now = toPose2(reading.asTPose());
+		checkOdometryPose(now, where, "odometry reading", 1e7);
 		out_.has_odometry = true;
 		if (last_reading_)
 		{
 			OdometryIncrement inc;
-			inc.delta = toTPose2D(inverseCompose(*last_reading_, now));
+			inc.delta = inverseCompose(*last_reading_, now);
 			inc.cov.diagonal() << std::pow(options_.odometry_obs_std_xy_m, 2),
 				std::pow(options_.odometry_obs_std_xy_m, 2), std::pow(options_.odometry_obs_std_phi_rad, 2);
 			onOdometry(inc, t);
@@ -118,9 +118,9 @@ class StepBuilder
 		pending_.reset();
 		step.time_s = t;
 		Scan scan;
-		scan.sensor_on_robot = mrpt::poses::CPose2D(obs.sensorLocationOnRobot).asTPose();
-		if (!std::isfinite(scan.sensor_on_robot.x) || !std::isfinite(scan.sensor_on_robot.y) ||
-			!std::isfinite(scan.sensor_on_robot.phi))
+		scan.sensor_on_robot = toPose2(mrpt::poses::CPose2D(obs.sensorLocationOnRobot).asTPose());
+		if (!std::isfinite(scan.sensor_on_robot.x()) || !std::isfinite(scan.sensor_on_robot.y()) ||
+			!std::isfinite(scan.sensor_on_robot(2)))
 			throw InputError(where + ": sensor pose on the robot is not finite");
 		scan.max_range_m = obs.maxSensorDistance;
 		scan.fov_rad = obs.fieldOfView_yaw;
@@ -242,7 +242,7 @@ OdometryIncrement incrementOf(const mrpt::obs::CActionRobotMovement2D& act, cons
 	checkMovementEnums(act, where);
 	const auto [cov, mean] = act.poseChange->getCovarianceAndMean();
 	OdometryIncrement inc;
-	inc.delta = mean.asTPose();
+	inc.delta = toPose2(mean.asTPose());
 	inc.cov = cov.asEigen();
 	checkOdometryPose(inc.delta, where, "odometry increment", kMaxIncrementM);
 	checkOdometryCovariance(inc.cov, where);

@@ -1,5 +1,6 @@
 #include <esif/core/Errors.h>
 #include <esif/formats/RawlogWriter.h>
+#include <esif/models/Se2.h>
 
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -22,7 +23,7 @@ mrpt::obs::CActionCollection odometryAction(const StepInput& step, mrpt::Clock::
 	// what a reader gets back is bit-identical to what was written.
 	const Eigen::Matrix3d cov = 0.5 * (odo.cov + odo.cov.transpose());
 	CActionRobotMovement2D move;
-	const mrpt::poses::CPose2D mean(odo.delta);
+	const mrpt::poses::CPose2D mean(toTPose2D(odo.delta));
 	move.poseChange = mrpt::poses::CPosePDFGaussian::Create(mean, mrpt::math::CMatrixDouble33(cov));
 	move.rawOdometryIncrementReading = mean;
 	// Not emOdometry: for that method MRPT serializes only the raw increment
@@ -44,7 +45,7 @@ mrpt::obs::CSensoryFrame scanFrame(const StepInput& step, const SensorNoise& noi
 	auto obs = CObservationBearingRange::Create();
 	obs->timestamp = stamp;
 	obs->sensorLabel = "RANGE_BEARING";
-	obs->setSensorPose(mrpt::poses::CPose3D(mrpt::poses::CPose2D(scan.sensor_on_robot)));
+	obs->setSensorPose(mrpt::poses::CPose3D(mrpt::poses::CPose2D(toTPose2D(scan.sensor_on_robot))));
 	obs->minSensorDistance = 0;
 	obs->maxSensorDistance = static_cast<float>(scan.max_range_m);
 	obs->fieldOfView_yaw = static_cast<float>(scan.fov_rad);

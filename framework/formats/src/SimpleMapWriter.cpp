@@ -5,6 +5,7 @@
 #include <esif/core/Errors.h>
 #include <esif/formats/GzArchive.h>
 #include <esif/formats/MapWriter.h>
+#include <esif/models/Se2.h>
 
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/math/CMatrixFixed.h>
@@ -20,7 +21,7 @@ void writeSimpleMap(const RunRecord& run, const std::string& path)
 	for (const Keyframe& kf : run.keyframes)
 	{
 		auto pdf = mrpt::poses::CPosePDFGaussian::Create(
-			mrpt::poses::CPose2D(kf.pose.mean), mrpt::math::CMatrixDouble33(kf.pose.cov));
+			mrpt::poses::CPose2D(toTPose2D(kf.pose.mean)), mrpt::math::CMatrixDouble33(kf.pose.cov));
 		// A null frame would be serialized as a null object that some readers
 		// dereference; an empty frame keeps every pair well-formed.
 		auto frame = kf.frame ? kf.frame : mrpt::obs::CSensoryFrame::Create();

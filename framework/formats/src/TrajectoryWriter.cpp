@@ -22,8 +22,8 @@ void writeTrajectoryTum(const std::vector<TrajectoryPoint>& trajectory, const st
 	{
 		// Planar pose: rotation about z only, q = (0, 0, sin(yaw/2), cos(yaw/2)).
 		// The yaw is wrapped first so that qw >= 0, the usual sign choice.
-		const double yaw = std::atan2(std::sin(p.pose.mean.phi), std::cos(p.pose.mean.phi));
-		const double values[] = {p.time_s, p.pose.mean.x, p.pose.mean.y, 0.0, 0.0, 0.0, std::sin(0.5 * yaw),
+		const double yaw = std::atan2(std::sin(p.pose.mean(2)), std::cos(p.pose.mean(2)));
+		const double values[] = {p.time_s, p.pose.mean.x(), p.pose.mean.y(), 0.0, 0.0, 0.0, std::sin(0.5 * yaw),
 								 std::cos(0.5 * yaw)};
 		bool first = true;
 		for (const double v : values)

@@ -52,7 +52,7 @@ LocalMapFolder makeFolder()
 	folder.maps.push_back(makeMap(2, {{9, {0.1, 0.2}}, {4, {M_PI, -M_E}}, {12, {5.0, -6.0 / 11.0}}}));
 	folder.maps.push_back(makeMap(3, {{12, {7.0, 8.0}}, {13, {-1e-300, 1e300}}}));
 	OdometryIncrement link;
-	link.delta = mrpt::math::TPose2D(0.3, -0.02, 1.0 / 9.0);
+	link.delta = Pose2(0.3, -0.02, 1.0 / 9.0);
 	link.cov << 0.01, 1e-4 / 3, 0, 1e-4 / 3, 0.02, -1e-5, 0, -1e-5, 0.003;
 	folder.maps[1].link = link;
 	folder.truth_landmarks = std::map<LandmarkId, Eigen::Vector2d>{{4, {0.125, 1.0 / 3}}, {9, {2, -2}}, {77, {M_PI, 0}}};
@@ -78,7 +78,7 @@ void expectSameMaps(const LocalMapFolder& a, const LocalMapFolder& b)
 		ASSERT_EQ(x.link.has_value(), y.link.has_value());
 		if (x.link)
 		{
-			EXPECT_EQ(toPose2(x.link->delta), toPose2(y.link->delta));
+			EXPECT_EQ(x.link->delta, y.link->delta);
 			EXPECT_EQ(x.link->cov, y.link->cov);
 		}
 	}
@@ -357,7 +357,7 @@ TEST(LocalMapFiles, BadLinksAndGroundTruth)
 	writeLines(maps + "/links.txt", {"2" + link});
 	const auto with_link = readLocalMapFolder(maps);
 	ASSERT_TRUE(with_link.maps[1].link);
-	EXPECT_EQ(with_link.maps[1].link->delta.x, 0.1);
+	EXPECT_EQ(with_link.maps[1].link->delta.x(), 0.1);
 	EXPECT_EQ(with_link.maps[1].link->cov, Eigen::Matrix3d::Identity());
 	fs::remove(maps + "/links.txt");
 

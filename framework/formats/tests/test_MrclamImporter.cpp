@@ -42,7 +42,7 @@ TEST(MrclamImporter, FirstStepsOfRobot1MatchAnIndependentComputation)
 	const Rawlog log = readRawlog(dir.file("r1.rawlog"));
 	ASSERT_EQ(log.steps.size(), 1012u);
 	EXPECT_NEAR(log.steps[0].time_s, 1248444189.599, 1e-6);
-	EXPECT_FALSE(log.steps[0].odometry && log.steps[0].odometry->delta.x != 0);
+	EXPECT_FALSE(log.steps[0].odometry && log.steps[0].odometry->delta.x() != 0);
 	ASSERT_TRUE(log.steps[0].scan && !log.steps[0].scan->measurements.empty());
 	const auto& first = log.steps[0].scan->measurements[0];
 	EXPECT_EQ(first.id.value_or(-1), 15);  // barcode 90 is subject 15
@@ -59,9 +59,9 @@ TEST(MrclamImporter, FirstStepsOfRobot1MatchAnIndependentComputation)
 	{
 		ASSERT_TRUE(log.steps[k].odometry) << k;
 		const auto& d = log.steps[k].odometry->delta;
-		EXPECT_NEAR(d.x, expected.x(), 1e-8) << k;
-		EXPECT_NEAR(d.y, expected.y(), 1e-8) << k;
-		EXPECT_NEAR(d.phi, expected.z(), 1e-8) << k;
+		EXPECT_NEAR(d.x(), expected.x(), 1e-8) << k;
+		EXPECT_NEAR(d.y(), expected.y(), 1e-8) << k;
+		EXPECT_NEAR(d(2), expected.z(), 1e-8) << k;
 	}
 	// Standing for 0.460 s (heading 0 in the step's frame): the floor and the
 	// random walks q_v dt along x and r0 dt in heading, nothing else.
@@ -141,8 +141,8 @@ TEST_F(SyntheticRecording, OneStepPerLandmarkTimeRobotsAndUnknownBarcodesDropped
 	ASSERT_EQ(log.steps[0].scan->measurements.size(), 2u);
 	EXPECT_EQ(log.steps[0].scan->measurements[1].id.value_or(-1), 7);
 	// 0.1 m/s for the 3 s from 101 to 104 (commands held from 100 s).
-	EXPECT_NEAR(log.steps[1].odometry->delta.x, 0.3, 1e-12);
-	EXPECT_NEAR(log.steps[2].odometry->delta.x, 0.2, 1e-12);
+	EXPECT_NEAR(log.steps[1].odometry->delta.x(), 0.3, 1e-12);
+	EXPECT_NEAR(log.steps[2].odometry->delta.x(), 0.2, 1e-12);
 	// Truth: the robot's 1.2 m in 12 s of Vicon, in the frame of the pose at 101 s (x = 0.2 m).
 	const auto truth = loadGroundTruth(groundTruthPrefixFor(out_.file("r.rawlog")));
 	ASSERT_TRUE(truth);

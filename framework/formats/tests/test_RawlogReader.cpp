@@ -97,7 +97,7 @@ TEST(RawlogReader, ActionsAndSensoryFrames)
 	ASSERT_EQ(log.steps.size(), 5u);
 	EXPECT_EQ(log.measurement_count, 10u);
 	ASSERT_TRUE(log.steps[0].odometry && log.steps[0].scan);
-	EXPECT_NEAR(log.steps[0].odometry->delta.x, 0.1, 1e-12);
+	EXPECT_NEAR(log.steps[0].odometry->delta.x(), 0.1, 1e-12);
 	EXPECT_NEAR(log.steps[0].odometry->cov(2, 2), 1e-5, 1e-15);
 	EXPECT_EQ(log.steps[0].scan->measurements[0].id, 7);
 	EXPECT_NEAR(log.steps[0].scan->measurements[0].cov(0, 0), 0.01, 1e-8);
@@ -153,8 +153,8 @@ TEST(RawlogReader, ObservationsOnlyWithAbsoluteOdometry)
 	EXPECT_FALSE(log.steps[0].odometry);
 	ASSERT_TRUE(log.steps[2].odometry);
 	// Increment between readings (0.5, 0, 0.1) and (1.0, 0, 0.2), in the first's frame.
-	EXPECT_NEAR(log.steps[2].odometry->delta.x, 0.5 * std::cos(0.1), 1e-12);
-	EXPECT_NEAR(log.steps[2].odometry->delta.phi, 0.1, 1e-12);
+	EXPECT_NEAR(log.steps[2].odometry->delta.x(), 0.5 * std::cos(0.1), 1e-12);
+	EXPECT_NEAR(log.steps[2].odometry->delta(2), 0.1, 1e-12);
 }
 
 TEST(RawlogReader, TruncatedFileIsReadToItsLastCompleteStep)

@@ -55,7 +55,7 @@ TEST(VictoriaParkImporter, RoundTripKeepsPosesMeasurementsAndIds)
 	EXPECT_EQ(ids.size(), 151u);
 	// First record "ODOMETRY 0 1 0.000985144 ... 0.0001 0 0 4e-06 0 4e-06" and
 	// first landmark "LANDMARK 4 5 11.5387 -3.2007": step 4, landmark 5.
-	EXPECT_NEAR(log.steps[1].odometry->delta.x, 0.000985144, 1e-12);
+	EXPECT_NEAR(log.steps[1].odometry->delta.x(), 0.000985144, 1e-12);
 	EXPECT_NEAR(log.steps[1].odometry->cov(0, 0), 1e-4, 1e-15);
 	ASSERT_EQ(log.steps[4].scan->measurements.size(), 1u);
 	const auto& m = log.steps[4].scan->measurements[0];

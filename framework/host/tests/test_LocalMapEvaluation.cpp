@@ -32,7 +32,7 @@ struct RunFixture
 		for (std::size_t k = 1; k <= 3; ++k)
 		{
 			esif::PoseEstimate p;
-			p.mean = mrpt::math::TPose2D(static_cast<double>(k), 0, 3.0);	// heading near pi
+			p.mean = Pose2(static_cast<double>(k), 0, 3.0);	// heading near pi
 			p.cov = Eigen::Matrix3d::Identity() * 0.01;
 			end_poses.push_back({k, static_cast<double>(k), p});
 		}
@@ -43,7 +43,7 @@ struct RunFixture
 	{
 		esif::ReferenceResult ref;
 		for (const auto& lm : estimate.landmarks) ref.features[lm.id] = lm.mean + Eigen::Vector2d(dx, dy);
-		for (const auto& p : end_poses) ref.end_poses[p.step] = Pose2(p.pose.mean.x + dx, p.pose.mean.y + dy, p.pose.mean.phi + dphi);
+		for (const auto& p : end_poses) ref.end_poses[p.step] = Pose2(p.pose.mean.x() + dx, p.pose.mean.y() + dy, p.pose.mean(2) + dphi);
 		return ref;
 	}
 };

@@ -56,9 +56,9 @@ TEST(LocalMapReplay, ComposesEndPosesAndPlacesFeaturesInTheGlobalFrame)
 	EXPECT_EQ(result.record.trajectory[0].step, 1u);
 	EXPECT_DOUBLE_EQ(result.record.trajectory[1].time_s, 2.0);
 	const auto& end2 = result.record.trajectory[1].pose.mean;
-	EXPECT_NEAR(end2.x, 1.0, 1e-12);
-	EXPECT_NEAR(end2.y, 1.0, 1e-12);
-	EXPECT_NEAR(end2.phi, M_PI / 2, 1e-12);
+	EXPECT_NEAR(end2.x(), 1.0, 1e-12);
+	EXPECT_NEAR(end2.y(), 1.0, 1e-12);
+	EXPECT_NEAR(end2(2), M_PI / 2, 1e-12);
 	EXPECT_GT(result.record.trajectory[1].pose.cov(0, 0), result.record.trajectory[0].pose.cov(0, 0));
 	ASSERT_EQ(result.record.keyframes.size(), 2u);	// the end poses, for map.simplemap
 

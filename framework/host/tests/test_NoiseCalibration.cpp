@@ -50,9 +50,9 @@ TEST(NoiseCalibration, ScalesOdometryAndTakesOutItsSystematicErrors)
 	c.odometry_turn_scale = 1.05;
 	c.odometry_heading_drift_deg_per_m = 0.5;
 	const StepInput out = calibratedStep(stepWithOdometryAndScan(), c);
-	EXPECT_NEAR(out.odometry->delta.x, 2.2, 1e-12);
+	EXPECT_NEAR(out.odometry->delta.x(), 2.2, 1e-12);
 	// dphi' = 1.05 * 0.1 + 0.5 deg/m * 2 m
-	EXPECT_NEAR(out.odometry->delta.phi, 0.105 + 1.0 * M_PI / 180, 1e-12);
+	EXPECT_NEAR(out.odometry->delta(2), 0.105 + 1.0 * M_PI / 180, 1e-12);
 	EXPECT_NEAR(out.odometry->cov(0, 0), 9e-4, 1e-15);
 	EXPECT_NEAR(out.odometry->cov(1, 1), 36e-6, 1e-15);
 	EXPECT_NEAR(out.odometry->cov(2, 2), 16e-6, 1e-15);
@@ -64,7 +64,7 @@ TEST(NoiseCalibration, DriftFollowsTheDirectionOfTravel)
 	c.odometry_heading_drift_deg_per_m = 1;
 	StepInput step = stepWithOdometryAndScan();
 	step.odometry->delta = {-2.0, 0.0, 0.0};  // reversing 2 m
-	EXPECT_NEAR(calibratedStep(step, c).odometry->delta.phi, -2 * M_PI / 180, 1e-12);
+	EXPECT_NEAR(calibratedStep(step, c).odometry->delta(2), -2 * M_PI / 180, 1e-12);
 }
 
 TEST(NoiseCalibration, TakesOutTheSensorBiasAndReplacesItsNoise)

@@ -24,7 +24,7 @@ esif::Rawlog fourSteps() { return makeRawlog({{{7, std::nullopt}}, {{7}}, std::n
 std::vector<esif::PoseEstimate> smoothedPoses(std::size_t n)
 {
 	std::vector<esif::PoseEstimate> poses(n);
-	for (std::size_t k = 0; k < n; ++k) poses[k].mean = mrpt::math::TPose2D(100 + static_cast<double>(k), -5, 0.5);
+	for (std::size_t k = 0; k < n; ++k) poses[k].mean = esif::Pose2(100 + static_cast<double>(k), -5, 0.5);
 	return poses;
 }
 
@@ -48,12 +48,12 @@ TEST(Replay, FilterKeepsOnlinePosesAndKeyframeSteps)
 	FakePlugin plugin;
 	const auto result = esif::replay(plugin, fourSteps(), kQuiet);
 	ASSERT_EQ(result.record.trajectory.size(), 4u);
-	EXPECT_DOUBLE_EQ(result.record.trajectory[3].pose.mean.x, 4.0);  // dead reckoning, 1 m a step
+	EXPECT_DOUBLE_EQ(result.record.trajectory[3].pose.mean.x(), 4.0);  // dead reckoning, 1 m a step
 	ASSERT_EQ(result.record.keyframes.size(), 3u);	// the steps with a sensory frame
 	EXPECT_EQ(result.record.keyframes[0].step, 0u);
 	EXPECT_EQ(result.record.keyframes[1].step, 1u);
 	EXPECT_EQ(result.record.keyframes[2].step, 3u);
-	EXPECT_DOUBLE_EQ(result.record.keyframes[2].pose.mean.x, 4.0);
+	EXPECT_DOUBLE_EQ(result.record.keyframes[2].pose.mean.x(), 4.0);
 }
 
 TEST(Replay, SmoothedTrajectoryReplacesPosesAndKeyframes)
@@ -66,13 +66,13 @@ TEST(Replay, SmoothedTrajectoryReplacesPosesAndKeyframes)
 	for (std::size_t k = 0; k < 4; ++k)
 	{
 		EXPECT_EQ(result.record.trajectory[k].step, k);
-		EXPECT_DOUBLE_EQ(result.record.trajectory[k].pose.mean.x, 100.0 + static_cast<double>(k));
-		EXPECT_DOUBLE_EQ(result.record.trajectory[k].pose.mean.y, -5.0);
+		EXPECT_DOUBLE_EQ(result.record.trajectory[k].pose.mean.x(), 100.0 + static_cast<double>(k));
+		EXPECT_DOUBLE_EQ(result.record.trajectory[k].pose.mean.y(), -5.0);
 	}
 	EXPECT_DOUBLE_EQ(result.record.trajectory[3].pose.cov(2, 2), 0.25);
 	ASSERT_EQ(result.record.keyframes.size(), 3u);
 	for (const auto& kf : result.record.keyframes)
-		EXPECT_DOUBLE_EQ(kf.pose.mean.x, 100.0 + static_cast<double>(kf.step)) << "keyframe of step " << kf.step;
+		EXPECT_DOUBLE_EQ(kf.pose.mean.x(), 100.0 + static_cast<double>(kf.step)) << "keyframe of step " << kf.step;
 	EXPECT_DOUBLE_EQ(result.record.keyframes[2].pose.cov(2, 2), 0.25);
 }
 

@@ -128,7 +128,7 @@ inline std::vector<Eigen::Vector2d> trajectoryXY(const RunRecord& run)
 {
 	std::vector<Eigen::Vector2d> pts;
 	pts.reserve(run.trajectory.size());
-	for (const TrajectoryPoint& p : run.trajectory) pts.emplace_back(p.pose.mean.x, p.pose.mean.y);
+	for (const TrajectoryPoint& p : run.trajectory) pts.emplace_back(p.pose.mean.x(), p.pose.mean.y());
 	return pts;
 }
 
@@ -153,8 +153,7 @@ inline Bounds contentBounds(const RunRecord& run, double sigmas)
 	for (const Eigen::Vector2d& p : truthPathXY(run)) b.add(p);
 	if (run.truth)
 		for (const auto& [id, p] : run.truth->landmarks) b.add(p);
-	const mrpt::math::TPose2D& robot = run.final_estimate.robot.mean;
-	b.add(Eigen::Vector2d(robot.x, robot.y));
+	b.add(run.final_estimate.robot.mean.head<2>());
 	for (const LandmarkEstimate& lm : run.final_estimate.landmarks) b.add(lm.mean);
 
 	const double cap = 0.25 * std::max({b.width(), b.height(), 1.0});

@@ -60,7 +60,7 @@ void addEllipse(plot::DataBlock& block, const Eigen::Vector2d& mean, const Eigen
 bool robotIsFinite(const RunRecord& run)
 {
 	const auto& m = run.final_estimate.robot.mean;
-	return std::isfinite(m.x) && std::isfinite(m.y) && std::isfinite(m.phi);
+	return std::isfinite(m.x()) && std::isfinite(m.y()) && std::isfinite(m(2));
 }
 
 /// The layers bottom-up: truth, ellipses, path, start, marks, IDs, robot.
@@ -104,12 +104,12 @@ std::vector<Layer> mapLayers(const RunRecord& run, double sigmas, double view_sp
 	if (robotIsFinite(run))
 	{
 		const PoseEstimate& robot = run.final_estimate.robot;
-		const Eigen::Vector2d xy(robot.mean.x, robot.mean.y);
+		const Eigen::Vector2d xy(robot.mean.x(), robot.mean.y());
 		plot::DataBlock robot_ellipse, arrow;
 		addEllipse(robot_ellipse, xy, robot.cov.topLeftCorner<2, 2>(), sigmas);
 		add(std::move(robot_ellipse), "using 1:2 with lines lw 1.5 " + colour(kMapRobotEllipseColor) + " notitle");
 		const double len = 0.04 * view_span;
-		arrow.row({xy.x(), xy.y(), len * std::cos(robot.mean.phi), len * std::sin(robot.mean.phi)});
+		arrow.row({xy.x(), xy.y(), len * std::cos(robot.mean(2)), len * std::sin(robot.mean(2))});
 		add(std::move(arrow), "using 1:2:3:4 with vectors filled head size screen 0.015,25 lw 3 " + colour(kRobotColor) +
 								  " title 'final pose'");
 	}

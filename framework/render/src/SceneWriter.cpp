@@ -169,14 +169,14 @@ void writeScene(const RunRecord& run, const std::string& path, const MapWriterOp
 	// Final robot pose: axes at the pose (x red, y green, z blue) and its
 	// position uncertainty at the same sigma level as the landmarks.
 	const PoseEstimate& robot = run.final_estimate.robot;
-	if (std::isfinite(robot.mean.x) && std::isfinite(robot.mean.y) && std::isfinite(robot.mean.phi))
+	if (std::isfinite(robot.mean.x()) && std::isfinite(robot.mean.y()) && std::isfinite(robot.mean(2)))
 	{
 		auto corner = mrpt::opengl::stock_objects::CornerXYZSimple(static_cast<float>(0.06 * span), 3.0f);
 		corner->setName("robot");
-		corner->setPose(mrpt::poses::CPose3D(robot.mean.x, robot.mean.y, kZRobot, robot.mean.phi, 0, 0));
+		corner->setPose(mrpt::poses::CPose3D(robot.mean.x(), robot.mean.y(), kZRobot, robot.mean(2), 0, 0));
 		scene.insert(corner);
 		if (auto robot_ellipse = ellipse(
-				Eigen::Vector2d(robot.mean.x, robot.mean.y), robot.cov.topLeftCorner<2, 2>(), sigmas, kZRobot,
+				Eigen::Vector2d(robot.mean.x(), robot.mean.y()), robot.cov.topLeftCorner<2, 2>(), sigmas, kZRobot,
 				kSceneRobotEllipseColor))
 		{
 			robot_ellipse->setName("robot_ellipse");

@@ -118,7 +118,7 @@ esif::RunRecord makeRun(std::size_t steps = 60)
 		p.step = k;
 		p.time_s = 1.5 + 0.1 * static_cast<double>(k);
 		const double a = 0.05 * static_cast<double>(k);
-		p.pose.mean = mrpt::math::TPose2D(6 * std::sin(a), 6 * (1 - std::cos(a)), a);
+		p.pose.mean = esif::Pose2(6 * std::sin(a), 6 * (1 - std::cos(a)), a);
 		p.pose.cov = poseCov(1 + 0.01 * static_cast<double>(k));
 		run.trajectory.push_back(p);
 	}
@@ -142,7 +142,7 @@ esif::RunRecord makeRun(std::size_t steps = 60)
 	esif::GroundTruth truth;
 	for (const auto& [id, p] : lms) truth.landmarks[id] = p + Eigen::Vector2d(0.05, -0.04);
 	for (const auto& t : run.trajectory)
-		truth.path.push_back(esif::Pose2(t.pose.mean.x + 0.02, t.pose.mean.y - 0.03, t.pose.mean.phi));
+		truth.path.push_back(esif::Pose2(t.pose.mean.x() + 0.02, t.pose.mean.y() - 0.03, t.pose.mean(2)));
 	run.truth = truth;
 	return run;
 }
@@ -195,9 +195,9 @@ TEST(MapWriter, SimpleMapReloadsWithKeyframePosesAndFrames)
 		ASSERT_TRUE(sf);
 		const mrpt::poses::CPosePDFGaussian pdf(*pdf3d);
 		const esif::PoseEstimate& want = run.keyframes[i].pose;
-		EXPECT_NEAR(pdf.mean.x(), want.mean.x, 1e-12);
-		EXPECT_NEAR(pdf.mean.y(), want.mean.y, 1e-12);
-		EXPECT_NEAR(pdf.mean.phi(), want.mean.phi, 1e-12);
+		EXPECT_NEAR(pdf.mean.x(), want.mean.x(), 1e-12);
+		EXPECT_NEAR(pdf.mean.y(), want.mean.y(), 1e-12);
+		EXPECT_NEAR(pdf.mean.phi(), want.mean(2), 1e-12);
 		for (int r = 0; r < 3; ++r)
 			for (int c = 0; c < 3; ++c) EXPECT_NEAR(pdf.cov(r, c), want.cov(r, c), 1e-12) << r << "," << c;
 
@@ -275,9 +275,9 @@ TEST(MapWriter, TrajectoryTumHasOneLinePerPointAndYawQuaternions)
 	TempDir dir;
 	esif::RunRecord run = makeRun();
 	// Known yaws, including one outside (-pi, pi] that must be wrapped.
-	run.trajectory[0].pose.mean.phi = M_PI / 2;
-	run.trajectory[1].pose.mean.phi = -2.0;
-	run.trajectory[2].pose.mean.phi = 2 * M_PI + 0.5;
+	run.trajectory[0].pose.mean(2) = M_PI / 2;
+	run.trajectory[1].pose.mean(2) = -2.0;
+	run.trajectory[2].pose.mean(2) = 2 * M_PI + 0.5;
 	esif::writeMapOutputs(run, dir.str());
 
 	const auto rows = readNumberRows(dir.file("trajectory.tum"));
@@ -287,8 +287,8 @@ TEST(MapWriter, TrajectoryTumHasOneLinePerPointAndYawQuaternions)
 		ASSERT_EQ(rows[i].size(), 8u);
 		const auto& p = run.trajectory[i];
 		EXPECT_EQ(rows[i][0], p.time_s);
-		EXPECT_EQ(rows[i][1], p.pose.mean.x);
-		EXPECT_EQ(rows[i][2], p.pose.mean.y);
+		EXPECT_EQ(rows[i][1], p.pose.mean.x());
+		EXPECT_EQ(rows[i][2], p.pose.mean.y());
 		EXPECT_EQ(rows[i][3], 0.0);
 		EXPECT_EQ(rows[i][4], 0.0);
 		EXPECT_EQ(rows[i][5], 0.0);

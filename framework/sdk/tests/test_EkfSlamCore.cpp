@@ -53,7 +53,7 @@ TEST(EkfSlamCore, PredictionMatchesDenseForm)
 	u.cov = Eigen::Vector3d(0.02, 0.01, 0.004).asDiagonal();
 	core.predict(u);
 
-	const auto J = composeJacobians(x0, toPose2(u.delta));
+	const auto J = composeJacobians(x0, u.delta);
 	Eigen::MatrixXd F = Eigen::MatrixXd::Identity(P0.rows(), P0.cols());
 	F.topLeftCorner<3, 3>() = J.d_a;
 	Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(P0.rows(), P0.cols());

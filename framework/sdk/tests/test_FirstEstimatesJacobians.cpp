@@ -87,7 +87,7 @@ TEST(FirstEstimatesJacobians, PredictionUsesTheMotionJacobianAtTheRobotPrior)
 	u.cov = Eigen::Vector3d(0.02, 0.01, 0.004).asDiagonal();
 	core.predict(u);
 	const Pose2 next = core.robot();
-	EXPECT_LT((next - compose(updated, toPose2(u.delta))).cwiseAbs().maxCoeff(), 1e-12);
+	EXPECT_LT((next - compose(updated, u.delta)).cwiseAbs().maxCoeff(), 1e-12);
 	EXPECT_EQ(core.robotPrior(), next);
 
 	// FEJ's F = [I, J (p_{k+1|k} - p_{k|k-1}); 0, 1] is the motion model's
@@ -98,13 +98,13 @@ TEST(FirstEstimatesJacobians, PredictionUsesTheMotionJacobianAtTheRobotPrior)
 	Eigen::MatrixXd Fn = Eigen::MatrixXd::Identity(P0.rows(), P0.cols());
 	Fn.topLeftCorner<3, 3>() = F;
 	Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(P0.rows(), P0.cols());
-	const Eigen::Matrix3d G = composeJacobians(updated, toPose2(u.delta)).d_b;  // noise Jacobian: at x_{k|k}
+	const Eigen::Matrix3d G = composeJacobians(updated, u.delta).d_b;  // noise Jacobian: at x_{k|k}
 	Q.topLeftCorner<3, 3>() = G * u.cov * G.transpose();
 	const Eigen::MatrixXd expected = Fn * P0 * Fn.transpose() + Q;
 	EXPECT_LT((Eigen::MatrixXd(core.covariance()) - expected).cwiseAbs().maxCoeff(), kDenseTolerance);
 
 	// ...and not the textbook Jacobian at x_{k|k}.
-	Fn.topLeftCorner<3, 3>() = composeJacobians(updated, toPose2(u.delta)).d_a;
+	Fn.topLeftCorner<3, 3>() = composeJacobians(updated, u.delta).d_a;
 	const Eigen::MatrixXd textbook = Fn * P0 * Fn.transpose() + Q;
 	EXPECT_GT((Eigen::MatrixXd(core.covariance()) - textbook).cwiseAbs().maxCoeff(), 1e-4);
 }
@@ -293,7 +293,7 @@ TwinFilters simulate(JacobianPoints points)
 		truth = compose(truth, step_truth);
 		Pose2 odo = step_truth;
 		for (int c = 0; c < 3; ++c) odo(c) += odo_sigma(c) * normal(rng);
-		u.delta = toTPose2D(odo);
+		u.delta = odo;
 		std::vector<EkfSlamCore::Match> matches;
 		std::vector<std::pair<int, Eigen::Vector2d>> fresh;
 		for (int i = 0; i < static_cast<int>(landmarks.size()); ++i)

@@ -186,7 +186,7 @@ class LoopAfterDeadReckoning : public ::testing::Test
 		// seen: (ID reported, landmark truly measured)
 		StepInput s;
 		s.index = index;
-		s.scan = Scan{toTPose2D(kSensor), 0, 0, {}};
+		s.scan = Scan{kSensor, 0, 0, {}};
 		for (const auto& [id, truly] : seen)
 		{
 			const auto z = predictRangeBearing(start, kSensor, world.at(truly)).z;

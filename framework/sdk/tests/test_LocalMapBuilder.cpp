@@ -438,7 +438,7 @@ TEST(LocalMapBuilderNoiseFree, OdometryLinkComposesToTheTruePoses)
 			const auto& odo = *run.steps[maps[k].first_step].odometry;
 			EXPECT_EQ(maps[k].link->delta, odo.delta);
 			EXPECT_EQ(maps[k].link->cov, odo.cov);
-			start = compose(G, toPose2(maps[k].link->delta));
+			start = compose(G, maps[k].link->delta);
 		}
 		G = compose(start, maps[k].end_pose);
 		const Pose2& truth = run.true_poses[maps[k].last_step];

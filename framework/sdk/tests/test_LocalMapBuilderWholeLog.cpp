@@ -76,7 +76,7 @@ void expectBuilderEqualsEkfPlugin(bool hide_ids, EkfAssociation association, con
 
 	// Robot pose and covariance.
 	const auto& est = plugin.record.final_estimate;
-	const Pose2 robot = toPose2(est.robot.mean);
+	const Pose2 robot = est.robot.mean;
 	const double pose_dev = std::max((map.end_pose.head<2>() - robot.head<2>()).cwiseAbs().maxCoeff(),
 									 std::abs(wrapAngle(map.end_pose.z() - robot.z())));
 	const double pose_cov_dev = (map.covariance->topLeftCorner<3, 3>() - est.robot.cov).cwiseAbs().maxCoeff();

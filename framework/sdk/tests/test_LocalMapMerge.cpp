@@ -187,7 +187,7 @@ TEST(LocalMapMergeNoiseFree, OdometryLinkedMapsMergeTheSameWay)
 	const Deviation worst = expectPairwiseMergesEqualTruth(maps, run);
 	const LocalMap merged = mergeConsecutiveLocalMaps(maps[2], maps[3]);
 	ASSERT_TRUE(merged.link);
-	EXPECT_EQ(toPose2(merged.link->delta), toPose2(maps[2].link->delta));
+	EXPECT_EQ(merged.link->delta, maps[2].link->delta);
 	EXPECT_EQ(merged.link->cov, maps[2].link->cov);
 	std::cout << "noise-free, odometry link: " << maps.size() - 1 << " merges; largest deviation from the truth: pose "
 			  << worst.pose << ", feature " << worst.feature << "\n";
@@ -234,7 +234,7 @@ double expectMergeIsComposition(const LocalMap& a, const LocalMap& b)
 	Eigen::Matrix3d do_de = Eigen::Matrix3d::Identity(), do_du = Eigen::Matrix3d::Zero();
 	if (b.link)
 	{
-		const Pose2 u = toPose2(b.link->delta);
+		const Pose2 u = b.link->delta;
 		o = compose(e_a, u);
 		const auto J = composeJacobians(e_a, u);
 		do_de = J.d_a;

@@ -41,14 +41,14 @@ TEST(VelocityOdometry, ArcsAreExact)
 	EXPECT_NEAR(end.z(), M_PI / 4, 1e-12);
 	// Sub-steps do not change the mean: the same arc in 1000 pieces.
 	const auto inc = velocityOdometry({{M_PI, 0.5, 0.25}}, VelocityNoise{}, M_PI / 1000);
-	EXPECT_NEAR(inc.delta.x, end.x(), 1e-12);
-	EXPECT_NEAR(inc.delta.y, end.y(), 1e-12);
-	EXPECT_NEAR(inc.delta.phi, end.z(), 1e-12);
+	EXPECT_NEAR(inc.delta.x(), end.x(), 1e-12);
+	EXPECT_NEAR(inc.delta.y(), end.y(), 1e-12);
+	EXPECT_NEAR(inc.delta(2), end.z(), 1e-12);
 	// Standing still: no motion; the floor and the random walks (the white
 	// noise is on the speed whatever is commanded), no constant-error term.
 	const VelocityNoise n;
 	const auto still = velocityOdometry({{2.0, 0, 0}}, n);
-	EXPECT_EQ(still.delta.x, 0.0);
+	EXPECT_EQ(still.delta.x(), 0.0);
 	EXPECT_NEAR(still.cov(0, 0), n.floor_m * n.floor_m + n.speed_psd * 2.0, 1e-15);
 	EXPECT_NEAR(still.cov(1, 1), n.floor_m * n.floor_m, 1e-15);
 	EXPECT_NEAR(still.cov(2, 2), n.turn_psd * 2.0, 1e-15);

@@ -140,7 +140,7 @@ TEST(CeresFullSafeguards, APoseOnALandmarkIsFlaggedAndTheRunStillWritesEveryOutp
 				if (m.range_m > 1 && m.id && !id) id = m.id;
 	ASSERT_TRUE(id.has_value());
 	--k;
-	ASSERT_EQ(toPose2(log.steps[k].scan->sensor_on_robot), Pose2::Zero());	// the sensor is the robot's origin
+	ASSERT_EQ(log.steps[k].scan->sensor_on_robot, Pose2::Zero());	// the sensor is the robot's origin
 	const auto trajectory = readTrajectoryTum(dir.file("good") + "/trajectory.tum");
 	moveLandmark(dir.file("good"), *id, trajectory[k].pose.x, trajectory[k].pose.y);
 

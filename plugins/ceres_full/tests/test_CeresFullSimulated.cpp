@@ -157,7 +157,7 @@ TEST(CeresFullMonteCarlo, LandmarkAndFinalPoseNeesAreConsistentOverIndependentRu
 			sum += *nees(err, l.cov);
 		}
 		landmark_nees += sum / static_cast<double>(est.landmarks.size());
-		Eigen::Vector3d pose_err = toPose2(est.robot.mean) - inverseCompose(*start, last_true);
+		Eigen::Vector3d pose_err = est.robot.mean - inverseCompose(*start, last_true);
 		pose_err.z() = wrapAngle(pose_err.z());
 		pose_nees += *nees(pose_err, est.robot.cov);
 		chi2 += counter(*plugin, "chi2");

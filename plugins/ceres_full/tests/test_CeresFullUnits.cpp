@@ -156,7 +156,7 @@ FullSlamGraph smallGraph()
 	std::size_t pose = 0;
 	for (int k = 0; k < 8; ++k)
 	{
-		if (k > 0) pose = g.addPose(pose, odo, compose(g.pose(pose), toPose2(odo.delta)), "odometry");
+		if (k > 0) pose = g.addPose(pose, odo, compose(g.pose(pose), odo.delta), "odometry");
 		for (std::size_t i = 0; i < lms.size(); ++i)
 		{
 			if ((k + i) % 3 == 0) continue;	 // not every landmark from every pose

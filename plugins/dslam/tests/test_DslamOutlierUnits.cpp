@@ -71,7 +71,7 @@ TEST(DslamHeldFeatureTracking, MatchesTheHeldFeatureNotItsGridNeighbour)
 	LocalSlam local;
 	const Pose2 sensor(0, 0, 0);
 	const Eigen::Matrix2d R = Eigen::Vector2d(0.01, std::pow(M_PI / 180, 2)).asDiagonal();
-	local.predict({mrpt::math::TPose2D(0, 0, 0), Eigen::Vector3d(0.0004, 2.25, 0.0001).asDiagonal()});
+	local.predict({Pose2(0, 0, 0), Eigen::Vector3d(0.0004, 2.25, 0.0001).asDiagonal()});
 	const auto rb = [&](double x, double y) { return predictRangeBearing(Pose2(0, 0, 0), sensor, {x, y}).z; };
 	local.addFeatures({{10, rb(3, 0), R}, {11, rb(3, 3), R}}, sensor);
 

@@ -609,7 +609,7 @@ IdentifiedMeasurement measure(LandmarkId id, const Pose2& robot, const Eigen::Ve
 OdometryIncrement odometry(double dx, double dy, double dphi, const Eigen::Matrix3d& cov)
 {
 	OdometryIncrement u;
-	u.delta = mrpt::math::TPose2D(dx, dy, dphi);
+	u.delta = Pose2(dx, dy, dphi);
 	u.cov = cov;
 	return u;
 }

@@ -60,7 +60,7 @@ TEST(LmjUnits, OneLocalMapIsTheGlobalMapWithTheRobotMarginalised)
 	// Map 1's frame is the global frame: its end pose is the local one.
 	const auto ends = joinerOf(*plugin).endPoses();
 	ASSERT_EQ(ends.size(), 1u);
-	EXPECT_LT((toPose2(ends[0].mean) - map.end_pose).norm(), 1e-9);
+	EXPECT_LT((ends[0].mean - map.end_pose).norm(), 1e-9);
 }
 
 TEST(LmjUnits, PairFrameAndRobotPoseJacobiansMatchFiniteDifferences)
@@ -82,9 +82,9 @@ TEST(LmjUnits, PairFrameAndRobotPoseJacobiansMatchFiniteDifferences)
 		Eigen::VectorXd all(11);
 		all << u(rng), u(rng), 0.5 * u(rng), x, u(rng), u(rng), u(rng), u(rng);
 		const auto g = [](const Eigen::VectorXd& v) -> Eigen::VectorXd {
-			return toPose2(lmj::robotFromPairs(v.head<3>(), v.segment<2>(3), v.segment<2>(5), Eigen::MatrixXd::Zero(7, 7),
+			return lmj::robotFromPairs(v.head<3>(), v.segment<2>(3), v.segment<2>(5), Eigen::MatrixXd::Zero(7, 7),
 											   v.segment<2>(7), v.segment<2>(9), Eigen::Matrix4d::Zero())
-							   .mean);
+							   .mean;
 		};
 		const Eigen::MatrixXd J = test::numericJacobian(g, all, 1e-6, {2});
 		Eigen::MatrixXd A(11, 11);

@@ -54,8 +54,8 @@ TEST(SimulatedRawlog, ReadsBackTheSimulatedSteps)
 		const auto& a = simulated[k];
 		const auto& b = log.steps[k];
 		ASSERT_TRUE(b.odometry && b.scan) << k;
-		EXPECT_NEAR(b.odometry->delta.x, a.odometry->delta.x, 1e-12) << k;
-		EXPECT_NEAR(b.odometry->delta.phi, a.odometry->delta.phi, 1e-12) << k;
+		EXPECT_NEAR(b.odometry->delta.x(), a.odometry->delta.x(), 1e-12) << k;
+		EXPECT_NEAR(b.odometry->delta(2), a.odometry->delta(2), 1e-12) << k;
 		EXPECT_LT((b.odometry->cov - a.odometry->cov).cwiseAbs().maxCoeff(), 1e-15) << k;
 		ASSERT_EQ(b.scan->measurements.size(), a.scan->measurements.size()) << k;
 		for (std::size_t i = 0; i < a.scan->measurements.size(); ++i)

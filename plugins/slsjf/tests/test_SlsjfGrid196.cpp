@@ -155,7 +155,7 @@ TEST(SlsjfGrid196, EndHeadingsAreMoreCertainThanTheEkfsAndPositionsAsCertain)
 		const Eigen::Matrix3d& Q = ekf.result.record.trajectory[step].pose.cov;
 		smaller += P(2, 2) < Q(2, 2);
 		worst_position_ratio = std::max({worst_position_ratio, P(0, 0) / Q(0, 0), P(1, 1) / Q(1, 1)});
-		Eigen::Vector3d e = toPose2(ends[k - 1].mean) - truth.path[step];
+		Eigen::Vector3d e = ends[k - 1].mean - truth.path[step];
 		e(2) = wrapAngle(e(2));
 		slsjf_consistent += *nees(e, P) < chi2Quantile(0.95, 3);
 		++compared;

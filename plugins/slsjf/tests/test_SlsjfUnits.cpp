@@ -51,7 +51,7 @@ TEST(SlsjfUnits, OneLocalMapIsTheGlobalMap)
 	}
 	const auto ends = joinerOf(*plugin).endPoses();
 	ASSERT_EQ(ends.size(), 1u);
-	EXPECT_LT((toPose2(ends[0].mean) - map.end_pose).norm(), 1e-10);
+	EXPECT_LT((ends[0].mean - map.end_pose).norm(), 1e-10);
 	EXPECT_LT((ends[0].cov - P.topLeftCorner<3, 3>()).norm(), 1e-10 * P.norm());
 
 	const CostFigures cost = plugin->costFigures();
@@ -119,7 +119,7 @@ struct NoiseFree
 		for (const auto& lm : r.record.final_estimate.landmarks)
 			landmark = std::max(landmark, (lm.mean - truth.landmarks.at(filter_to_true.at(lm.id))).norm());
 		for (const auto& tp : r.record.trajectory)
-			pose = std::max(pose, (toPose2(tp.pose.mean).head<2>() - truth.path[tp.step].head<2>()).norm());
+			pose = std::max(pose, (tp.pose.mean.head<2>() - truth.path[tp.step].head<2>()).norm());
 		EXPECT_GT(r.record.final_estimate.landmarks.size(), 10u) << section;
 		return {landmark, pose};
 	}

@@ -22,7 +22,7 @@ std::optional<ComposedOdometry> composeWindow(const std::vector<StepInput>& step
 	for (std::size_t k = first; k < first + W; ++k)
 	{
 		if (!steps[k].odometry) return std::nullopt;
-		const Pose2 u = toPose2(steps[k].odometry->delta);
+		const Pose2 u = steps[k].odometry->delta;
 		const auto J = composeJacobians(out.delta, u);
 		out.cov = J.d_a * out.cov * J.d_a.transpose() + J.d_b * steps[k].odometry->cov * J.d_b.transpose();
 		out.delta = compose(out.delta, u);
@@ -76,7 +76,7 @@ void forEachSensorResidual(
 	{
 		if (!steps[k].scan) continue;
 		const Scan& scan = *steps[k].scan;
-		const Pose2 sensor = compose(path[k], toPose2(scan.sensor_on_robot));
+		const Pose2 sensor = compose(path[k], scan.sensor_on_robot);
 		for (const auto& m : scan.measurements)
 		{
 			const auto it = m.id ? landmarks.find(*m.id) : landmarks.end();

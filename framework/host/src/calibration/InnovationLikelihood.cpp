@@ -65,7 +65,7 @@ class LikelihoodPass
    private:
 	void scan(const Scan& scan)
 	{
-		const Pose2 sensor = toPose2(scan.sensor_on_robot);
+		const Pose2 sensor = scan.sensor_on_robot;
 		const double log_outlier_density = log_outlier_ + outlierLogDensity(scan);
 		std::vector<EkfSlamCore::Match> inliers;
 		std::vector<const RangeBearing*> fresh;

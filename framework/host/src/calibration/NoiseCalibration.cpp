@@ -76,10 +76,11 @@ StepInput calibratedStep(const StepInput& step, const NoiseCalibration& c)
 	if (out.odometry)
 	{
 		auto& delta = out.odometry->delta;
-		const double forward = std::hypot(delta.x, delta.y) * (delta.x < 0 ? -1 : 1);
-		delta.phi = wrapAngle(c.odometry_turn_scale * delta.phi + c.odometry_heading_drift_deg_per_m * kRadPerDeg * forward);
-		delta.x *= c.odometry_distance_scale;
-		delta.y *= c.odometry_distance_scale;
+		const double forward = std::hypot(delta.x(), delta.y()) * (delta.x() < 0 ? -1 : 1);
+		// (2) = heading change
+		delta(2) = wrapAngle(c.odometry_turn_scale * delta(2) + c.odometry_heading_drift_deg_per_m * kRadPerDeg * forward);
+		delta.x() *= c.odometry_distance_scale;
+		delta.y() *= c.odometry_distance_scale;
 		const Eigen::Vector3d d(c.odometry_std_scale_xy, c.odometry_std_scale_xy, c.odometry_std_scale_phi);
 		out.odometry->cov = d.asDiagonal() * out.odometry->cov * d.asDiagonal();
 	}

@@ -14,7 +14,7 @@ namespace esif::noise_fit
 {
 namespace
 {
-double forwardDistance(const mrpt::math::TPose2D& d) { return std::hypot(d.x, d.y) * (d.x < 0 ? -1 : 1); }
+double forwardDistance(const Pose2& d) { return std::hypot(d.x(), d.y()) * (d.x() < 0 ? -1 : 1); }
 
 /// The window lengths checked: 1, 2, 4, ... up to `horizon`, and `horizon`.
 std::vector<std::size_t> lengthsUpTo(std::size_t horizon)
@@ -54,9 +54,9 @@ std::vector<HeadingWindow> headingWindows(const std::vector<ReferencedLog>& logs
 				whole = steps[k].odometry.has_value();
 				if (!whole) break;
 				const auto& d = steps[k].odometry->delta;
-				w.odometry += Eigen::Vector2d(d.phi, forwardDistance(d));
+				w.odometry += Eigen::Vector2d(d(2), forwardDistance(d));  // (2) = heading
 				w.reference_turn += wrapAngle(ref.path[k](2) - ref.path[k - 1](2));
-				odo += std::hypot(d.x, d.y);
+				odo += std::hypot(d.x(), d.y());
 				truth += (ref.path[k].head<2>() - ref.path[k - 1].head<2>()).norm();
 			}
 			if (!whole) continue;

@@ -21,7 +21,7 @@ std::vector<PoseError> poseErrors(const GroundTruth& truth, const std::vector<Tr
 		if (tp.step >= truth.path.size()) continue;
 		PoseError row;
 		row.step = tp.step;
-		row.error = toPose2(tp.pose.mean) - truth.path[tp.step];
+		row.error = tp.pose.mean - truth.path[tp.step];
 		row.error(2) = wrapAngle(row.error(2));
 		// The initial pose is known exactly: no NEES there, whether its
 		// covariance is zero or the tiny floor of a first zero move (1e-10:

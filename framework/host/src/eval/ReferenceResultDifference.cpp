@@ -35,7 +35,7 @@ void comparePoses(
 	{
 		const auto ref = reference.end_poses.find(p.step);
 		if (ref == reference.end_poses.end()) continue;
-		const Pose2 run = toPose2(p.pose.mean);
+		const Pose2 run = p.pose.mean;
 		if (!run.allFinite() || !ref->second.allFinite()) continue;
 		position.add((run.head<2>() - ref->second.head<2>()).norm());
 		heading.add(std::abs(wrapAngle(run(2) - ref->second(2))) * 180.0 / M_PI);

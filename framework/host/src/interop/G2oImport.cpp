@@ -76,7 +76,7 @@ G2oSolution solutionFromG2o(const G2oGraph& graph, const FullSlamProblem& proble
 		TrajectoryPoint p;
 		p.step = k;
 		p.time_s = problem.step_time_s[k];
-		p.pose.mean = toTPose2D(poses[problem.step_pose[k]]);
+		p.pose.mean = poses[problem.step_pose[k]];
 		s.trajectory.push_back(p);
 	}
 	s.estimate.landmarks = landmarksOf(graph, problem, path);

@@ -87,7 +87,7 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 
 		const PoseEstimate pose = plugin.robotPose();
 		out.record.trajectory.push_back({k, step.time_s, pose});
-		const Pose2 p = toPose2(pose.mean);
+		const Pose2 p = pose.mean;
 		if (log.frames[k] &&
 			(!last_keyframe || (p.head<2>() - last_keyframe->head<2>()).norm() >= options.keyframe_min_distance_m))
 		{

@@ -246,7 +246,7 @@ SimulationSummary Simulator::simulate(const std::function<void(const SimulatedSt
 		{
 			// The first scan is taken at the start pose: a zero move keeps
 			// MRPT's action/sensory-frame pairing from dropping it.
-			odo.delta = mrpt::math::TPose2D(0, 0, 0);
+			odo.delta = Pose2(0, 0, 0);
 			odo.cov = kCovarianceFloor * Eigen::Matrix3d::Identity();
 		}
 		else
@@ -259,7 +259,7 @@ SimulationSummary Simulator::simulate(const std::function<void(const SimulatedSt
 			const double v_read = v + s.std_speed_mps * noise.drawGaussian1D_normalized();
 			const double w_read = w + s.std_turn_rate_deg_s * kDegToRad * noise.drawGaussian1D_normalized();
 			const double d = v_read * dt, a = w_read * dt;
-			odo.delta = toTPose2D(midpointIncrement(d, a));
+			odo.delta = midpointIncrement(d, a);
 			odo.cov = odometryCovariance(d, a, var_d, var_a);
 
 			pose = compose(pose, midpointIncrement(v * dt, w * dt));
@@ -268,7 +268,7 @@ SimulationSummary Simulator::simulate(const std::function<void(const SimulatedSt
 		step.input.odometry = odo;
 
 		Scan scan;
-		scan.sensor_on_robot = toTPose2D(sensor_on_robot);
+		scan.sensor_on_robot = sensor_on_robot;
 		scan.max_range_m = s.sensor_max_range_m;
 		scan.fov_rad = s.sensor_fov_deg * kDegToRad;
 		const Pose2 sensor = compose(pose, sensor_on_robot);

@@ -41,7 +41,7 @@ void EkfSlamCore::reserve(std::size_t dim)
 
 void EkfSlamCore::predict(const OdometryIncrement& u)
 {
-	const Pose2 delta = toPose2(u.delta);
+	const Pose2 delta = u.delta;
 	const auto J = composeJacobians(robot(), delta);
 	x_.head<3>() = compose(robot(), delta);
 

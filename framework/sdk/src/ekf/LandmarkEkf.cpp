@@ -43,7 +43,7 @@ StepReport LandmarkEkf::processScan(const StepInput& step)
 	std::vector<EkfSlamCore::Match> matches;
 	unconfirmed_failing_.clear();
 	StepReport report = associateScan(step, matches);
-	const auto outcome = core_.update(matches, toPose2(step.scan->sensor_on_robot), iterated_);
+	const auto outcome = core_.update(matches, step.scan->sensor_on_robot, iterated_);
 	if (outcome.linearisations > 1)
 	{
 		++iterated_updates_;
@@ -127,7 +127,7 @@ StepReport LandmarkEkf::associateScan(const StepInput& step, std::vector<EkfSlam
 StepReport LandmarkEkf::associateByIds(const StepInput& step, std::vector<EkfSlamCore::Match>& matches)
 {
 	const auto& ms = step.scan->measurements;
-	const Pose2 sensor = toPose2(step.scan->sensor_on_robot);
+	const Pose2 sensor = step.scan->sensor_on_robot;
 	// A second measurement of one landmark in one scan is not independent
 	// information about it: only the one closest to the landmark is used
 	// (the first when the landmark is new), so a misread ID cannot displace
@@ -175,7 +175,7 @@ StepReport LandmarkEkf::associateByIds(const StepInput& step, std::vector<EkfSla
 
 std::vector<std::size_t> LandmarkEkf::candidatesFor(const Scan& scan) const
 {
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
+	const Pose2 sensor = scan.sensor_on_robot;
 	const double max_range = scan.max_range_m > 0 ? scan.max_range_m + params_.candidate_margin_m : INFINITY;
 	const double half_fov =
 		scan.fov_rad > 0 ? 0.5 * scan.fov_rad + params_.candidate_margin_deg * kDeg : INFINITY;
@@ -194,7 +194,7 @@ std::vector<std::size_t> LandmarkEkf::candidatesFor(const Scan& scan) const
 StepReport LandmarkEkf::associateByDistance(const Scan& scan, std::vector<EkfSlamCore::Match>& matches)
 {
 	const auto& ms = scan.measurements;
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
+	const Pose2 sensor = scan.sensor_on_robot;
 	const auto candidates = candidatesFor(scan);
 
 	AssociationInput in;
@@ -272,7 +272,7 @@ bool LandmarkEkf::confirmedSighting(const RangeBearing& m, const Pose2& sensor, 
 
 void LandmarkEkf::addNewLandmarks(const Scan& scan, std::size_t step, StepReport& report)
 {
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
+	const Pose2 sensor = scan.sensor_on_robot;
 	for (std::size_t i = 0; i < report.associations.size(); ++i)
 	{
 		auto& a = report.associations[i];
@@ -295,7 +295,7 @@ void LandmarkEkf::addNewLandmarks(const Scan& scan, std::size_t step, StepReport
 	}
 }
 
-PoseEstimate LandmarkEkf::robotPose() const { return {toTPose2D(core_.robot()), core_.robotCov()}; }
+PoseEstimate LandmarkEkf::robotPose() const { return {core_.robot(), core_.robotCov()}; }
 
 Estimate LandmarkEkf::estimate() const
 {

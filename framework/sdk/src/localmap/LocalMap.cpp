@@ -70,7 +70,7 @@ void LocalMap::validate(const std::string& origin, double symmetry_tolerance) co
 			throw NumericalError(where + "covariance " + p);
 	if (link)
 	{
-		if (!toPose2(link->delta).allFinite()) throw NumericalError(where + "non-finite link odometry");
+		if (!link->delta.allFinite()) throw NumericalError(where + "non-finite link odometry");
 		if (const auto p = spdProblem(link->cov, 3, symmetry_tolerance); !p.empty())
 			throw NumericalError(where + "link odometry covariance " + p);
 	}

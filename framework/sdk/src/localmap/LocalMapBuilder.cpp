@@ -50,7 +50,7 @@ StepReport LocalMapBuilder::processStep(const StepInput& step)
 	{
 		link_pending_ = false;
 		report = ekf_.processStep(step);
-		if (step.odometry) travelled_m_ += std::hypot(step.odometry->delta.x, step.odometry->delta.y);
+		if (step.odometry) travelled_m_ += std::hypot(step.odometry->delta.x(), step.odometry->delta.y());
 	}
 	// Features the filter numbered itself: every new one of a scan associated
 	// by distance, even when the log's IDs are present (association = nn|jcbb).

@@ -133,7 +133,7 @@ Normal normalEquations(const LocalMap& a, const LocalMap& b, const Layout& L, co
 	{
 		start = x.segment<3>(L.start_b);
 		const PoseInFrame h = poseInFrame(e_a, start);
-		Eigen::VectorXd r = toPose2(b.link->delta) - h.value;
+		Eigen::VectorXd r = b.link->delta - h.value;
 		r(2) = wrapAngle(r(2));
 		Eigen::MatrixXd J(3, 6);
 		J.leftCols<3>() = h.d_frame;
@@ -175,7 +175,7 @@ void checkInput(const LocalMap& m, const char* name)
 		if (++seen[f.id] > 1) throw std::invalid_argument(where + "feature " + std::to_string(f.id) + " appears twice");
 	if (!m.state().allFinite() || !m.information.allFinite())
 		throw NumericalError(where + "non-finite state or information");
-	if (m.link && (!toPose2(m.link->delta).allFinite() || !m.link->cov.allFinite()))
+	if (m.link && (!m.link->delta.allFinite() || !m.link->cov.allFinite()))
 		throw NumericalError(where + "non-finite link");
 }
 
@@ -227,7 +227,7 @@ LocalMap mergeConsecutiveLocalMaps(const LocalMap& a, const LocalMap& b)
 	Pose2 start = a.end_pose;
 	if (b.link)
 	{
-		start = compose(a.end_pose, toPose2(b.link->delta));
+		start = compose(a.end_pose, b.link->delta);
 		x.segment<3>(L.start_b) = start;
 	}
 	x.segment<3>(Layout::kEndB) = compose(start, b.end_pose);

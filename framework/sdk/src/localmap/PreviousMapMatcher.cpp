@@ -22,7 +22,7 @@ StartPose startPoseOf(const LocalMap& previous, const std::optional<OdometryIncr
 {
 	StartPose s{previous.end_pose};
 	if (!link) return s;
-	const Pose2 u = toPose2(link->delta);
+	const Pose2 u = link->delta;
 	const auto J = composeJacobians(previous.end_pose, u);
 	s.value = compose(previous.end_pose, u);
 	s.d_end = J.d_a;

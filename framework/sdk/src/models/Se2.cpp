@@ -49,10 +49,11 @@ Eigen::Vector2d transformPoint(const Pose2& pose, const Eigen::Vector2d& p)
 
 PoseEstimate composeIndependent(const PoseEstimate& x, const PoseEstimate& r)
 {
-	const Pose2 a = toPose2(x.mean), b = toPose2(r.mean);
+	const Pose2& a = x.mean;
+	const Pose2& b = r.mean;
 	const auto J = composeJacobians(a, b);
 	const Eigen::Matrix3d P = J.d_a * x.cov * J.d_a.transpose() + J.d_b * r.cov * J.d_b.transpose();
-	return {toTPose2D(compose(a, b)), 0.5 * (P + P.transpose())};
+	return {compose(a, b), 0.5 * (P + P.transpose())};
 }
 
 }  // namespace esif

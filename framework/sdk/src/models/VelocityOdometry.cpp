@@ -131,7 +131,7 @@ OdometryIncrement velocityOdometry(
 	}
 	const double v_mean = duration > 0 ? distance / duration : 0, w_mean = duration > 0 ? turn / duration : 0;
 	OdometryIncrement out;
-	out.delta = mrpt::math::TPose2D(end.x(), end.y(), wrapAngle(end.z()));
+	out.delta = Pose2(end.x(), end.y(), wrapAngle(end.z()));
 	out.cov = random_walk + std::pow(noise.speed_scale * v_mean, 2) * j_v * j_v.transpose() +
 			  std::pow(noise.turn_scale * w_mean, 2) * j_w * j_w.transpose();
 	out.cov(0, 0) += noise.floor_m * noise.floor_m;

@@ -34,7 +34,7 @@ StepReport MapJoiningPlugin::processStep(const StepInput& step)
 	StepReport report = builder_->processStep(step);
 	if (auto map = builder_->takeClosedMap())
 	{
-		local_poses_.push_back({toTPose2D(map->end_pose), map->covariance->topLeftCorner<3, 3>()});
+		local_poses_.push_back({map->end_pose, map->covariance->topLeftCorner<3, 3>()});
 		++maps_given_;
 		fuseLocalMap(*map);
 	}

@@ -31,7 +31,7 @@ std::vector<LandmarkId> RelativeAssociation::candidatesFor(const Scan& scan, con
 														   const Eigen::Matrix3d& robot_cov, const FeatureMap& map,
 														   const std::unordered_set<LandmarkId>& excluded) const
 {
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
+	const Pose2 sensor = scan.sensor_on_robot;
 	const double max_range = scan.max_range_m > 0 ? scan.max_range_m + params_.candidate_margin_m : INFINITY;
 	const double half_fov = scan.fov_rad > 0 ? 0.5 * scan.fov_rad + params_.candidate_margin_deg * kDeg : INFINITY;
 	const double k = params_.candidate_margin_sigmas;
@@ -56,7 +56,7 @@ AssociationInput RelativeAssociation::absoluteInput(const Scan& scan, const Pose
 {
 	// Predictions with the robot-map cross-covariance taken as zero (Sec. 3.4.2).
 	const auto& ms = scan.measurements;
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
+	const Pose2 sensor = scan.sensor_on_robot;
 	const auto k = static_cast<Eigen::Index>(candidates.size());
 	AssociationInput in;
 	in.observations.resize(static_cast<Eigen::Index>(ms.size()), 2);
@@ -232,7 +232,7 @@ double RelativeAssociation::relativeTest(const std::vector<Match>& matches, cons
 	const std::vector<LandmarkId>& candidates = t.features;
 	const FeatureMap& map = t.map;
 	const int m = static_cast<int>(matches.size());
-	const Pose2 sensor = toPose2(scan.sensor_on_robot);
+	const Pose2 sensor = scan.sensor_on_robot;
 	// Measured points (eq. 3.41-3.42) and the pair to measure angles from.
 	Eigen::VectorXd z(2 * m);
 	Eigen::MatrixXd Rz = Eigen::MatrixXd::Zero(2 * m, 2 * m);

@@ -3,9 +3,8 @@
 /// What a filter plugin reports: its estimate, its per-step data-association
 /// decisions and its cost figures.
 
+#include <esif/core/Pose2.h>
 #include <esif/core/StepInput.h>
-
-#include <mrpt/math/TPose2D.h>
 
 #include <Eigen/Core>
 #include <optional>
@@ -18,7 +17,7 @@ namespace esif
 /// Robot pose with its 3x3 covariance over (x, y, phi).
 struct PoseEstimate
 {
-	mrpt::math::TPose2D mean;
+	Pose2 mean = Pose2::Zero();  ///< (x [m], y [m], phi [rad]); (2) = heading
 	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
 };
 

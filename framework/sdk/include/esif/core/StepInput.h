@@ -4,7 +4,7 @@
 /// builds it from MRPT rawlog entries; plugins never see rawlog classes, so
 /// they can be driven by hand-made inputs in tests.
 
-#include <mrpt/math/TPose2D.h>
+#include <esif/core/Pose2.h>
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -22,7 +22,7 @@ using LandmarkId = std::int64_t;
 /// covariance over (dx [m], dy [m], dphi [rad]).
 struct OdometryIncrement
 {
-	mrpt::math::TPose2D delta;
+	Pose2 delta = Pose2::Zero();  ///< (dx, dy, dphi); (2) = heading change
 	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
 };
 
@@ -40,7 +40,7 @@ struct RangeBearing
 /// All range-bearing measurements taken at one robot pose.
 struct Scan
 {
-	mrpt::math::TPose2D sensor_on_robot;  ///< sensor pose in the robot frame
+	Pose2 sensor_on_robot = Pose2::Zero();	///< sensor pose in the robot frame
 	double max_range_m = 0;	 ///< 0 when unknown/unlimited
 	double fov_rad = 0;	 ///< full field of view; 0 when unknown
 	std::vector<RangeBearing> measurements;

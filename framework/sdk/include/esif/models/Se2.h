@@ -11,8 +11,6 @@
 
 namespace esif
 {
-using Pose2 = Eigen::Vector3d;	///< (x [m], y [m], phi [rad])
-
 /// Wraps an angle to (-pi, pi].
 double wrapAngle(double a);
 
