@@ -491,6 +491,58 @@ TEST(LocalMapBuilderNoiseFree, OdometryLinkWithCommonFeatureRuleAndHiddenIds)
 	expectStepReports(built, run.steps);
 }
 
+namespace
+{
+/// The steps of every map built from `steps` with hidden IDs, the close
+/// rule needing two common features counted in earlier maps, and the
+/// joining filter's count of own features in its global map given by `counter`.
+std::vector<std::size_t> mapLengthsWithCounter(const std::vector<StepInput>& steps,
+											   LocalMapBuilder::OwnFeaturesInGlobalMap counter)
+{
+	LocalMapBuilderParams params;
+	params.local_map_steps = 15;
+	params.local_map_min_common_features = 2;
+	params.local_map_common_features_in = CommonFeaturesIn::EarlierMaps;
+	LocalMapBuilder builder(params);
+	if (counter) builder.countOwnFeaturesWith(std::move(counter));
+	std::vector<std::size_t> lengths;
+	for (const auto& step : steps)
+	{
+		builder.processStep(step);
+		if (const auto map = builder.takeClosedMap()) lengths.push_back(map->steps);
+	}
+	if (const auto last = builder.finish()) lengths.push_back(last->steps);
+	return lengths;
+}
+}  // namespace
+
+TEST(LocalMapBuilderNoiseFree, HiddenIdsCountOwnFeaturesWithTheJoiningFiltersCounter)
+{
+	auto run = tb::simulateInMemory(
+		tb::withoutNoise(tb::scenarioFromConfig("small")), kFilterStdRange, kFilterStdBearing);
+	for (auto& step : run.steps)
+		for (auto& m : step.scan->measurements) m.id.reset();
+	const std::size_t n = run.steps.size();
+	ASSERT_GT(n, 60u);
+
+	// The filter's count decides: two known features close every map at 15
+	// steps; none never lets map 2 close.
+	const auto counted = mapLengthsWithCounter(run.steps, [](const LandmarkEkf&, const std::set<LandmarkId>& own) {
+		return std::optional<std::size_t>(std::min<std::size_t>(2, own.size()));
+	});
+	ASSERT_GE(counted.size(), n / 15);
+	for (std::size_t k = 0; k + 1 < counted.size(); ++k) EXPECT_EQ(counted[k], 15u) << "map " << k + 1;
+	const auto never = mapLengthsWithCounter(run.steps, [](const LandmarkEkf&, const std::set<LandmarkId>&) {
+		return std::optional<std::size_t>(0);
+	});
+	EXPECT_EQ(never, (std::vector<std::size_t>{15, n - 15}));
+
+	// A filter that cannot tell leaves the rule to the previous-map match.
+	const auto undecided = mapLengthsWithCounter(
+		run.steps, [](const LandmarkEkf&, const std::set<LandmarkId>&) { return std::optional<std::size_t>(); });
+	EXPECT_EQ(undecided, mapLengthsWithCounter(run.steps, nullptr));
+}
+
 // -------------------------------------------------------- information form
 
 TEST(LocalMapBuilder, StationaryRobotGetsTheDocumentedStabilisation)

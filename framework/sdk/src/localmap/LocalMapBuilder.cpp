@@ -98,8 +98,10 @@ std::size_t LocalMapBuilder::openMapCommonFeatures() const
 		params_.local_map_common_features_in == CommonFeaturesIn::EarlierMaps ? ids_in_closed_maps_ : previous_ids;
 	std::size_t common = 0;
 	for (const LandmarkId id : ekf_.ids()) common += !own_ids_.count(id) && counted_in.count(id);
-	if (!own_ids_.empty())
-		for (const auto& m : matchOwnFeaturesToPrevious()) common += m.has_value();
+	if (own_ids_.empty()) return common;
+	if (params_.local_map_common_features_in == CommonFeaturesIn::EarlierMaps && own_in_global_)
+		if (const auto in_global = own_in_global_(ekf_, own_ids_)) return common + *in_global;
+	for (const auto& m : matchOwnFeaturesToPrevious()) common += m.has_value();
 	return common;
 }
 

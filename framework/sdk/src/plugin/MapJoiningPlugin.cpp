@@ -13,6 +13,9 @@ void MapJoiningPlugin::startBuilder(const LocalMapBuilderParams& params)
 {
 	builder_params_ = params;
 	builder_ = std::make_unique<LocalMapBuilder>(params);
+	builder_->countOwnFeaturesWith([this](const LandmarkEkf& open_map, const std::set<LandmarkId>& own_ids) {
+		return ownFeaturesInGlobalMap(open_map, own_ids);
+	});
 }
 
 void MapJoiningPlugin::requireBuilder() const

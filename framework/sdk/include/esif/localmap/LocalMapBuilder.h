@@ -17,6 +17,7 @@
 #include <esif/localmap/LocalMap.h>
 #include <esif/localmap/LocalMapBuilderParams.h>
 
+#include <functional>
 #include <optional>
 #include <set>
 #include <vector>
@@ -55,6 +56,16 @@ class LocalMapBuilder
 	/// close rule (by ID, or matched geometrically when the builder numbered them).
 	std::size_t openMapCommonFeatures() const;
 
+	/// How many of the open map's own features (those the builder numbered:
+	/// the input had no IDs) are features of the joining filter's global
+	/// map; nullopt when the filter cannot tell.
+	using OwnFeaturesInGlobalMap =
+		std::function<std::optional<std::size_t>(const LandmarkEkf& open_map, const std::set<LandmarkId>& own_ids)>;
+	/// With local_map_common_features_in = earlier_maps, the close rule
+	/// counts own features with `counter` (as it counts features with IDs
+	/// in any earlier map) instead of matching them to the previous map.
+	void countOwnFeaturesWith(OwnFeaturesInGlobalMap counter) { own_in_global_ = std::move(counter); }
+
 	/// The authors' stabilisation (their StabNoise): a robot variance below
 	/// this is raised by it, so a map in which the robot did not move still
 	/// has an information matrix. The closed map's covariance is the
@@ -78,6 +89,7 @@ class LocalMapBuilder
 	std::vector<StepReport> reports_;  // the open map's steps
 	std::set<LandmarkId> ids_in_closed_maps_;
 	std::optional<LocalMap> previous_;	// the last closed map
+	OwnFeaturesInGlobalMap own_in_global_;
 	std::optional<LocalMap> closed_;
 	static constexpr LandmarkId kFirstOwnId = 1;  // features the builder numbers: 1, 2, ...
 	LandmarkId next_own_id_ = kFirstOwnId;

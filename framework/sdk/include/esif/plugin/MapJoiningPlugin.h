@@ -78,6 +78,15 @@ class MapJoiningPlugin : public FilterPlugin, public LocalMapJoiner
 	virtual std::vector<SettledFusion> settledFusions() const = 0;
 	/// The global map's information (for informationPattern()).
 	virtual SparseInformationCore& globalInformation() const = 0;
+	/// For the builder's close rule without IDs
+	/// (LocalMapBuilder::countOwnFeaturesWith): how many of the open map's
+	/// own features the global map holds; nullopt (the default) when the
+	/// filter cannot tell.
+	virtual std::optional<std::size_t> ownFeaturesInGlobalMap(
+		const LandmarkEkf& open_map, const std::set<LandmarkId>& own_ids) const
+	{
+		return std::nullopt;
+	}
 
    private:
 	void requireBuilder() const;
