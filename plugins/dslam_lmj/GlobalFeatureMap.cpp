@@ -4,6 +4,7 @@
 #include "ReferenceChoice.h"
 
 #include <algorithm>
+#include <set>
 
 namespace esif::lmj
 {
@@ -205,6 +206,19 @@ void GlobalFeatureMap::locateAllEnds()
 	for (auto& fusion : fusions_) locateEnds(fusion);
 }
 
+std::vector<LandmarkId> GlobalFeatureMap::informedOnlyByLast() const
+{
+	if (fusions_.empty()) return {};
+	std::set<LandmarkId> by_others;
+	for (std::size_t f = 0; f + 1 < fusions_.size(); ++f)
+		for (const auto& a : fusions_[f].decisions.associations)
+			if (a.kind != Association::Kind::Rejected) by_others.insert(a.id);
+	std::vector<LandmarkId> out;
+	for (const auto& a : fusions_.back().decisions.associations)
+		if (a.kind != Association::Kind::Rejected && !by_others.count(a.id)) out.push_back(a.id);
+	return out;
+}
+
 Fusion GlobalFeatureMap::withdrawLast()
 {
 	Fusion withdrawn = std::move(fusions_.back());
@@ -246,6 +260,15 @@ PoseEstimate GlobalFeatureMap::lastEndPose() const
 {
 	if (fusions_.empty()) return {};  // the global frame is map 1's start
 	return fusions_.back().ends.back().global;
+}
+
+std::optional<PoseEstimate> GlobalFeatureMap::endPoseOf(std::size_t k) const
+{
+	const Fusion* fusion = fusionOf(k);
+	if (!fusion) return std::nullopt;
+	for (const auto& end : fusion->ends)
+		if (end.map == k) return end.global;
+	return std::nullopt;
 }
 
 std::vector<PoseEstimate> GlobalFeatureMap::endPoses() const

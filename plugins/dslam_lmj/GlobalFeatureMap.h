@@ -68,6 +68,10 @@ class GlobalFeatureMap
 	/// changed, when no two of its features mapped in the global map make a
 	/// reference pair.
 	bool fuseRelative(const JoinedMaps& maps, const StepReport& decisions);
+	/// The features no fusion but the last informs: those the last fusion
+	/// created, and those it carried for a fusion withdrawn before it.
+	/// Withdrawing it leaves them without information until fused again.
+	std::vector<LandmarkId> informedOnlyByLast() const;
 	/// Takes back the last fusion (its features stay, without its
 	/// information, until fused again) and returns its record.
 	Fusion withdrawLast();
@@ -89,6 +93,9 @@ class GlobalFeatureMap
 	Eigen::Matrix4d pairCovariance(LandmarkId f1, LandmarkId f2);
 	/// The last end pose recorded (the global frame's origin before any).
 	PoseEstimate lastEndPose() const;
+	/// The end pose of original map k, once a fusion (or an unjoinable
+	/// record) holds it.
+	std::optional<PoseEstimate> endPoseOf(std::size_t k) const;
 	/// Every original map's end pose, by map index.
 	std::vector<PoseEstimate> endPoses() const;
 	/// Original maps fused (unjoinable ones not counted).
