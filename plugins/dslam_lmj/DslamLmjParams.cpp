@@ -11,6 +11,13 @@ void DslamLmjParams::declare(ParamBinder& b)
 		   Bounds::nonNegative());
 	b.real("region_sigmas", region_sigmas, "sigmas of the reference feature's global uncertainty in the region",
 		   Bounds::nonNegative());
+	b.enumeration<UpperLevelFrame>(
+		"upper_level_frame", upper_level_frame,
+		{{"pair", UpperLevelFrame::Pair}, {"start_pose", UpperLevelFrame::StartPose}},
+		"without IDs, local features meet the global candidates in the frame of two features known from the local "
+		"level (pair, the book) or in the map's frame placed by its start pose (start_pose: the previous map's end "
+		"pose, Sec. 4.4.1; no known feature needed; region: region_sigmas of the placement's uncertainty plus "
+		"region_margin_m)");
 	b.real("reference_min_separation_m", reference_min_separation_m,
 		   "reference features f1, f2 of a local map at least this far apart [m]", Bounds::positive());
 	b.real("reference_min_clearance_m", reference_min_clearance_m,

@@ -13,6 +13,21 @@
 
 namespace esif::lmj
 {
+/// Where a closed local map's features meet the global map's candidates
+/// when its features carry no IDs (Sec. 4.4.2).
+enum class UpperLevelFrame
+{
+	/// In the frame of two local features already known to be global ones
+	/// (matched to the previous map by the local level): the book.
+	Pair,
+	/// In the map's own frame, placed by its start pose: the end pose of the
+	/// map before it, located through that map's pair (Sec. 4.4.1), as
+	/// SLSJF places a local map (Sec. 5.4.1). Needs no feature known in
+	/// advance, so a map whose trees were seen by an earlier map but not by
+	/// the previous one can still be associated.
+	StartPose
+};
+
 /// The upper-level association (MapLevelAssociationParams: with jcbb or nn,
 /// in the frame of two common features known from the local level, Sec.
 /// 4.4.2; with IDs the gate is tested in a reference pair's frame) and the rest.
@@ -22,6 +37,8 @@ struct DslamLmjParams : MapLevelAssociationParams
 	/// reach from f1 plus Delta = region_sigmas * sigma_max(f1 global) + this [m].
 	double region_margin_m = 2.0;
 	double region_sigmas = 3.0;	 ///< the k_sigma of Delta (the authors' SigmaMultiplier)
+	/// Without IDs: pair (the book) or start_pose (see UpperLevelFrame).
+	UpperLevelFrame upper_level_frame = UpperLevelFrame::Pair;
 	/// Reference pair (Sec. 4.2.2, eq. 4.7): the widest baseline among mapped
 	/// features at least this far apart [m] ...
 	double reference_min_separation_m = 1.0;

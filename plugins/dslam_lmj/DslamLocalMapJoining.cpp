@@ -6,9 +6,11 @@
 #include <esif/association/Chi2.h>
 #include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
+#include <esif/models/LocalMapObservation.h>
 
 #include <algorithm>
 #include <chrono>
+#include <set>
 
 IMPLEMENTS_MRPT_OBJECT(DslamLocalMapJoining, FilterPlugin, esif)
 
@@ -99,7 +101,7 @@ bool DslamLocalMapJoining::joinWithLastFusion(const JoinedMaps& maps)
 	std::optional<UpperLevelOutcome> decided;
 	if (!last.anchor)
 	{
-		decided = associateBeforeWithdrawing(joined.map, last.update.new_features);
+		decided = associateBeforeWithdrawing(joined.map, global_->informedOnlyByLast());
 		if (!decided) return false;
 	}
 
@@ -142,23 +144,32 @@ std::optional<UpperLevelOutcome> DslamLocalMapJoining::associateBeforeWithdrawin
 void DslamLocalMapJoining::keepFeaturesOfWithdrawnFusion(
 	const LocalMap& joined, const std::vector<LandmarkId>& created, UpperLevelOutcome& decided) const
 {
-	// A feature the withdrawn fusion created has no other information: left
+	// A feature only the withdrawn fusion informs (it created it, or carried
+	// it for a fusion withdrawn before) has no other information: left
 	// out of the joined map's update (rejected by the ID gate, or as
 	// ambiguous), it would stay in the global map with none at all, and the
 	// next recovery would fail on a singular information matrix. Its global
 	// estimate came from this very map, so failing a test against it says
-	// nothing about a misread ID or a wrong match: it is kept, matched to itself.
+	// nothing about a misread ID or a wrong match: it is kept, matched to
+	// itself. So is one the association gave to another global feature
+	// (merging the two would leave this one with no information) unless
+	// another local feature is matched to it.
 	const auto& global_of_local = global_->globalOfLocal();
+	std::set<LandmarkId> claimed;
+	for (const auto& a : decided.decisions.associations)
+		if (a.kind == Association::Kind::Matched) claimed.insert(a.id);
 	for (std::size_t i = 0; i < joined.features.size(); ++i)
 	{
 		auto& a = decided.decisions.associations[i];
-		if (a.kind != Association::Kind::Rejected) continue;
 		const LandmarkId local = joined.features[i].id;
 		const auto known = global_of_local.find(local);
 		const LandmarkId global = useIds(joined) ? local : known != global_of_local.end() ? known->second : -1;
 		if (std::find(created.begin(), created.end(), global) == created.end()) continue;
+		if (a.kind == Association::Kind::Matched && a.id == global) continue;
+		if (a.kind != Association::Kind::Rejected && claimed.count(global)) continue;
+		if (a.kind == Association::Kind::Rejected && decided.tally.id_gate_rejected > 0) --decided.tally.id_gate_rejected;
 		a = {Association::Kind::Matched, global};
-		if (decided.tally.id_gate_rejected > 0) --decided.tally.id_gate_rejected;
+		claimed.insert(global);
 	}
 }
 
@@ -167,6 +178,8 @@ std::optional<UpperLevelOutcome> DslamLocalMapJoining::associate(const LocalMap&
 	relative::FeatureMap& global = global_->features();
 	if (useIds(map)) return associateByIds(map, feature_cov, global, params_);
 	const auto known = knownGlobalIds(map, false, global_->globalOfLocal(), global);
+	if (params_.upper_level_frame == UpperLevelFrame::StartPose)
+		return associateInStartFrame(map, feature_cov, known, startOf(map), global, params_);
 	return associateInPairFrame(map, feature_cov, known, global, params_);
 }
 
@@ -221,6 +234,51 @@ PoseEstimate DslamLocalMapJoining::openMapFrame() const
 	if (!pending_) return last;
 	const LocalMap& map = pending_->map;
 	return composeIndependent(last, {map.end_pose, map.covarianceMatrix().topLeftCorner<3, 3>()});
+}
+
+std::optional<std::size_t> DslamLocalMapJoining::ownFeaturesInGlobalMap(
+	const LandmarkEkf& open_map, const std::set<LandmarkId>& own_ids) const
+{
+	if (params_.upper_level_frame != UpperLevelFrame::StartPose || !global_ || !global_->anchored())
+		return std::nullopt;
+	// Sec. 4.4.4 without IDs: an own feature counts when, placed by the open
+	// map's start pose, it passes the individual gate of some global feature
+	// (the placement's and its own uncertainty; the global feature's is left
+	// out, which would need a covariance recovery at every step).
+	const PoseEstimate frame = openMapFrame();
+	const double gate = chi2GateBound(params_.gate_chi2_quantile, 2);
+	const relative::FeatureMap& global = global_->features();
+	const auto P = open_map.core().covariance();
+	std::size_t count = 0;
+	for (std::size_t i = 0; i < open_map.ids().size(); ++i)
+	{
+		if (!own_ids.count(open_map.ids()[i])) continue;
+		const auto r = static_cast<Eigen::Index>(3 + 2 * i);
+		const PointFromFrame placed = pointFromFrame(frame.mean, open_map.core().landmark(i));
+		const Eigen::Matrix2d S = placed.d_frame * frame.cov * placed.d_frame.transpose() +
+			placed.d_point * P.block<2, 2>(r, r) * placed.d_point.transpose();
+		const Eigen::LLT<Eigen::Matrix2d> llt(S);
+		if (llt.info() != Eigen::Success) continue;
+		for (const LandmarkId id : global.ids())
+		{
+			if (!global.supported(id)) continue;
+			const Eigen::Vector2d nu = placed.value - global.position(id);
+			if (nu.dot(llt.solve(nu)) <= gate)
+			{
+				++count;
+				break;
+			}
+		}
+	}
+	return count;
+}
+
+PoseEstimate DslamLocalMapJoining::startOf(const LocalMap& map) const
+{
+	PoseEstimate start;	 // map 1 starts at the global origin, known exactly
+	if (map.index > 1) start = global_->endPoseOf(map.index - 1).value_or(global_->lastEndPose());
+	if (map.link) start = composeIndependent(start, {map.link->delta, map.link->cov});
+	return start;
 }
 
 std::optional<LandmarkId> DslamLocalMapJoining::globalIdOfOpenFeature(LandmarkId id) const

@@ -64,6 +64,10 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 	void checkGivenMap(const LocalMap& map) const override;
 	std::vector<SettledFusion> settledFusions() const override;
 	SparseInformationCore& globalInformation() const override;
+	/// With upper_level_frame = start_pose, the close rule's count of own
+	/// features in the global map (Sec. 4.4.4 without IDs).
+	std::optional<std::size_t> ownFeaturesInGlobalMap(
+		const LandmarkEkf& open_map, const std::set<LandmarkId>& own_ids) const override;
 
    private:
 	void start() override;
@@ -84,6 +88,9 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 	std::optional<lmj::UpperLevelOutcome> associate(const LocalMap& map, const Eigen::MatrixXd& feature_cov);
 	void giveUpPendingMap();
 	PoseEstimate openMapFrame() const;
+	/// Where `map` starts in the global frame: the end pose of the map
+	/// before it (the global origin for map 1), then its link if it has one.
+	PoseEstimate startOf(const LocalMap& map) const;
 	std::optional<LandmarkId> globalIdOfOpenFeature(LandmarkId id) const;
 
 	// Behind const robotPose()/estimate(): recovery caches.

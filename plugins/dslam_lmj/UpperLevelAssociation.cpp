@@ -7,6 +7,7 @@
 #include <esif/association/Chi2.h>
 #include <esif/association/PointSetAssociation.h>
 #include <esif/models/LocalMapObservation.h>
+#include <esif/models/Se2.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -62,6 +63,41 @@ std::vector<LandmarkId> regionCandidates(
 			out.push_back(id);
 	return out;
 }
+/// Supported global features within reach of a local feature placed by
+/// `start`: region_sigmas of the placement's position and heading
+/// uncertainty (the heading's grows with the feature's distance from the
+/// start) and of the feature's own, plus region_margin_m.
+std::vector<LandmarkId> startFrameCandidates(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, const PoseEstimate& start,
+	const relative::FeatureMap& global, const DslamLmjParams& params)
+{
+	const double sigma_xy = largestSigma(start.cov.topLeftCorner<2, 2>());
+	const double sigma_phi = std::sqrt(std::max(0.0, start.cov(2, 2)));
+	std::vector<Eigen::Vector2d> placed;
+	std::vector<double> reach;
+	for (std::size_t i = 0; i < map.features.size(); ++i)
+	{
+		const Eigen::Vector2d& p = map.features[i].position;
+		const auto r = static_cast<Eigen::Index>(2 * i);
+		placed.push_back(transformPoint(start.mean, p));
+		reach.push_back(params.region_margin_m +
+						params.region_sigmas * (sigma_xy + p.norm() * sigma_phi + largestSigma(local_cov.block<2, 2>(r, r))));
+	}
+	std::vector<LandmarkId> out;
+	for (const LandmarkId id : global.ids())
+	{
+		if (!global.supported(id)) continue;
+		const Eigen::Vector2d x = global.position(id);
+		for (std::size_t i = 0; i < placed.size(); ++i)
+			if ((placed[i] - x).norm() < reach[i])
+			{
+				out.push_back(id);
+				break;
+			}
+	}
+	return out;
+}
+
 /// Squared Mahalanobis distance of each local feature `others` from the
 /// global feature of the same ID, both sides in the frame of the pair (a, b).
 std::vector<double> pairFrameDistances2(const LocalMap& map, const Eigen::MatrixXd& local_cov, int a, int b,
@@ -141,6 +177,30 @@ std::optional<std::vector<int>> failingInPairFrame(const LocalMap& map, const Ei
 		if (!(d2[k] <= gate)) failing.push_back(others[k]);
 	return failing;
 }
+/// Of the `eligible` local features (each named by the ID of its global
+/// feature), those that fail the id gate in the frame of a reference pair
+/// chosen among them; when more than half fail, a member of the pair is
+/// suspect and the pair is chosen again without it (first without f1, then
+/// without f2), keeping the attempt with the fewest failures. Nothing is
+/// tested with fewer than three.
+std::vector<int> failingPairGate(const LocalMap& map, const Eigen::MatrixXd& local_cov, const std::vector<int>& eligible,
+								 relative::FeatureMap& global, const DslamLmjParams& params)
+{
+	const double gate = params.idGateDistance2();
+	if (eligible.size() < 3 || std::isinf(gate)) return {};
+	std::pair<int, int> pair{-1, -1};
+	auto failing = failingInPairFrame(map, local_cov, eligible, -1, global, params, pair);
+	if (!failing) return {};
+	const std::size_t tested = eligible.size() - 2;
+	if (2 * failing->size() > tested)
+		for (const int excluded : {pair.first, pair.second})
+		{
+			std::pair<int, int> other_pair;
+			const auto retry = failingInPairFrame(map, local_cov, eligible, excluded, global, params, other_pair);
+			if (retry && retry->size() < failing->size()) failing = retry;
+		}
+	return *failing;
+}
 }  // namespace
 
 std::vector<std::optional<LandmarkId>> knownGlobalIds(
@@ -179,22 +239,9 @@ UpperLevelOutcome associateByIds(
 			{global.contains(id) ? Association::Kind::Matched : Association::Kind::New, id});
 		if (global.contains(id) && global.supported(id)) eligible.push_back(static_cast<int>(i));
 	}
-	const double gate = params.idGateDistance2();
-	if (eligible.size() < 3 || std::isinf(gate)) return out;
-
-	std::pair<int, int> pair{-1, -1};
-	auto failing = failingInPairFrame(map, local_cov, eligible, -1, global, params, pair);
-	if (!failing) return out;
-	const std::size_t tested = eligible.size() - 2;
-	if (2 * failing->size() > tested)
-		for (const int excluded : {pair.first, pair.second})
-		{
-			std::pair<int, int> other_pair;
-			const auto retry = failingInPairFrame(map, local_cov, eligible, excluded, global, params, other_pair);
-			if (retry && retry->size() < failing->size()) failing = retry;
-		}
-	for (const int i : *failing) out.decisions.associations[i].kind = Association::Kind::Rejected;
-	out.tally.id_gate_rejected = failing->size();
+	const std::vector<int> failing = failingPairGate(map, local_cov, eligible, global, params);
+	for (const int i : failing) out.decisions.associations[i].kind = Association::Kind::Rejected;
+	out.tally.id_gate_rejected = failing.size();
 	return out;
 }
 
@@ -248,6 +295,78 @@ std::optional<UpperLevelOutcome> associateInPairFrame(
 
 	applyMapLevelDecisions(decideMapFeatures(sets, params), unknown_indices, candidates, out.decisions, out.tally);
 	return out;
+}
+
+UpperLevelOutcome associateInStartFrame(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, const std::vector<std::optional<LandmarkId>>& known,
+	const PoseEstimate& start, relative::FeatureMap& global, const DslamLmjParams& params)
+{
+	UpperLevelOutcome out;
+	std::vector<int> unknown;
+	std::set<LandmarkId> known_ids;
+	for (std::size_t i = 0; i < map.features.size(); ++i)
+	{
+		out.decisions.associations.push_back(known[i] ? Association{Association::Kind::Matched, *known[i]}
+													  : Association{Association::Kind::New, map.features[i].id});
+		if (known[i])
+			known_ids.insert(*known[i]);
+		else
+			unknown.push_back(static_cast<int>(i));
+	}
+	std::vector<LandmarkId> candidates;
+	for (const LandmarkId id : startFrameCandidates(map, local_cov, start, global, params))
+		if (!known_ids.count(id)) candidates.push_back(id);
+	out.tally.candidates = candidates.size();
+	if (candidates.empty() || unknown.empty()) return out;
+
+	PointSets sets;
+	const auto M = static_cast<Eigen::Index>(unknown.size());
+	std::vector<Eigen::Index> rows;
+	sets.observed.resize(M, 2);
+	for (Eigen::Index u = 0; u < M; ++u)
+	{
+		sets.observed.row(u) = map.features[unknown[u]].position.transpose();
+		rows.push_back(2 * unknown[u]);
+		rows.push_back(2 * unknown[u] + 1);
+	}
+	sets.observed_cov = local_cov(rows, rows);
+	// [start; candidates] -> candidates in the local frame (first order).
+	const auto N = static_cast<Eigen::Index>(candidates.size());
+	Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * N, 3 + 2 * N);
+	sets.candidates.resize(N, 2);
+	for (Eigen::Index c = 0; c < N; ++c)
+	{
+		const PointInFrame y = pointInFrame(start.mean, global.position(candidates[c]));
+		sets.candidates.row(c) = y.value.transpose();
+		J.block<2, 3>(2 * c, 0) = y.d_frame;
+		J.block<2, 2>(2 * c, 3 + 2 * c) = y.d_point;
+	}
+	Eigen::MatrixXd P = Eigen::MatrixXd::Zero(3 + 2 * N, 3 + 2 * N);
+	P.topLeftCorner<3, 3>() = start.cov;
+	P.bottomRightCorner(2 * N, 2 * N) = global.covariance(candidates);
+	sets.candidates_cov = J * P * J.transpose();
+
+	applyMapLevelDecisions(decideMapFeatures(sets, params), unknown, candidates, out.decisions, out.tally);
+	rejectMatchesFailingPairGate(map, local_cov, global, params, out);
+	return out;
+}
+
+void rejectMatchesFailingPairGate(const LocalMap& map, const Eigen::MatrixXd& local_cov, relative::FeatureMap& global,
+								  const DslamLmjParams& params, UpperLevelOutcome& outcome)
+{
+	LocalMap named;	 // the features only, each named by the global feature it was matched to
+	named.features = map.features;
+	std::vector<int> eligible;
+	for (std::size_t i = 0; i < map.features.size(); ++i)
+	{
+		const Association& a = outcome.decisions.associations[i];
+		if (a.kind != Association::Kind::Matched || !global.supported(a.id)) continue;
+		named.features[i].id = a.id;
+		eligible.push_back(static_cast<int>(i));
+	}
+	const std::vector<int> failing = failingPairGate(named, local_cov, eligible, global, params);
+	for (const int i : failing) outcome.decisions.associations[i] = {Association::Kind::Rejected, -1};
+	outcome.tally.pairs_dropped += failing.size();
 }
 
 }  // namespace esif::lmj

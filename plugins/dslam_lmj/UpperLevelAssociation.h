@@ -67,4 +67,26 @@ std::optional<UpperLevelOutcome> associateInPairFrame(
 	const LocalMap& map, const Eigen::MatrixXd& local_cov, const std::vector<std::optional<LandmarkId>>& known,
 	relative::FeatureMap& global, const DslamLmjParams& params);
 
+/// Sec. 4.4.2 without a known pair (upper_level_frame = start_pose): the
+/// features `known` holds are Matched to it, as in associateInPairFrame;
+/// every other local feature is associated with the global features near where `start` (the map's
+/// start pose in the global frame, with its covariance) places it; the
+/// candidates moved into the local map's frame with the first-order
+/// covariance of the placement and of their own joint estimate (eq. 3.25
+/// columns), then associated as in associateInPairFrame. The placement's
+/// error is taken as independent of the candidates' (it comes from the
+/// previous map's pair, which is near some of them): the test is wider than
+/// the exact one where they are correlated positively.
+UpperLevelOutcome associateInStartFrame(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, const std::vector<std::optional<LandmarkId>>& known,
+	const PoseEstimate& start, relative::FeatureMap& global, const DslamLmjParams& params);
+
+/// The matches of `outcome` checked as associateByIds checks ID matches
+/// (in the frame of a reference pair of them, id_gate_chi2_quantile): a
+/// wrong match chosen as the fusion's pair would misplace the whole map, and
+/// every map after it, since each starts where the last ended. A failing
+/// match is Rejected (left out), and counted in pairs_dropped.
+void rejectMatchesFailingPairGate(const LocalMap& map, const Eigen::MatrixXd& local_cov, relative::FeatureMap& global,
+								  const DslamLmjParams& params, UpperLevelOutcome& outcome);
+
 }  // namespace esif::lmj

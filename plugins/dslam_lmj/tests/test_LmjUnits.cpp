@@ -178,6 +178,51 @@ TEST(LmjUnits, IdMatchedFeatureFailingTheGateIsLeftOut)
 	}
 }
 
+TEST(LmjUnits, StartPoseAssociationNeedsNoKnownFeature)
+{
+	// The same six features with their IDs hidden (local 11-16) and none
+	// known: placed by a start pose 0.36 m and 1.1 deg off, whose covariance
+	// says so, five find their global feature; the misread one, 3 m from
+	// every mapped feature, is new.
+	MisreadCase c;
+	buildMisreadCase(c, 5);
+	for (auto& f : c.map.features) f.id += 10;
+	const std::vector<std::optional<LandmarkId>> known(6);
+	PoseEstimate start;
+	start.mean = Pose2(1.3, 1.8, 0.32);
+	start.cov = Eigen::Vector3d(0.3 * 0.3, 0.3 * 0.3, 0.03 * 0.03).asDiagonal();
+	lmj::DslamLmjParams params;
+	const auto out = lmj::associateInStartFrame(c.map, c.local_cov, known, start, c.global, params);
+	ASSERT_EQ(out.decisions.associations.size(), 6u);
+	for (int i = 0; i < 6; ++i)
+	{
+		const Association& a = out.decisions.associations[i];
+		if (i + 1 == 5)
+		{
+			EXPECT_EQ(a.kind, Association::Kind::New);
+			continue;
+		}
+		EXPECT_EQ(a.kind, Association::Kind::Matched) << "feature " << i + 1;
+		EXPECT_EQ(a.id, i + 1);
+	}
+}
+
+TEST(LmjUnits, WrongMatchFailsThePairGate)
+{
+	// Feature 2 (at (3, 0)) given to global feature 3 (at (6, 0)): in the
+	// frame of a pair of the others it lies 3 m from it, and is left out.
+	MisreadCase c;
+	buildMisreadCase(c, -1);
+	lmj::UpperLevelOutcome outcome;
+	for (int i = 0; i < 6; ++i) outcome.decisions.associations.push_back({Association::Kind::Matched, i + 1});
+	outcome.decisions.associations[1].id = 3;
+	outcome.decisions.associations[2] = {Association::Kind::New, 3};
+	lmj::rejectMatchesFailingPairGate(c.map, c.local_cov, c.global, lmj::DslamLmjParams{}, outcome);
+	EXPECT_EQ(outcome.decisions.associations[1].kind, Association::Kind::Rejected);
+	EXPECT_EQ(outcome.tally.pairs_dropped, 1u);
+	for (const int i : {0, 3, 4, 5}) EXPECT_EQ(outcome.decisions.associations[i].kind, Association::Kind::Matched) << i;
+}
+
 /// grid196's local maps of `steps` steps (IDs known, features closer than
 /// 0.3 m unused, as the configs).
 std::vector<LocalMap> grid196Maps(int steps, std::size_t step_count)
