@@ -28,6 +28,23 @@ set +e
 "$esif" compare --configs "$without" --rawlog "$vp" --reference "$out/vicpark_ids/ceres_full" --out "$out/vicpark_no_ids" >/dev/null
 set -e
 
+# D-SLAM map joining without IDs: the upper level's frame against the local
+# maps' length (the no-ID config's two keys that differ from its twin).
+sweep=$out/dslam_lmj_sweep
+mkdir -p "$sweep"
+for frame in pair start_pose; do
+  for steps in 35 50 70 100 150; do
+    sed -e "s|^calibration = ../calibration/|calibration = $PWD/configs/calibration/|" \
+        -e "s|^local_map_steps = .*|local_map_steps = $steps|" \
+        -e "s|^upper_level_frame = .*|upper_level_frame = $frame|" \
+        -e "s|^label .*|label = ${frame}_$steps|" configs/vicpark/dslam_lmj_jcbb.ini > "$work/${frame}_$steps.ini"
+    set +e
+    "$esif" run -q --no-figures --config "$work/${frame}_$steps.ini" --rawlog "$vp" --out "$sweep/${frame}_$steps" \
+      --reference-run "$out/vicpark_ids/ceres_full" >/dev/null 2>"$sweep/${frame}_$steps.err"
+    set -e
+  done
+done
+
 mrclam_dir=${MRCLAM_DIR:-../shared/data/mrclam/MRCLAM_Dataset6}
 [ -d "$mrclam_dir" ] || { echo "bench/$bench_script: $(realpath -m "$mrclam_dir") not present (MRCLAM dataset 6; set MRCLAM_DIR)" >&2; exit 1; }
 for r in 1 2 3 4 5; do
@@ -71,6 +88,27 @@ for label, a in ids.items():
         f(num(b, "da_precision"), "{:.1%}"), f(num(b, "da_recall"), "{:.1%}"), f(rb, "{:.2f}"),
         f(rb / ra if ra and rb is not None else None, "{:.2f}"), f(tb / ta if ta and tb is not None else None, "{:.2f}"),
         (b.get("status") or "ok") if b else "no run"]) + " |")
+print("\n## D-SLAM map joining without IDs: upper-level frame and local-map length\n")
+print("`configs/vicpark/dslam_lmj_jcbb.ini` with `upper_level_frame` and `local_map_steps` varied, the rest as "
+      "shipped; scored as above. `pair`: the book's frame of two trees matched to the previous map (Sec. 4.4.2), "
+      "`start_pose`: the map placed by its start pose, the close rule counting its trees in the global map.\n")
+print("| frame | steps | local maps | landmarks | found / dup. | precision | recall | RMS from the optimum [m] | status |")
+print("|---|---:|---:|---:|---|---:|---:|---:|---|")
+import json
+for frame in ("pair", "start_pose"):
+    for steps in (35, 50, 70, 100, 150):
+        path = os.path.join(out, "dslam_lmj_sweep", "%s_%d" % (frame, steps), "stats.json")
+        if not os.path.exists(path):
+            err = os.path.join(out, "dslam_lmj_sweep", "%s_%d.err" % (frame, steps))
+            why = open(err).read().strip().splitlines()[-1][:80] if os.path.exists(err) and os.path.getsize(err) else "no run"
+            print("| %s | %d | | | | | | | failed: %s |" % (frame, steps, why))
+            continue
+        s = json.load(open(path))
+        g = lambda k, fmt: f(s.get(k), fmt)
+        print("| %s | %d | %s | %s | %s / %s | %s | %s | %s | %s |" % (
+            frame, steps, g("local_maps", "{:.0f}"), g("landmarks", "{:.0f}"), g("landmarks_found", "{:.0f}"),
+            g("landmarks_duplicated", "{:.0f}"), g("da_precision", "{:.1%}"), g("da_recall", "{:.1%}"),
+            g("ref_landmark_rms_m", "{:.2f}"), "suspect" if s.get("suspect") else "ok"))
 print("\n## MRCLAM dataset 6, robots 1-5\n")
 print("Against the Vicon ground truth. Median over the five robots of the landmark RMSE and of the mean landmark "
       "NEES (2 when consistent), the landmarks mapped per robot beside the cylinders it saw, and the runs that "
