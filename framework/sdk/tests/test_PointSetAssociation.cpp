@@ -230,6 +230,48 @@ TEST(PointSetAssociation, HypothesisTheExactJointTestRejectsIsRepaired)
 	}
 }
 
+/// Six candidates on a line from the frame's origin, their lateral errors
+/// one rotation (sigma 0.05 rad: a start pose's heading) beside 1 cm of
+/// their own; six observed points (10 cm, independent) 1 sigma of that
+/// rotation off, and a seventh, a duplicate of the sixth (a local map's
+/// second feature for one tree), 0.3 m on the other side of candidate 6.
+/// The duplicate is the nearest pair of all on its own (d2 0.01), yet it
+/// contradicts the rotation the other five fix to 0.1 m.
+PointSets duplicateAgainstARotation()
+{
+	PointSets s;
+	const int n = 6;
+	s.candidates.resize(n, 2);
+	Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * n, 1);
+	for (int j = 0; j < n; ++j)
+	{
+		s.candidates.row(j) << 10.0 * (j + 1), 0;
+		J(2 * j + 1, 0) = 10.0 * (j + 1);  // d(lateral) / d(rotation)
+	}
+	s.candidates_cov = 0.05 * 0.05 * J * J.transpose() + 1e-4 * Eigen::MatrixXd::Identity(2 * n, 2 * n);
+	s.observed.resize(n + 1, 2);
+	for (int j = 0; j < n; ++j) s.observed.row(j) << 10.0 * (j + 1), 0.05 * 10.0 * (j + 1);
+	s.observed.row(n) << 60, -0.3;
+	s.observed_cov = 0.01 * Eigen::MatrixXd::Identity(2 * (n + 1), 2 * (n + 1));
+	return s;
+}
+
+TEST(PointSetAssociation, RepairDropsThePairTheJointTestBlamesNotTheFarthest)
+{
+	const PointSets s = duplicateAgainstARotation();
+	EXPECT_LT(referenceDistance2(s, 6, 5), referenceDistance2(s, 5, 5));  // the duplicate is nearer alone
+	for (const auto method : {AssociationMethod::Jcbb, AssociationMethod::NearestNeighbor})
+	{
+		const auto r = associatePointSets(s, method, kGate, kGate);
+		// The five points that fix the rotation keep their candidates; the
+		// duplicate does not keep candidate 6 (dropping by individual
+		// distance removed the five first and kept it).
+		for (int j = 0; j < 5; ++j) EXPECT_EQ(r.candidate_of[j], j) << "point " << j;
+		EXPECT_NE(r.candidate_of[6], 5);
+		EXPECT_LE(r.joint_distance2, chi2Quantile(kGate, 12));
+	}
+}
+
 TEST(PointSetAssociation, CandidateIsClaimedOnce)
 {
 	PointSets s;

@@ -54,6 +54,46 @@ double jointDistance2(const PointSets& s, const std::vector<int>& candidate_of)
 	return nu.dot(llt.solve(nu));
 }
 
+/// The observed point whose pair contributes most to the joint distance:
+/// removing pair a from nu^T S^-1 nu lowers it by x_a^T [(S^-1)_aa]^-1 x_a,
+/// with x = S^-1 nu (one factorisation for all pairs). A pair that cannot be
+/// evaluated (S not positive definite) is the one with the largest
+/// individual distance.
+Eigen::Index mostIncompatiblePair(const PointSets& s, const std::vector<int>& candidate_of)
+{
+	std::vector<Eigen::Index> obs, cand;
+	for (std::size_t i = 0; i < candidate_of.size(); ++i)
+		if (candidate_of[i] >= 0) obs.push_back(static_cast<Eigen::Index>(i)), cand.push_back(candidate_of[i]);
+	const Eigen::Index k = static_cast<Eigen::Index>(obs.size());
+	Eigen::MatrixXd S(2 * k, 2 * k);
+	Eigen::VectorXd nu(2 * k);
+	for (Eigen::Index a = 0; a < k; ++a)
+	{
+		nu.segment<2>(2 * a) = (s.observed.row(obs[a]) - s.candidates.row(cand[a])).transpose();
+		for (Eigen::Index b = 0; b < k; ++b)
+			S.block<2, 2>(2 * a, 2 * b) = s.observed_cov.block<2, 2>(2 * obs[a], 2 * obs[b]) +
+				s.candidates_cov.block<2, 2>(2 * cand[a], 2 * cand[b]);
+	}
+	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
+	Eigen::Index worst = 0;
+	double worst_share = -1;
+	if (llt.info() == Eigen::Success)
+	{
+		const Eigen::VectorXd x = llt.solve(nu);
+		const Eigen::MatrixXd S_inv = llt.solve(Eigen::MatrixXd::Identity(2 * k, 2 * k));
+		for (Eigen::Index a = 0; a < k; ++a)
+		{
+			const Eigen::Vector2d xa = x.segment<2>(2 * a);
+			const double share = xa.dot(S_inv.block<2, 2>(2 * a, 2 * a).ldlt().solve(xa));
+			if (share > worst_share) worst_share = share, worst = a;
+		}
+		return obs[worst];
+	}
+	for (Eigen::Index a = 0; a < k; ++a)
+		if (const double d2 = pairDistance2(s, obs[a], cand[a]); d2 > worst_share) worst_share = d2, worst = a;
+	return obs[worst];
+}
+
 /// Each candidate's covariance for MRPT: its joint block plus the covariance
 /// of its nearest observed point (Euclidean).
 Eigen::MatrixXd mrptPredictionCovariance(const PointSets& s)
@@ -205,19 +245,18 @@ PointAssociation associatePointSets(const PointSets& sets, AssociationMethod met
 		if (out.candidate_of[i] >= 0 && pairDistance2(sets, i, out.candidate_of[i]) > individual_gate)
 			out.candidate_of[i] = -1, ++out.pairs_dropped;
 
-	// Exact joint compatibility; repair by dropping the worst pair.
+	// Exact joint compatibility; repair by dropping the pair whose removal
+	// lowers the joint distance most (not the one farthest on its own: a
+	// wrong pair can be the nearest individually, as a local map's duplicate
+	// of a tree beside the true one is, and dropping by individual distance
+	// then removes every right pair before it).
 	for (;;)
 	{
 		const int pairs = static_cast<int>(std::count_if(
 			out.candidate_of.begin(), out.candidate_of.end(), [](int c) { return c >= 0; }));
 		out.joint_distance2 = jointDistance2(sets, out.candidate_of);
 		if (pairs == 0 || out.joint_distance2 <= chi2Quantile(joint_quantile, 2 * pairs)) break;
-		Eigen::Index worst = -1;
-		double worst_d2 = -1;
-		for (Eigen::Index i = 0; i < M; ++i)
-			if (out.candidate_of[i] >= 0)
-				if (const double d2 = pairDistance2(sets, i, out.candidate_of[i]); d2 > worst_d2) worst_d2 = d2, worst = i;
-		out.candidate_of[worst] = -1;
+		out.candidate_of[mostIncompatiblePair(sets, out.candidate_of)] = -1;
 		++out.pairs_dropped;
 	}
 	return out;
