@@ -149,6 +149,38 @@ TEST(BoundedAssociation, TooManyCandidatesForOneObservationFallsBack)
 	EXPECT_GT(w.jcbb_nodes, 0u);
 }
 
+TEST(BoundedAssociation, FallbackRepairDropsThePairTheJointTestBlames)
+{
+	// Six landmarks ahead (bearing 0, 10-60 m) whose predicted bearings share
+	// one error (sigma 0.05 rad, the robot's heading) beside their own; six
+	// observations 1 sigma of that heading off, and a seventh 0.3 m beside
+	// the sixth landmark on the other side: the nearest pair of all on its
+	// own, yet against the heading the other five fix. A search bound of one
+	// hypothesis forces the fallback; its repair must drop the seventh, not
+	// the five (as dropping by individual distance did).
+	AssociationInput in;
+	const int n = 6;
+	in.predictions.resize(n, 2);
+	Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * n, 1);
+	for (int j = 0; j < n; ++j)
+	{
+		in.predictions.row(j) << 10.0 * (j + 1), 0;
+		J(2 * j + 1, 0) = 1;  // every bearing moves with the heading
+	}
+	Eigen::MatrixXd own = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+	for (int j = 0; j < n; ++j) own.block<2, 2>(2 * j, 2 * j) = Eigen::Vector2d(0.01, std::pow(0.1 / (10.0 * (j + 1)), 2)).asDiagonal();
+	in.covariance = 0.05 * 0.05 * J * J.transpose() + own;
+	in.observations.resize(n + 1, 2);
+	for (int j = 0; j < n; ++j) in.observations.row(j) << 10.0 * (j + 1), 0.05;
+	in.observations.row(n) << 60, -0.005;
+	SearchBounds none;
+	none.max_hypotheses = 1;
+	const auto r = associate(in, AssociationMethod::Jcbb, kGate, none);
+	ASSERT_TRUE(r.fell_back);
+	for (int j = 0; j < 5; ++j) EXPECT_EQ(r.candidate_of[j], j) << "observation " << j;
+	EXPECT_NE(r.candidate_of[n], n - 1);
+}
+
 TEST(BoundedAssociation, NearestNeighbourIsNeverCountedAsAFallback)
 {
 	const auto r = associate(clusteredProblem(12, 3), AssociationMethod::NearestNeighbor, kGate);

@@ -75,8 +75,10 @@ Eigen::MatrixXd pairDistances(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y
 }
 
 /// The fallback's joint compatibility test (Neira & Tardos 2001): while the
-/// pairs fail it, the pair with the largest individual distance is dropped.
-/// At most one O(k^3) test per pair.
+/// pairs fail it, the pair that contributes most to the joint distance is
+/// dropped (jcbb::largestJointShare; the one with the largest individual
+/// distance when the joint covariance is not positive definite). At most
+/// one O(k^3) test per pair.
 std::size_t enforceJointCompatibility(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
 									  const Eigen::MatrixXd& d2, double quantile, std::vector<int>& candidate_of)
 {
@@ -87,10 +89,15 @@ std::size_t enforceJointCompatibility(const Eigen::MatrixXd& z, const Eigen::Mat
 		if (pairs == 0 ||
 			jcbb::jointDistance2(z, y, S, candidate_of) <= chi2Quantile(quantile, 2 * static_cast<int>(pairs)))
 			return dropped;
+		const jcbb::JointInnovation joint = jcbb::jointInnovation(z, y, S, candidate_of);
+		const Eigen::Index share = jcbb::largestJointShare(joint.nu, joint.S);
 		std::size_t worst = 0;
 		double worst_d2 = -1;
-		for (std::size_t i = 0; i < candidate_of.size(); ++i)
-			if (candidate_of[i] >= 0 && d2(i, candidate_of[i]) > worst_d2) worst_d2 = d2(i, candidate_of[i]), worst = i;
+		if (share >= 0)
+			worst = static_cast<std::size_t>(joint.observations[share]);
+		else
+			for (std::size_t i = 0; i < candidate_of.size(); ++i)
+				if (candidate_of[i] >= 0 && d2(i, candidate_of[i]) > worst_d2) worst_d2 = d2(i, candidate_of[i]), worst = i;
 		candidate_of[worst] = -1;
 		++dropped;
 	}

@@ -11,24 +11,49 @@
 
 namespace esif::jcbb
 {
+JointInnovation jointInnovation(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
+								const std::vector<int>& candidate_of)
+{
+	JointInnovation out;
+	std::vector<Eigen::Index> cand;
+	for (std::size_t i = 0; i < candidate_of.size(); ++i)
+		if (candidate_of[i] >= 0) out.observations.push_back(static_cast<Eigen::Index>(i)), cand.push_back(candidate_of[i]);
+	const auto k = static_cast<Eigen::Index>(cand.size());
+	out.nu.resize(2 * k);
+	out.S.resize(2 * k, 2 * k);
+	for (Eigen::Index a = 0; a < k; ++a)
+	{
+		out.nu.segment<2>(2 * a) = (z.row(out.observations[a]) - y.row(cand[a])).transpose();
+		for (Eigen::Index b = 0; b < k; ++b) out.S.block<2, 2>(2 * a, 2 * b) = S.block<2, 2>(2 * cand[a], 2 * cand[b]);
+	}
+	return out;
+}
+
 double jointDistance2(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
 					  const std::vector<int>& candidate_of)
 {
-	std::vector<Eigen::Index> obs, cand;
-	for (std::size_t i = 0; i < candidate_of.size(); ++i)
-		if (candidate_of[i] >= 0) obs.push_back(static_cast<Eigen::Index>(i)), cand.push_back(candidate_of[i]);
-	const auto k = static_cast<Eigen::Index>(obs.size());
-	if (k == 0) return 0;
-	Eigen::VectorXd nu(2 * k);
-	Eigen::MatrixXd Sk(2 * k, 2 * k);
-	for (Eigen::Index a = 0; a < k; ++a)
-	{
-		nu.segment<2>(2 * a) = (z.row(obs[a]) - y.row(cand[a])).transpose();
-		for (Eigen::Index b = 0; b < k; ++b) Sk.block<2, 2>(2 * a, 2 * b) = S.block<2, 2>(2 * cand[a], 2 * cand[b]);
-	}
-	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (Sk + Sk.transpose()));
+	const JointInnovation j = jointInnovation(z, y, S, candidate_of);
+	if (j.observations.empty()) return 0;
+	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (j.S + j.S.transpose()));
 	if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
-	return nu.dot(llt.solve(nu));
+	return j.nu.dot(llt.solve(j.nu));
+}
+
+Eigen::Index largestJointShare(const Eigen::VectorXd& nu, const Eigen::MatrixXd& S)
+{
+	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
+	if (nu.size() == 0 || llt.info() != Eigen::Success) return -1;
+	const Eigen::VectorXd x = llt.solve(nu);
+	const Eigen::MatrixXd S_inv = llt.solve(Eigen::MatrixXd::Identity(S.rows(), S.cols()));
+	Eigen::Index largest = 0;
+	double largest_share = -1;
+	for (Eigen::Index a = 0; a < nu.size() / 2; ++a)
+	{
+		const Eigen::Vector2d xa = x.segment<2>(2 * a);
+		const double share = xa.dot(S_inv.block<2, 2>(2 * a, 2 * a).ldlt().solve(xa));
+		if (share > largest_share) largest_share = share, largest = a;
+	}
+	return largest;
 }
 
 namespace

@@ -39,8 +39,28 @@ struct Hypothesis
 /// The best hypothesis of `problem` (see the file comment).
 Hypothesis search(const Problem& problem);
 
+/// The pairs (i, candidate_of[i] >= 0) stacked: their innovations, joint
+/// covariance and observation indices.
+struct JointInnovation
+{
+	Eigen::VectorXd nu;
+	Eigen::MatrixXd S;
+	std::vector<Eigen::Index> observations;
+};
+JointInnovation jointInnovation(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
+								const std::vector<int>& candidate_of);
+
 /// Exact joint squared Mahalanobis distance of the pairs (i, candidate_of[i] >= 0).
 double jointDistance2(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
 					  const std::vector<int>& candidate_of);
+
+/// Of the pairs stacked in `nu` (two rows each, joint covariance `S`), the
+/// one that contributes most to nu^T S^-1 nu: the pair to drop when a
+/// hypothesis fails the joint test. Removing pair a lowers the distance by
+/// x_a^T [(S^-1)_aa]^-1 x_a with x = S^-1 nu, so one factorisation serves
+/// all pairs. (The pair farthest on its own is not it: a wrong pair can be
+/// the nearest individually, and dropping by individual distance then
+/// removes every right pair first.) -1 when S is not positive definite.
+Eigen::Index largestJointShare(const Eigen::VectorXd& nu, const Eigen::MatrixXd& S);
 
 }  // namespace esif::jcbb

@@ -1,5 +1,6 @@
 #include <esif/association/Chi2.h>
 #include <esif/association/PointSetAssociation.h>
+#include "Jcbb.h"
 #include "MrptMatrix.h"
 
 #include <mrpt/slam/data_association.h>
@@ -54,11 +55,9 @@ double jointDistance2(const PointSets& s, const std::vector<int>& candidate_of)
 	return nu.dot(llt.solve(nu));
 }
 
-/// The observed point whose pair contributes most to the joint distance:
-/// removing pair a from nu^T S^-1 nu lowers it by x_a^T [(S^-1)_aa]^-1 x_a,
-/// with x = S^-1 nu (one factorisation for all pairs). A pair that cannot be
-/// evaluated (S not positive definite) is the one with the largest
-/// individual distance.
+/// The observed point whose pair contributes most to the joint distance
+/// (jcbb::largestJointShare); the one with the largest individual distance
+/// when the joint covariance is not positive definite.
 Eigen::Index mostIncompatiblePair(const PointSets& s, const std::vector<int>& candidate_of)
 {
 	std::vector<Eigen::Index> obs, cand;
@@ -74,23 +73,11 @@ Eigen::Index mostIncompatiblePair(const PointSets& s, const std::vector<int>& ca
 			S.block<2, 2>(2 * a, 2 * b) = s.observed_cov.block<2, 2>(2 * obs[a], 2 * obs[b]) +
 				s.candidates_cov.block<2, 2>(2 * cand[a], 2 * cand[b]);
 	}
-	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
+	if (const Eigen::Index share = jcbb::largestJointShare(nu, S); share >= 0) return obs[share];
 	Eigen::Index worst = 0;
-	double worst_share = -1;
-	if (llt.info() == Eigen::Success)
-	{
-		const Eigen::VectorXd x = llt.solve(nu);
-		const Eigen::MatrixXd S_inv = llt.solve(Eigen::MatrixXd::Identity(2 * k, 2 * k));
-		for (Eigen::Index a = 0; a < k; ++a)
-		{
-			const Eigen::Vector2d xa = x.segment<2>(2 * a);
-			const double share = xa.dot(S_inv.block<2, 2>(2 * a, 2 * a).ldlt().solve(xa));
-			if (share > worst_share) worst_share = share, worst = a;
-		}
-		return obs[worst];
-	}
+	double worst_d2 = -1;
 	for (Eigen::Index a = 0; a < k; ++a)
-		if (const double d2 = pairDistance2(s, obs[a], cand[a]); d2 > worst_share) worst_share = d2, worst = a;
+		if (const double d2 = pairDistance2(s, obs[a], cand[a]); d2 > worst_d2) worst_d2 = d2, worst = a;
 	return obs[worst];
 }
 
