@@ -6,7 +6,6 @@
 #include <esif/association/Chi2.h>
 #include <esif/core/Elapsed.h>
 #include <esif/core/Errors.h>
-#include <esif/models/LocalMapObservation.h>
 
 #include <algorithm>
 #include <chrono>
@@ -241,36 +240,8 @@ std::optional<std::size_t> DslamLocalMapJoining::ownFeaturesInGlobalMap(
 {
 	if (params_.upper_level_frame != UpperLevelFrame::StartPose || !global_ || !global_->anchored())
 		return std::nullopt;
-	// Sec. 4.4.4 without IDs: an own feature counts when, placed by the open
-	// map's start pose, it passes the individual gate of some global feature
-	// (the placement's and its own uncertainty; the global feature's is left
-	// out, which would need a covariance recovery at every step).
-	const PoseEstimate frame = openMapFrame();
-	const double gate = chi2GateBound(params_.gate_chi2_quantile, 2);
-	const relative::FeatureMap& global = global_->features();
-	const auto P = open_map.core().covariance();
-	std::size_t count = 0;
-	for (std::size_t i = 0; i < open_map.ids().size(); ++i)
-	{
-		if (!own_ids.count(open_map.ids()[i])) continue;
-		const auto r = static_cast<Eigen::Index>(3 + 2 * i);
-		const PointFromFrame placed = pointFromFrame(frame.mean, open_map.core().landmark(i));
-		const Eigen::Matrix2d S = placed.d_frame * frame.cov * placed.d_frame.transpose() +
-			placed.d_point * P.block<2, 2>(r, r) * placed.d_point.transpose();
-		const Eigen::LLT<Eigen::Matrix2d> llt(S);
-		if (llt.info() != Eigen::Success) continue;
-		for (const LandmarkId id : global.ids())
-		{
-			if (!global.supported(id)) continue;
-			const Eigen::Vector2d nu = placed.value - global.position(id);
-			if (nu.dot(llt.solve(nu)) <= gate)
-			{
-				++count;
-				break;
-			}
-		}
-	}
-	return count;
+	return ownFeaturesPlacedInGlobalMap(
+		open_map, own_ids, openMapFrame(), global_->features(), params_.gate_chi2_quantile);
 }
 
 PoseEstimate DslamLocalMapJoining::startOf(const LocalMap& map) const

@@ -351,6 +351,32 @@ UpperLevelOutcome associateInStartFrame(
 	return out;
 }
 
+std::size_t ownFeaturesPlacedInGlobalMap(const LandmarkEkf& open_map, const std::set<LandmarkId>& own_ids,
+										 const PoseEstimate& frame, const relative::FeatureMap& global,
+										 double gate_quantile)
+{
+	const double gate = chi2GateBound(gate_quantile, 2);
+	const auto P = open_map.core().covariance();
+	std::size_t count = 0;
+	for (std::size_t i = 0; i < open_map.ids().size(); ++i)
+	{
+		if (!own_ids.count(open_map.ids()[i])) continue;
+		const auto r = static_cast<Eigen::Index>(3 + 2 * i);
+		const PointFromFrame placed = pointFromFrame(frame.mean, open_map.core().landmark(i));
+		const Eigen::Matrix2d S = placed.d_frame * frame.cov * placed.d_frame.transpose() +
+			placed.d_point * P.block<2, 2>(r, r) * placed.d_point.transpose();
+		const Eigen::LLT<Eigen::Matrix2d> llt(S);
+		if (llt.info() != Eigen::Success) continue;
+		const auto passes = [&](LandmarkId id) {
+			if (!global.supported(id)) return false;
+			const Eigen::Vector2d nu = placed.value - global.position(id);
+			return nu.dot(llt.solve(nu)) <= gate;
+		};
+		count += std::any_of(global.ids().begin(), global.ids().end(), passes);
+	}
+	return count;
+}
+
 void rejectMatchesFailingPairGate(const LocalMap& map, const Eigen::MatrixXd& local_cov, relative::FeatureMap& global,
 								  const DslamLmjParams& params, UpperLevelOutcome& outcome)
 {

@@ -16,6 +16,7 @@
 #include "DslamLmjParams.h"
 
 #include <esif/core/Estimate.h>
+#include <esif/ekf/LandmarkEkf.h>
 #include <esif/localmap/LocalMap.h>
 #include <esif/localmap/MapLevelDecisions.h>
 #include <esif/relative/FeatureMap.h>
@@ -23,6 +24,7 @@
 #include <Eigen/Core>
 #include <map>
 #include <optional>
+#include <set>
 #include <vector>
 
 namespace esif::lmj
@@ -80,6 +82,16 @@ std::optional<UpperLevelOutcome> associateInPairFrame(
 UpperLevelOutcome associateInStartFrame(
 	const LocalMap& map, const Eigen::MatrixXd& local_cov, const std::vector<std::optional<LandmarkId>>& known,
 	const PoseEstimate& start, relative::FeatureMap& global, const DslamLmjParams& params);
+
+/// Sec. 4.4.4's close rule without IDs (upper_level_frame = start_pose):
+/// how many of the open map's own features, placed by `frame` (the open
+/// map's start in the global frame), pass the individual gate
+/// (`gate_quantile`, 2 dof) of some supported global feature. The
+/// placement's and the feature's own uncertainty count; the global
+/// feature's is left out, which would need a covariance recovery at every step.
+std::size_t ownFeaturesPlacedInGlobalMap(const LandmarkEkf& open_map, const std::set<LandmarkId>& own_ids,
+										 const PoseEstimate& frame, const relative::FeatureMap& global,
+										 double gate_quantile);
 
 /// The matches of `outcome` checked as associateByIds checks ID matches
 /// (in the frame of a reference pair of them, id_gate_chi2_quantile): a
