@@ -33,26 +33,40 @@ double pairDistance2(const PointSets& s, Eigen::Index i, Eigen::Index c)
 	return nu.dot(llt.solve(nu));
 }
 
+/// The pairs (i, candidate_of[i] >= 0) stacked: innovations, joint
+/// covariance (both sets' joint blocks), observed points and candidates.
+struct StackedPairs
+{
+	Eigen::VectorXd nu;
+	Eigen::MatrixXd S;
+	std::vector<Eigen::Index> obs, cand;
+};
+StackedPairs stackedPairs(const PointSets& s, const std::vector<int>& candidate_of)
+{
+	StackedPairs p;
+	for (std::size_t i = 0; i < candidate_of.size(); ++i)
+		if (candidate_of[i] >= 0) p.obs.push_back(static_cast<Eigen::Index>(i)), p.cand.push_back(candidate_of[i]);
+	const Eigen::Index k = static_cast<Eigen::Index>(p.obs.size());
+	p.S.resize(2 * k, 2 * k);
+	p.nu.resize(2 * k);
+	for (Eigen::Index a = 0; a < k; ++a)
+	{
+		p.nu.segment<2>(2 * a) = (s.observed.row(p.obs[a]) - s.candidates.row(p.cand[a])).transpose();
+		for (Eigen::Index b = 0; b < k; ++b)
+			p.S.block<2, 2>(2 * a, 2 * b) = s.observed_cov.block<2, 2>(2 * p.obs[a], 2 * p.obs[b]) +
+				s.candidates_cov.block<2, 2>(2 * p.cand[a], 2 * p.cand[b]);
+	}
+	return p;
+}
+
 /// Exact joint squared Mahalanobis distance of the pairs (i, candidate_of[i] >= 0).
 double jointDistance2(const PointSets& s, const std::vector<int>& candidate_of)
 {
-	std::vector<Eigen::Index> obs, cand;
-	for (std::size_t i = 0; i < candidate_of.size(); ++i)
-		if (candidate_of[i] >= 0) obs.push_back(static_cast<Eigen::Index>(i)), cand.push_back(candidate_of[i]);
-	if (obs.empty()) return 0;
-	const Eigen::Index k = static_cast<Eigen::Index>(obs.size());
-	Eigen::MatrixXd S(2 * k, 2 * k);
-	Eigen::VectorXd nu(2 * k);
-	for (Eigen::Index a = 0; a < k; ++a)
-	{
-		nu.segment<2>(2 * a) = (s.observed.row(obs[a]) - s.candidates.row(cand[a])).transpose();
-		for (Eigen::Index b = 0; b < k; ++b)
-			S.block<2, 2>(2 * a, 2 * b) = s.observed_cov.block<2, 2>(2 * obs[a], 2 * obs[b]) +
-				s.candidates_cov.block<2, 2>(2 * cand[a], 2 * cand[b]);
-	}
-	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
+	const StackedPairs p = stackedPairs(s, candidate_of);
+	if (p.obs.empty()) return 0;
+	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (p.S + p.S.transpose()));
 	if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
-	return nu.dot(llt.solve(nu));
+	return p.nu.dot(llt.solve(p.nu));
 }
 
 /// The observed point whose pair contributes most to the joint distance
@@ -60,25 +74,13 @@ double jointDistance2(const PointSets& s, const std::vector<int>& candidate_of)
 /// when the joint covariance is not positive definite.
 Eigen::Index mostIncompatiblePair(const PointSets& s, const std::vector<int>& candidate_of)
 {
-	std::vector<Eigen::Index> obs, cand;
-	for (std::size_t i = 0; i < candidate_of.size(); ++i)
-		if (candidate_of[i] >= 0) obs.push_back(static_cast<Eigen::Index>(i)), cand.push_back(candidate_of[i]);
-	const Eigen::Index k = static_cast<Eigen::Index>(obs.size());
-	Eigen::MatrixXd S(2 * k, 2 * k);
-	Eigen::VectorXd nu(2 * k);
-	for (Eigen::Index a = 0; a < k; ++a)
-	{
-		nu.segment<2>(2 * a) = (s.observed.row(obs[a]) - s.candidates.row(cand[a])).transpose();
-		for (Eigen::Index b = 0; b < k; ++b)
-			S.block<2, 2>(2 * a, 2 * b) = s.observed_cov.block<2, 2>(2 * obs[a], 2 * obs[b]) +
-				s.candidates_cov.block<2, 2>(2 * cand[a], 2 * cand[b]);
-	}
-	if (const Eigen::Index share = jcbb::largestJointShare(nu, S); share >= 0) return obs[share];
+	const StackedPairs p = stackedPairs(s, candidate_of);
+	if (const Eigen::Index share = jcbb::largestJointShare(p.nu, p.S); share >= 0) return p.obs[share];
 	Eigen::Index worst = 0;
 	double worst_d2 = -1;
-	for (Eigen::Index a = 0; a < k; ++a)
-		if (const double d2 = pairDistance2(s, obs[a], cand[a]); d2 > worst_d2) worst_d2 = d2, worst = a;
-	return obs[worst];
+	for (std::size_t a = 0; a < p.obs.size(); ++a)
+		if (const double d2 = pairDistance2(s, p.obs[a], p.cand[a]); d2 > worst_d2) worst_d2 = d2, worst = p.obs[a];
+	return worst;
 }
 
 /// Each candidate's covariance for MRPT: its joint block plus the covariance
