@@ -151,8 +151,8 @@ void DslamLocalMapJoining::keepFeaturesOfWithdrawnFusion(
 	// estimate came from this very map, so failing a test against it says
 	// nothing about a misread ID or a wrong match: it is kept, matched to
 	// itself. So is one the association gave to another global feature
-	// (merging the two would leave this one with no information) unless
-	// another local feature is matched to it.
+	// (merging the two would leave this one with no information), unless
+	// some local feature is matched to it.
 	const auto& global_of_local = global_->globalOfLocal();
 	std::set<LandmarkId> claimed;
 	for (const auto& a : decided.decisions.associations)
@@ -164,8 +164,9 @@ void DslamLocalMapJoining::keepFeaturesOfWithdrawnFusion(
 		const auto known = global_of_local.find(local);
 		const LandmarkId global = useIds(joined) ? local : known != global_of_local.end() ? known->second : -1;
 		if (std::find(created.begin(), created.end(), global) == created.end()) continue;
-		if (a.kind == Association::Kind::Matched && a.id == global) continue;
-		if (a.kind != Association::Kind::Rejected && claimed.count(global)) continue;
+		// Matched to itself already, or another local feature is matched to
+		// it and informs it (listing it twice in one update is an error).
+		if (claimed.count(global)) continue;
 		if (a.kind == Association::Kind::Rejected && decided.tally.id_gate_rejected > 0) --decided.tally.id_gate_rejected;
 		a = {Association::Kind::Matched, global};
 		claimed.insert(global);
