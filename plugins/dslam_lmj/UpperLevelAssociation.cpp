@@ -201,6 +201,39 @@ std::vector<int> failingPairGate(const LocalMap& map, const Eigen::MatrixXd& loc
 		}
 	return *failing;
 }
+/// The local features `unknown` (their own joint covariance) and the
+/// `candidates` moved into the local map's frame by `start`, with the
+/// first-order covariance of [start; candidates] (the two independent).
+PointSets inStartFrame(const LocalMap& map, const Eigen::MatrixXd& local_cov, const std::vector<int>& unknown,
+					   const PoseEstimate& start, const std::vector<LandmarkId>& candidates, relative::FeatureMap& global)
+{
+	PointSets sets;
+	const auto M = static_cast<Eigen::Index>(unknown.size());
+	std::vector<Eigen::Index> rows;
+	sets.observed.resize(M, 2);
+	for (Eigen::Index u = 0; u < M; ++u)
+	{
+		sets.observed.row(u) = map.features[unknown[u]].position.transpose();
+		rows.push_back(2 * unknown[u]);
+		rows.push_back(2 * unknown[u] + 1);
+	}
+	sets.observed_cov = local_cov(rows, rows);
+	const auto N = static_cast<Eigen::Index>(candidates.size());
+	Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * N, 3 + 2 * N);
+	sets.candidates.resize(N, 2);
+	for (Eigen::Index c = 0; c < N; ++c)
+	{
+		const PointInFrame y = pointInFrame(start.mean, global.position(candidates[c]));
+		sets.candidates.row(c) = y.value.transpose();
+		J.block<2, 3>(2 * c, 0) = y.d_frame;
+		J.block<2, 2>(2 * c, 3 + 2 * c) = y.d_point;
+	}
+	Eigen::MatrixXd P = Eigen::MatrixXd::Zero(3 + 2 * N, 3 + 2 * N);
+	P.topLeftCorner<3, 3>() = start.cov;
+	P.bottomRightCorner(2 * N, 2 * N) = global.covariance(candidates);
+	sets.candidates_cov = J * P * J.transpose();
+	return sets;
+}
 }  // namespace
 
 std::vector<std::optional<LandmarkId>> knownGlobalIds(
@@ -317,36 +350,10 @@ UpperLevelOutcome associateInStartFrame(
 	for (const LandmarkId id : startFrameCandidates(map, local_cov, start, global, params))
 		if (!known_ids.count(id)) candidates.push_back(id);
 	out.tally.candidates = candidates.size();
-	if (candidates.empty() || unknown.empty()) return out;
-
-	PointSets sets;
-	const auto M = static_cast<Eigen::Index>(unknown.size());
-	std::vector<Eigen::Index> rows;
-	sets.observed.resize(M, 2);
-	for (Eigen::Index u = 0; u < M; ++u)
-	{
-		sets.observed.row(u) = map.features[unknown[u]].position.transpose();
-		rows.push_back(2 * unknown[u]);
-		rows.push_back(2 * unknown[u] + 1);
-	}
-	sets.observed_cov = local_cov(rows, rows);
-	// [start; candidates] -> candidates in the local frame (first order).
-	const auto N = static_cast<Eigen::Index>(candidates.size());
-	Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * N, 3 + 2 * N);
-	sets.candidates.resize(N, 2);
-	for (Eigen::Index c = 0; c < N; ++c)
-	{
-		const PointInFrame y = pointInFrame(start.mean, global.position(candidates[c]));
-		sets.candidates.row(c) = y.value.transpose();
-		J.block<2, 3>(2 * c, 0) = y.d_frame;
-		J.block<2, 2>(2 * c, 3 + 2 * c) = y.d_point;
-	}
-	Eigen::MatrixXd P = Eigen::MatrixXd::Zero(3 + 2 * N, 3 + 2 * N);
-	P.topLeftCorner<3, 3>() = start.cov;
-	P.bottomRightCorner(2 * N, 2 * N) = global.covariance(candidates);
-	sets.candidates_cov = J * P * J.transpose();
-
-	applyMapLevelDecisions(decideMapFeatures(sets, params), unknown, candidates, out.decisions, out.tally);
+	if (!candidates.empty() && !unknown.empty())
+		applyMapLevelDecisions(
+			decideMapFeatures(inStartFrame(map, local_cov, unknown, start, candidates, global), params), unknown,
+			candidates, out.decisions, out.tally);
 	rejectMatchesFailingPairGate(map, local_cov, global, params, out);
 	return out;
 }
