@@ -76,25 +76,24 @@ Eigen::MatrixXd pairDistances(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y
 
 /// The fallback's joint compatibility test (Neira & Tardos 2001): while the
 /// pairs fail it, the pair that contributes most to the joint distance is
-/// dropped (jcbb::largestJointShare; the one with the largest individual
-/// distance when the joint covariance is not positive definite). At most
-/// one O(k^3) test per pair.
+/// dropped (jcbb::jointVerdict; the one with the largest individual
+/// distance when the joint covariance is not positive definite). One
+/// O(k^3) factorisation per test.
 std::size_t enforceJointCompatibility(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
 									  const Eigen::MatrixXd& d2, double quantile, std::vector<int>& candidate_of)
 {
 	std::size_t dropped = 0;
 	for (;;)
 	{
-		const auto pairs = std::count_if(candidate_of.begin(), candidate_of.end(), [](int c) { return c >= 0; });
-		if (pairs == 0 ||
-			jcbb::jointDistance2(z, y, S, candidate_of) <= chi2Quantile(quantile, 2 * static_cast<int>(pairs)))
-			return dropped;
 		const jcbb::JointInnovation joint = jcbb::jointInnovation(z, y, S, candidate_of);
-		const Eigen::Index share = jcbb::largestJointShare(joint.nu, joint.S);
+		const auto pairs = static_cast<int>(joint.observations.size());
+		if (pairs == 0) return dropped;
+		const jcbb::JointVerdict verdict = jcbb::jointVerdict(joint.nu, joint.S, chi2Quantile(quantile, 2 * pairs));
+		if (verdict.passes) return dropped;
 		std::size_t worst = 0;
 		double worst_d2 = -1;
-		if (share >= 0)
-			worst = static_cast<std::size_t>(joint.observations[share]);
+		if (verdict.blamed >= 0)
+			worst = static_cast<std::size_t>(joint.observations[verdict.blamed]);
 		else
 			for (std::size_t i = 0; i < candidate_of.size(); ++i)
 				if (candidate_of[i] >= 0 && d2(i, candidate_of[i]) > worst_d2) worst_d2 = d2(i, candidate_of[i]), worst = i;

@@ -39,21 +39,30 @@ double jointDistance2(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const 
 	return j.nu.dot(llt.solve(j.nu));
 }
 
-Eigen::Index largestJointShare(const Eigen::VectorXd& nu, const Eigen::MatrixXd& S)
+JointVerdict jointVerdict(const Eigen::VectorXd& nu, const Eigen::MatrixXd& S, double bound)
 {
+	JointVerdict v;
+	if (nu.size() == 0) return v;
 	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
-	if (nu.size() == 0 || llt.info() != Eigen::Success) return -1;
+	if (llt.info() != Eigen::Success)
+	{
+		v.distance2 = std::numeric_limits<double>::infinity();
+		v.passes = false;
+		return v;
+	}
 	const Eigen::VectorXd x = llt.solve(nu);
+	v.distance2 = nu.dot(x);
+	v.passes = v.distance2 <= bound;
+	if (v.passes) return v;
 	const Eigen::MatrixXd S_inv = llt.solve(Eigen::MatrixXd::Identity(S.rows(), S.cols()));
-	Eigen::Index largest = 0;
 	double largest_share = -1;
 	for (Eigen::Index a = 0; a < nu.size() / 2; ++a)
 	{
 		const Eigen::Vector2d xa = x.segment<2>(2 * a);
 		const double share = xa.dot(S_inv.block<2, 2>(2 * a, 2 * a).ldlt().solve(xa));
-		if (share > largest_share) largest_share = share, largest = a;
+		if (share > largest_share) largest_share = share, v.blamed = a;
 	}
-	return largest;
+	return v;
 }
 
 namespace

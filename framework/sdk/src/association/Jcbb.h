@@ -54,13 +54,19 @@ JointInnovation jointInnovation(const Eigen::MatrixXd& z, const Eigen::MatrixXd&
 double jointDistance2(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
 					  const std::vector<int>& candidate_of);
 
-/// Of the pairs stacked in `nu` (two rows each, joint covariance `S`), the
-/// one that contributes most to nu^T S^-1 nu: the pair to drop when a
-/// hypothesis fails the joint test. Removing pair a lowers the distance by
-/// x_a^T [(S^-1)_aa]^-1 x_a with x = S^-1 nu, so one factorisation serves
-/// all pairs. (The pair farthest on its own is not it: a wrong pair can be
-/// the nearest individually, and dropping by individual distance then
-/// removes every right pair first.) -1 when S is not positive definite.
-Eigen::Index largestJointShare(const Eigen::VectorXd& nu, const Eigen::MatrixXd& S);
+/// The joint test of pairs stacked in `nu` (two rows each, joint
+/// covariance `S`) against `bound`, and when it fails the pair to drop: the
+/// one that contributes most to nu^T S^-1 nu. Removing pair a lowers it by
+/// x_a^T [(S^-1)_aa]^-1 x_a with x = S^-1 nu, so the test's factorisation
+/// serves every pair. (The pair farthest on its own is not it: a wrong pair
+/// can be the nearest individually, and dropping by individual distance
+/// then removes every right pair first.)
+struct JointVerdict
+{
+	double distance2 = 0;  ///< nu^T S^-1 nu; infinity when S is not positive definite
+	bool passes = true;	 ///< distance2 <= bound
+	Eigen::Index blamed = -1;  ///< when it fails: the pair to drop; -1 when S is not positive definite
+};
+JointVerdict jointVerdict(const Eigen::VectorXd& nu, const Eigen::MatrixXd& S, double bound);
 
 }  // namespace esif::jcbb

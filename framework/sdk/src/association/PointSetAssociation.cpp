@@ -59,23 +59,11 @@ StackedPairs stackedPairs(const PointSets& s, const std::vector<int>& candidate_
 	return p;
 }
 
-/// Exact joint squared Mahalanobis distance of the pairs (i, candidate_of[i] >= 0).
-double jointDistance2(const PointSets& s, const std::vector<int>& candidate_of)
+/// Of the stacked pairs `p`, the observed point farthest from its
+/// candidate on its own: the pair to drop when the joint covariance cannot
+/// name one (not positive definite).
+Eigen::Index farthestAlone(const PointSets& s, const StackedPairs& p)
 {
-	const StackedPairs p = stackedPairs(s, candidate_of);
-	if (p.obs.empty()) return 0;
-	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (p.S + p.S.transpose()));
-	if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
-	return p.nu.dot(llt.solve(p.nu));
-}
-
-/// The observed point whose pair contributes most to the joint distance
-/// (jcbb::largestJointShare); the one with the largest individual distance
-/// when the joint covariance is not positive definite.
-Eigen::Index mostIncompatiblePair(const PointSets& s, const std::vector<int>& candidate_of)
-{
-	const StackedPairs p = stackedPairs(s, candidate_of);
-	if (const Eigen::Index share = jcbb::largestJointShare(p.nu, p.S); share >= 0) return p.obs[share];
 	Eigen::Index worst = 0;
 	double worst_d2 = -1;
 	for (std::size_t a = 0; a < p.obs.size(); ++a)
@@ -235,17 +223,21 @@ PointAssociation associatePointSets(const PointSets& sets, AssociationMethod met
 			out.candidate_of[i] = -1, ++out.pairs_dropped;
 
 	// Exact joint compatibility; repair by dropping the pair whose removal
-	// lowers the joint distance most (not the one farthest on its own: a
-	// wrong pair can be the nearest individually, as a local map's duplicate
-	// of a tree beside the true one is, and dropping by individual distance
-	// then removes every right pair before it).
+	// lowers the joint distance most (jcbb::jointVerdict), not the one
+	// farthest on its own.
 	for (;;)
 	{
-		const int pairs = static_cast<int>(std::count_if(
-			out.candidate_of.begin(), out.candidate_of.end(), [](int c) { return c >= 0; }));
-		out.joint_distance2 = jointDistance2(sets, out.candidate_of);
-		if (pairs == 0 || out.joint_distance2 <= chi2Quantile(joint_quantile, 2 * pairs)) break;
-		out.candidate_of[mostIncompatiblePair(sets, out.candidate_of)] = -1;
+		const StackedPairs p = stackedPairs(sets, out.candidate_of);
+		const auto pairs = static_cast<int>(p.obs.size());
+		if (pairs == 0)
+		{
+			out.joint_distance2 = 0;
+			break;
+		}
+		const jcbb::JointVerdict verdict = jcbb::jointVerdict(p.nu, p.S, chi2Quantile(joint_quantile, 2 * pairs));
+		out.joint_distance2 = verdict.distance2;
+		if (verdict.passes) break;
+		out.candidate_of[verdict.blamed >= 0 ? p.obs[verdict.blamed] : farthestAlone(sets, p)] = -1;
 		++out.pairs_dropped;
 	}
 	return out;
