@@ -23,14 +23,6 @@ using namespace ceres_full;
 
 namespace
 {
-/// A zero increment with zero covariance says the robot did not move (e.g.
-/// the first step of an imported log): the step keeps the current pose
-/// rather than adding a pose tied by a constraint that cannot be whitened.
-bool isStandStill(const OdometryIncrement& odometry)
-{
-	return odometry.cov.isZero(0) && odometry.delta.x() == 0 && odometry.delta.y() == 0 && odometry.delta(2) == 0;
-}
-
 /// One line on stderr: the run goes on, its stats say what went wrong.
 void warn(const std::string& what) { std::cerr << "esif: warning: ceres_full: " << what << "\n"; }
 }  // namespace

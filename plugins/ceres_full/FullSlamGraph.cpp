@@ -39,8 +39,7 @@ std::size_t FullSlamGraph::addPose(
 		throw NumericalError(where + ": covariance is not symmetric positive definite");
 	poses_.push_back({initial.x(), initial.y(), esif::wrapAngle(initial.z())});
 	double* added = poses_.back().data();
-	const Eigen::Vector3d delta(odometry.delta.x(), odometry.delta.y(), odometry.delta(2));
-	problem_->AddResidualBlock(OdometryResidual::create(delta, w), nullptr, poses_[from].data(), added);
+	problem_->AddResidualBlock(OdometryResidual::create(odometry.delta, w), nullptr, poses_[from].data(), added);
 	residual_dim_ += 3;
 	linkBlocks(poses_[from].data(), isGauge(from) ? 0 : 3, added, 3);
 	return poses_.size() - 1;

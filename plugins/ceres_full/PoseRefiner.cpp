@@ -39,8 +39,7 @@ Pose2 refineNewPose(
 	Pose2 prev = previous, pose = initial;
 	std::vector<Eigen::Vector2d> landmarks;
 	landmarks.reserve(seen.size());  // parameter blocks must not move
-	const Eigen::Vector3d delta(odometry.delta.x(), odometry.delta.y(), odometry.delta(2));
-	problem.AddResidualBlock(OdometryResidual::create(delta, w_odometry), nullptr, prev.data(), pose.data());
+	problem.AddResidualBlock(OdometryResidual::create(odometry.delta, w_odometry), nullptr, prev.data(), pose.data());
 	problem.SetParameterBlockConstant(prev.data());
 	for (const MappedMeasurement& s : seen)
 	{

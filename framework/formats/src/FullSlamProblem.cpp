@@ -113,11 +113,6 @@ void addObservations(
 }
 }  // namespace
 
-bool isStandStill(const OdometryIncrement& odometry)
-{
-	return odometry.cov.isZero(0) && odometry.delta.x() == 0 && odometry.delta.y() == 0 && odometry.delta(2) == 0;
-}
-
 FullSlamProblem buildFullSlamProblem(const Rawlog& log, const RunOutputs* initial, const std::string& initial_source)
 {
 	std::optional<RunInitialValues> run;

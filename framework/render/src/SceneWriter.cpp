@@ -176,7 +176,7 @@ void writeScene(const RunRecord& run, const std::string& path, const MapWriterOp
 		corner->setPose(mrpt::poses::CPose3D(robot.mean.x(), robot.mean.y(), kZRobot, robot.mean(2), 0, 0));
 		scene.insert(corner);
 		if (auto robot_ellipse = ellipse(
-				Eigen::Vector2d(robot.mean.x(), robot.mean.y()), robot.cov.topLeftCorner<2, 2>(), sigmas, kZRobot,
+				robot.mean.head<2>(), robot.cov.topLeftCorner<2, 2>(), sigmas, kZRobot,
 				kSceneRobotEllipseColor))
 		{
 			robot_ellipse->setName("robot_ellipse");

@@ -66,9 +66,6 @@ struct FullSlamProblem
 	std::size_t measurements_without_id = 0;
 };
 
-/// True for the odometry of a step that does not move the robot: a zero
-/// increment with a zero covariance (ceres_full adds no pose for it).
-bool isStandStill(const OdometryIncrement& odometry);
 
 /// Builds the problem of `log` (landmark IDs as `log` carries them: apply a
 /// run's associations first when it has none). Initial values: with

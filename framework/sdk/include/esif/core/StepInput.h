@@ -26,6 +26,15 @@ struct OdometryIncrement
 	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
 };
 
+/// True for the odometry of a step that does not move the robot: a zero
+/// increment with a zero covariance (e.g. the first step of an imported
+/// log). The full-SLAM problem adds no pose for it: a constraint with zero
+/// covariance cannot be whitened.
+inline bool isStandStill(const OdometryIncrement& odometry)
+{
+	return odometry.cov.isZero(0) && odometry.delta.isZero(0);
+}
+
 /// One range-bearing measurement of a point feature, in the sensor frame.
 struct RangeBearing
 {
