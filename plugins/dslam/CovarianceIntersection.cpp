@@ -51,27 +51,32 @@ CiResult covarianceIntersection(const GaussianState& a, const GaussianState& b)
 	return out;
 }
 
-GaussianState robotMarginal(const GaussianState& s) { return {s.mean.head<3>(), s.cov.topLeftCorner<3, 3>()}; }
+GaussianState robotMarginal(const GaussianState& s) { return leadingMarginal(s, 3); }
 
-GaussianState withRobotMarginal(const GaussianState& s, const GaussianState& robot)
+GaussianState leadingMarginal(const GaussianState& s, Eigen::Index n)
 {
-	const Eigen::Index n = s.mean.size(), m = n - 3;
-	const Eigen::LLT<Eigen::Matrix3d> Prr(s.cov.topLeftCorner<3, 3>());
-	if (Prr.info() != Eigen::Success) throw NumericalError("robot marginal: robot covariance not positive definite");
-	const Eigen::MatrixXd K = Prr.solve(s.cov.topRightCorner(3, m)).transpose();  // P_fr P_rr^-1
-	Eigen::Vector3d dr = robot.mean - s.mean.head<3>();
-	dr(2) = wrapAngle(dr(2));
+	return {s.mean.head(n), s.cov.topLeftCorner(n, n)};
+}
+
+GaussianState withLeadingMarginal(const GaussianState& s, const GaussianState& lead)
+{
+	const Eigen::Index n = s.mean.size(), l = lead.mean.size(), m = n - l;
+	const Eigen::LLT<Eigen::MatrixXd> Pll(s.cov.topLeftCorner(l, l));
+	if (Pll.info() != Eigen::Success) throw NumericalError("leading marginal: covariance not positive definite");
+	const Eigen::MatrixXd K = Pll.solve(s.cov.topRightCorner(l, m)).transpose();	// P_fl P_ll^-1
+	Eigen::VectorXd dl = lead.mean - s.mean.head(l);
+	dl(2) = wrapAngle(dl(2));
 	GaussianState out;
 	out.mean = s.mean;
-	out.mean.head<3>() = s.mean.head<3>() + dr;
+	out.mean.head(l) += dl;
 	out.mean(2) = wrapAngle(out.mean(2));
-	out.mean.tail(m) += K * dr;
+	out.mean.tail(m) += K * dl;
 	out.cov.resize(n, n);
-	out.cov.topLeftCorner<3, 3>() = robot.cov;
-	out.cov.bottomLeftCorner(m, 3) = K * robot.cov;
-	out.cov.topRightCorner(3, m) = out.cov.bottomLeftCorner(m, 3).transpose();
+	out.cov.topLeftCorner(l, l) = lead.cov;
+	out.cov.bottomLeftCorner(m, l) = K * lead.cov;
+	out.cov.topRightCorner(l, m) = out.cov.bottomLeftCorner(m, l).transpose();
 	out.cov.bottomRightCorner(m, m) =
-		s.cov.bottomRightCorner(m, m) - K * s.cov.topRightCorner(3, m) + K * robot.cov * K.transpose();
+		s.cov.bottomRightCorner(m, m) - K * s.cov.topRightCorner(l, m) + K * lead.cov * K.transpose();
 	out.cov = 0.5 * (out.cov + out.cov.transpose()).eval();
 	return out;
 }

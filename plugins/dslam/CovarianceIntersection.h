@@ -22,11 +22,16 @@ CiResult covarianceIntersection(const GaussianState& a, const GaussianState& b);
 /// The first three entries (the robot pose) of a state, as a state.
 GaussianState robotMarginal(const GaussianState& s);
 
-/// Replaces the robot marginal of `s` by `robot` and keeps the conditional
-/// of the other entries given the robot:
-///   x_f += K (x_r' - x_r),  K = P_fr P_rr^-1,
-///   P_fr' = K P_r',  P_ff' = P_ff - K P_rf + K P_r' K^T.
-/// Used to carry a robot-only fusion over to the local SLAM's features.
-GaussianState withRobotMarginal(const GaussianState& s, const GaussianState& robot);
+/// The first n entries of a state (the robot, then the first features).
+GaussianState leadingMarginal(const GaussianState& s, Eigen::Index n);
+
+/// Replaces the marginal of the first entries of `s` (the robot, and
+/// possibly the first features) by `lead` and keeps the conditional of the
+/// other entries given them:
+///   x_f += K (x_l' - x_l),  K = P_fl P_ll^-1,
+///   P_fl' = K P_l',  P_ff' = P_ff - K P_lf + K P_l' K^T.
+/// Used to carry a fusion of the robot (or of the robot and the features in
+/// view) over to the local SLAM's other features.
+GaussianState withLeadingMarginal(const GaussianState& s, const GaussianState& lead);
 
 }  // namespace esif::dslam

@@ -22,6 +22,7 @@ using namespace relative;
 
 void Dslam::start()
 {
+	local_ = LocalSlam(params_.local_hold_steps);
 	map_ = std::make_unique<FeatureMap>(params_.recovery);
 	association_ = std::make_unique<RelativeAssociation>(params_.association, params_.referenceRules());
 	guard_ = DivergenceGuard(params_.divergence_factor, params_.divergence_disagreeing_scans);
@@ -138,7 +139,11 @@ StepReport Dslam::associateByTrackingThenMap(const Scan& scan)
 	// looser than tracking's and took new features for held neighbours
 	// (after long_gap's first crossing, half of all measurements were lost
 	// that way). The tracked mapped features anchor its relative tests.
+	// With fewer than two tracked anchors a lone sighting has nothing to be
+	// checked against: features held out of view stand in.
 	const std::unordered_set<LandmarkId> held(local_.order().begin(), local_.order().end());
+	if (params_.local_hold_steps > 0 && params_.held_anchor_max_sd_m > 0 && anchors.size() < 2)
+		addHeldAnchors(scan, tracked, anchors);
 	const StepReport from_map = association_->associate(rest, local_.robot(), local_.robotCov(), *map_, held, anchors);
 	const double new_gate = chi2Quantile(assoc.new_landmark_chi2_quantile, 2);
 	for (std::size_t j = 0; j < rest_index.size(); ++j)
@@ -153,6 +158,39 @@ StepReport Dslam::associateByTrackingThenMap(const Scan& scan)
 		if (!ambiguous) report.associations[i] = a;
 	}
 	return report;
+}
+
+void Dslam::addHeldAnchors(const Scan& scan, const std::vector<TrackedMeasurement>& tracked,
+						   std::vector<RelativeAssociation::Anchor>& anchors) const
+{
+	// A mapped feature the local SLAM holds out of view (local_hold_steps)
+	// anchors the relative tests as a tracked one does, through its local
+	// estimate in the robot frame: the local SLAM's relative geometry is as
+	// independent of the robot's error in the map as a measurement. Each
+	// anchor carries its own H P H^T, the robot's uncertainty relative to it
+	// included; those known no better than held_anchor_max_sd_m (larger of
+	// the range and bearing-times-range standard deviations) are left out.
+	// The anchors are taken as independent of one another (one robot error
+	// moves them all): jointly, they were measured worse on Victoria Park
+	// (docs/plugins/dslam.md, "Holding features out of view").
+	std::unordered_set<LandmarkId> in_scan;
+	for (const auto& t : tracked)
+		if (t.feature) in_scan.insert(*t.feature);
+	const LocalSlam::HeldPrediction held = local_.predictHeld(scan.sensor_on_robot, Eigen::Matrix2d::Zero());
+	const double max_var = params_.held_anchor_max_sd_m * params_.held_anchor_max_sd_m;
+	for (std::size_t k = 0; k < local_.order().size(); ++k)
+	{
+		const LandmarkId id = local_.order()[k];
+		if (in_scan.count(id) || !map_->supported(id)) continue;
+		const auto r = static_cast<Eigen::Index>(k);
+		RangeBearing virtual_measurement;
+		virtual_measurement.range_m = held.predictions(r, 0);
+		virtual_measurement.bearing_rad = held.predictions(r, 1);
+		virtual_measurement.cov = held.covariance.block<2, 2>(2 * r, 2 * r);
+		const double range2 = virtual_measurement.range_m * virtual_measurement.range_m;
+		if (std::max(virtual_measurement.cov(0, 0), range2 * virtual_measurement.cov(1, 1)) > max_var) continue;
+		anchors.push_back({virtual_measurement, id});
+	}
 }
 
 StepReport Dslam::associateByIds(const StepInput& step) const
@@ -345,7 +383,7 @@ void Dslam::fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor)
 	const Eigen::Vector3d z_rob = robotRelativeToPair(obs.points.point(order[0]), obs.points.point(order[1]));
 	in.initial_robot = robotFromPair(in.features.segment<2>(0), in.features.segment<2>(2), z_rob);
 
-	local_.arrange(ids);
+	local_.bringToFront(ids);  // features held out of view (local_hold_steps) stay behind them
 	std::optional<GaussianState> from_map;
 	try
 	{
@@ -357,6 +395,7 @@ void Dslam::fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor)
 		return;
 	}
 	const GaussianState local{local_.state(), local_.covariance()};
+	const Eigen::Index in_view = from_map->mean.size();
 	const bool agree = params_.fusion_gate_chi2_quantile >= 1 ||
 		robotEstimatesAgree(robotMarginal(local), robotMarginal(*from_map));
 	guard_.fusion(agree);
@@ -365,7 +404,8 @@ void Dslam::fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor)
 		++tally_.ci_disagreements;	// a wrong match or a poorly known pair: keep the local estimate ...
 		if (relocalisationDue(in, *from_map))
 		{
-			local_.setState(from_map->mean, from_map->cov);	 // ... unless the local SLAM is the one lost
+			local_.arrange(ids);  // ... unless the local SLAM is the one lost: what it held out of view goes too
+			local_.setState(from_map->mean, from_map->cov);
 			++tally_.relocalisations;
 		}
 		return;
@@ -378,10 +418,14 @@ void Dslam::fuseWithKidnappedRobot(const Observed& obs, const Pose2& sensor)
 			// CI of the robot marginals; the local features follow through
 			// their conditional on the robot (see DslamParams::fusion).
 			ci = covarianceIntersection(robotMarginal(local), robotMarginal(*from_map));
-			ci.fused = withRobotMarginal(local, ci.fused);
+			ci.fused = withLeadingMarginal(local, ci.fused);
 		}
 		else
-			ci = covarianceIntersection(local, *from_map);	// eq. (3.20)-(3.21) over [X_r, X_1..X_m1]
+		{
+			// Eq. (3.20)-(3.21) over [X_r, X_1..X_m1]; features held out of view follow.
+			ci = covarianceIntersection(leadingMarginal(local, in_view), *from_map);
+			ci.fused = withLeadingMarginal(local, ci.fused);
+		}
 		local_.setState(ci.fused.mean, ci.fused.cov);
 		++tally_.ci_fusions;
 		tally_.omega_sum += ci.omega;

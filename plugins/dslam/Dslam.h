@@ -20,12 +20,14 @@
 /// (DivergenceGuard.h); the map updates share one linearisation point per
 /// feature, and every relinearise_every_steps steps, or at once after a
 /// large correction, those whose features moved are evaluated again at the
-/// current estimate; the kidnapped-robot solution is iterated (DslamParams.h
-/// says why).
+/// current estimate; the kidnapped-robot solution is iterated; the local
+/// SLAM may hold features out of view, which then anchor the relative tests
+/// of lone sightings without IDs (DslamParams.h says why).
 
 #include "AdmissibleChain.h"
 #include "DivergenceGuard.h"
 #include "DslamParams.h"
+#include "HeldFeatureTracking.h"
 #include "KidnappedRobot.h"
 #include "LocalSlam.h"
 
@@ -69,6 +71,10 @@ class Dslam : public PluginWithParams<dslam::DslamParams>
 	StepReport associateScan(const StepInput& step);
 	StepReport associateByIds(const StepInput& step) const;
 	StepReport associateByTrackingThenMap(const Scan& scan);
+	/// Adds the mapped features the local SLAM holds out of view to the
+	/// anchors of the map-level association's relative tests.
+	void addHeldAnchors(const Scan& scan, const std::vector<dslam::TrackedMeasurement>& tracked,
+						std::vector<relative::RelativeAssociation::Anchor>& anchors) const;
 	void nameNewFeatures(StepReport& report);
 	void holdFirstSightings(const StepInput& step, StepReport& report);
 	void rejectOutliers(const Scan& scan, StepReport& report);

@@ -24,6 +24,14 @@ void DslamParams::declare(ParamBinder& b)
 	b.enumeration<FusionScope>("fusion", fusion, {{"robot", FusionScope::Robot}, {"joint", FusionScope::Joint}},
 							   "covariance intersection of the robot-pose marginals (robot) or of the whole aligned "
 							   "states of the local SLAM and the kidnapped-robot solution (joint, the book's)");
+	b.integer("local_hold_steps", local_hold_steps,
+			  "the local SLAM holds a feature out of view for this many odometry steps after its last sighting; "
+			  "0 = dropped at once (the book)",
+			  Bounds::nonNegative());
+	b.real("held_anchor_max_sd_m", held_anchor_max_sd_m,
+		   "without IDs, held mapped features known within this many metres of the robot anchor the relative tests "
+		   "of scans with fewer than two tracked anchors; 0 = none",
+		   Bounds::nonNegative());
 	b.real("outlier_chi2_quantile", outlier_chi2_quantile,
 		   "chi-square confidence of the localisation and mapping outlier gates (any association); 1 = off",
 		   Bounds{0, 1, true, false});

@@ -47,6 +47,17 @@ struct DslamParams
 	/// (docs/plugins/dslam.md, "Map frame and fusion").
 	int anchor_scans = 20;
 	FusionScope fusion = FusionScope::Robot;  ///< robot | joint
+	/// The local SLAM holds a feature out of view for this many odometry
+	/// steps after its last sighting (LocalSlam.h); 0 = dropped at once, as
+	/// the book (docs/plugins/dslam.md, "Holding features out of view").
+	int local_hold_steps = 0;
+	/// Without IDs, a held mapped feature out of view anchors the map-level
+	/// relative tests when the scan has fewer than two tracked anchors and
+	/// the local SLAM knows it within this many metres of the robot (larger
+	/// of the standard deviations of its predicted range and of its bearing
+	/// times the range); 0 = no anchor (docs/plugins/dslam.md,
+	/// "Holding features out of view").
+	double held_anchor_max_sd_m = 0;
 
 	/// Chi-square confidence of the outlier gates (OutlierGate.h), whatever
 	/// the association: a measurement whose innovation exceeds this quantile

@@ -12,10 +12,11 @@ void LocalSlam::observe(const std::vector<IdentifiedMeasurement>& seen, const Po
 {
 	std::unordered_set<LandmarkId> seen_ids;
 	for (const auto& m : seen) seen_ids.insert(m.id);
-	std::vector<LandmarkId> in_view;
+	std::vector<LandmarkId> kept;
 	for (LandmarkId id : ids_)
-		if (seen_ids.count(id)) in_view.push_back(id);
-	arrange(in_view);  // marginalise what is out of view: delete rows and columns
+		if (seen_ids.count(id) || (hold_steps_ > 0 && steps_ - last_seen_.at(id) <= hold_steps_)) kept.push_back(id);
+	for (LandmarkId id : seen_ids) last_seen_[id] = steps_;
+	arrange(kept);	// marginalise what is out of view: delete rows and columns
 
 	std::vector<EkfSlamCore::Match> matches;
 	for (const auto& m : seen)
@@ -35,6 +36,17 @@ void LocalSlam::arrange(const std::vector<LandmarkId>& order)
 	ekf_.retainLandmarks(keep);
 	ids_ = order;
 	reindex();
+	for (auto it = last_seen_.begin(); it != last_seen_.end();)
+		it = holds(it->first) ? std::next(it) : last_seen_.erase(it);
+}
+
+void LocalSlam::bringToFront(const std::vector<LandmarkId>& order)
+{
+	std::unordered_set<LandmarkId> front(order.begin(), order.end());
+	std::vector<LandmarkId> all = order;
+	for (LandmarkId id : ids_)
+		if (!front.count(id)) all.push_back(id);
+	arrange(all);
 }
 
 void LocalSlam::addFeatures(const std::vector<IdentifiedMeasurement>& fresh, const Pose2& sensor_on_robot)
@@ -43,6 +55,7 @@ void LocalSlam::addFeatures(const std::vector<IdentifiedMeasurement>& fresh, con
 	{
 		ekf_.addLandmark(m.z, m.R, sensor_on_robot);
 		ids_.push_back(m.id);
+		last_seen_[m.id] = steps_;
 	}
 	reindex();
 }

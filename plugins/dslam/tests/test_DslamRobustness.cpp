@@ -25,6 +25,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 
@@ -142,9 +145,11 @@ TEST(DslamRobustness, DivergenceStopsAtItsStepWithOneLine)
 	}
 }
 
+/// `config`: relative to the source tree, or absolute.
 Stats runCli(const std::string& config, const std::string& rawlog, const std::string& out)
 {
-	const auto r = test::runEsif("run --quiet --config '" + test::sourcePath(config) + "' --rawlog '" + rawlog +
+	const std::string path = config.front() == '/' ? config : test::sourcePath(config);
+	const auto r = test::runEsif("run --quiet --config '" + path + "' --rawlog '" + rawlog +
 								 "' --out '" + out + "'");
 	EXPECT_EQ(r.exit_code, 0) << config << ": " << r.out;
 	if (r.exit_code != 0) return Stats{};
@@ -182,6 +187,41 @@ TEST(DslamRobustness, WithoutIdsSurvivesLongStretchesWithNothingInView)
 	EXPECT_GE(test::statNumber(jcbb, "landmark_consistent_fraction"), 0.9);
 	EXPECT_LE(test::statNumber(jcbb, "da_wrong"), 0.01 * test::statNumber(jcbb, "da_matched"));
 	EXPECT_LE(test::statNumber(jcbb, "landmarks"), 1.15 * test::statNumber(ids, "landmarks"));
+}
+
+TEST(DslamRobustness, WithoutIdsHeldFeaturesAnchorLoneSightings)
+{
+	// configs/sim/lone_sightings.ini: one feature per scan at most, on a 10 m
+	// grid. The shipped no-ID config (local_hold_steps = 50) against the same
+	// with the book's local SLAM (0), on four noise draws. Measured (eight
+	// draws): recall median 0.71 against 0.57, lowest 0.62 against 0.53.
+	// The margin, 0.05 on the median, is a third of the measured gain.
+	test::TempDir dir;
+	std::ifstream shipped_in(test::sourcePath("configs/dslam_jcbb.ini"));
+	const std::string shipped((std::istreambuf_iterator<char>(shipped_in)), std::istreambuf_iterator<char>());
+	ASSERT_NE(shipped.find("\nlocal_hold_steps = 50\n"), std::string::npos);
+	const std::string book_ini = dir.file("book.ini");
+	std::ofstream(book_ini) << std::regex_replace(shipped, std::regex("\nlocal_hold_steps = 50\n"),
+												  "\nlocal_hold_steps = 0\n");
+	std::vector<double> held, book;
+	for (int noise_seed = 1; noise_seed <= 4; ++noise_seed)
+	{
+		Scenario scenario = test::loadScenario("configs/sim/lone_sightings.ini");
+		scenario.noise_seed = noise_seed;
+		const std::string log = dir.file("lone_" + std::to_string(noise_seed) + ".rawlog");
+		Simulator(scenario).writeRawlog(log);
+		const std::string tag = std::to_string(noise_seed);
+		held.push_back(test::statNumber(runCli("configs/dslam_jcbb.ini", log, dir.file("held" + tag)), "da_recall"));
+		book.push_back(test::statNumber(runCli(book_ini, log, dir.file("book" + tag)), "da_recall"));
+		std::cout << "lone_sightings noise seed " << noise_seed << ": recall " << held.back() << " held, "
+				  << book.back() << " book\n";
+	}
+	const auto median = [](std::vector<double> v)
+	{
+		std::sort(v.begin(), v.end());
+		return 0.5 * (v[1] + v[2]);
+	};
+	EXPECT_GE(median(held), median(book) + 0.05);
 }
 
 TEST(DslamRobustness, DivergenceExitsWithCodeThreeFromTheCli)

@@ -561,7 +561,7 @@ TEST(DslamUnitsCovarianceIntersection, WithRobotMarginalSameMarginalIsIdentity)
 	for (int trial = 0; trial < 5; ++trial)
 	{
 		const GaussianState s = randomJointState(rng);
-		const GaussianState t = withRobotMarginal(s, robotMarginal(s));
+		const GaussianState t = withLeadingMarginal(s, robotMarginal(s));
 		EXPECT_LT((t.mean - s.mean).norm(), 1e-12);
 		EXPECT_LT(relError(t.cov, s.cov), 1e-10);
 	}
@@ -578,7 +578,7 @@ TEST(DslamUnitsCovarianceIntersection, WithRobotMarginalMovesFeaturesKeepsCondit
 		robot.mean += Eigen::Vector3d(0.2, -0.1, 0);
 		robot.mean(2) = -3.1;  // ... moved across it: dr_phi = 2 pi - 6.2 = +0.0832, not -6.2
 		const Eigen::Vector3d dr(0.2, -0.1, 2 * M_PI - 6.2);
-		const GaussianState t = withRobotMarginal(s, robot);
+		const GaussianState t = withLeadingMarginal(s, robot);
 
 		// Features move by P_fr P_rr^-1 dr (computed here by LU, not LLT).
 		const Eigen::MatrixXd K =
@@ -593,6 +593,33 @@ TEST(DslamUnitsCovarianceIntersection, WithRobotMarginalMovesFeaturesKeepsCondit
 		EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(t.cov).eigenvalues().minCoeff(), 0.0);
 		// The conditional of the features given the robot is unchanged.
 		EXPECT_LT(relError(conditionalFeatures(t.cov), conditionalFeatures(s.cov)), 1e-10);
+	}
+}
+
+TEST(DslamUnitsCovarianceIntersection, WithLeadingMarginalOfRobotAndFeatureKeepsTheRestsConditional)
+{
+	// The joint fusion with features held out of view: the robot and the
+	// first feature (5 entries) replaced, the other feature following its
+	// conditional on them. Same tolerances as the robot-only case above.
+	std::mt19937 rng(13);
+	for (int trial = 0; trial < 5; ++trial)
+	{
+		const GaussianState s = randomJointState(rng);
+		GaussianState lead{s.mean.head<5>(), 0.6 * s.cov.topLeftCorner<5, 5>()};
+		const Eigen::VectorXd dl = (Eigen::VectorXd(5) << 0.2, -0.1, 0.05, 0.3, -0.2).finished();
+		lead.mean += dl;
+		const GaussianState t = withLeadingMarginal(s, lead);
+
+		const Eigen::MatrixXd K = s.cov.bottomLeftCorner(2, 5) * s.cov.topLeftCorner<5, 5>().partialPivLu().inverse();
+		EXPECT_LT((t.mean.tail<2>() - (s.mean.tail<2>() + K * dl)).norm(), 1e-10);
+		EXPECT_LT((t.mean.head<5>() - lead.mean).norm(), 1e-12);
+		EXPECT_LT(relError(t.cov.topLeftCorner<5, 5>(), lead.cov), 1e-12);
+		const auto conditional = [](const Eigen::MatrixXd& P) -> Eigen::MatrixXd {
+			return P.bottomRightCorner(2, 2) -
+				P.bottomLeftCorner(2, 5) * P.topLeftCorner<5, 5>().partialPivLu().solve(P.topRightCorner(5, 2));
+		};
+		EXPECT_LT(relError(conditional(t.cov), conditional(s.cov)), 1e-10);
+		EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(t.cov).eigenvalues().minCoeff(), 0.0);
 	}
 }
 
@@ -664,6 +691,94 @@ TEST(DslamUnitsLocalSlam, ObserveDropsUnseenAndReinitialisesReturningFeatures)
 	const Eigen::MatrixXd Prr = P.topLeftCorner<3, 3>();
 	EXPECT_LT(relError(P.block(7, 7, 2, 2), Gr * Prr * Gr.transpose() + Gz * R * Gz.transpose()), 1e-7);
 	EXPECT_LT(relError(P.block(7, 0, 2, 7), Gr * P.topLeftCorner(3, 7)), 1e-7);
+}
+
+TEST(DslamUnitsLocalSlam, HoldsAFeatureOutOfViewForHoldStepsThenDropsIt)
+{
+	const Eigen::Matrix2d R = Eigen::Vector2d(0.01, 1e-4).asDiagonal();
+	const Eigen::Matrix3d Q = Eigen::Vector3d(1e-3, 1e-3, 1e-4).asDiagonal();
+	const std::vector<Eigen::Vector2d> F = {{3, 1}, {2, -2}};
+	LocalSlam ls(3);
+	Pose2 truth = Pose2::Zero();
+	ls.addFeatures({measure(1, truth, F[0], R), measure(2, truth, F[1], R)}, kSensor);
+
+	// Feature 2 unseen for 1, 2, 3 predictions: held, in its place.
+	for (int k = 1; k <= 3; ++k)
+	{
+		ls.predict(odometry(0.2, 0, 0.01, Q));
+		truth = Pose2(0.2 * k, 0, 0.01 * k);
+		ls.observe({measure(1, truth, F[0], R)}, kSensor);
+		EXPECT_TRUE(ls.holds(2)) << "after " << k << " steps out of view";
+		EXPECT_EQ(ls.order(), (std::vector<LandmarkId>{1, 2}));
+	}
+	// The fourth step out of view drops it.
+	ls.predict(odometry(0.2, 0, 0.01, Q));
+	truth = Pose2(0.8, 0, 0.04);
+	ls.observe({measure(1, truth, F[0], R)}, kSensor);
+	EXPECT_FALSE(ls.holds(2));
+	EXPECT_EQ(ls.state().size(), 5);
+
+	// Seen again, it starts afresh and its clock with it.
+	ls.predict(odometry(0.2, 0, 0.01, Q));
+	truth = Pose2(1.0, 0, 0.05);
+	ls.observe({measure(1, truth, F[0], R), measure(2, truth, F[1], R)}, kSensor);
+	ASSERT_TRUE(ls.holds(2));
+	for (int k = 1; k <= 3; ++k)
+	{
+		ls.predict(odometry(0.2, 0, 0.01, Q));
+		ls.observe({measure(1, truth, F[0], R)}, kSensor);
+	}
+	EXPECT_TRUE(ls.holds(2));
+}
+
+TEST(DslamUnitsLocalSlam, HeldFeatureKeepsItsEstimateWhereTheBookReinitialisesIt)
+{
+	// The same two steps with hold 0 (the book) and hold 5: feature 2 is out
+	// of view at step 1 and measured 0.5 m off its first estimate at step 2.
+	// The book re-initialises it from that measurement; held, it is updated
+	// by it: a Kalman update moves it only part of the way (its covariance
+	// is comparable to R here), so it ends between the two.
+	const Eigen::Matrix2d R = Eigen::Vector2d(0.01, 1e-4).asDiagonal();
+	const Eigen::Matrix3d Q = Eigen::Vector3d(1e-3, 1e-3, 1e-4).asDiagonal();
+	const std::vector<Eigen::Vector2d> F = {{3, 1}, {2, -2}};
+	const auto run = [&](int hold)
+	{
+		LocalSlam ls(hold);
+		ls.addFeatures({measure(1, Pose2::Zero(), F[0], R), measure(2, Pose2::Zero(), F[1], R)}, kSensor);
+		ls.predict(odometry(0.2, 0, 0.01, Q));
+		ls.observe({measure(1, Pose2(0.2, 0, 0.01), F[0], R)}, kSensor);
+		ls.predict(odometry(0.2, 0, 0.01, Q));
+		const Pose2 truth(0.4, 0, 0.02);
+		ls.observe({measure(1, truth, F[0], R), measure(2, truth, F[1] + Eigen::Vector2d(0.3, -0.4), R)}, kSensor);
+		return ls;
+	};
+	const LocalSlam book = run(0), held = run(5);
+	ASSERT_EQ(book.order(), (std::vector<LandmarkId>{1, 2}));
+	ASSERT_EQ(held.order(), (std::vector<LandmarkId>{1, 2}));
+	const Eigen::Vector2d moved = F[1] + Eigen::Vector2d(0.3, -0.4);
+	const double book_off = (book.state().segment<2>(5) - moved).norm();
+	const double held_off = (held.state().segment<2>(5) - moved).norm();
+	const double held_from_old = (held.state().segment<2>(5) - F[1]).norm();
+	EXPECT_LT(book_off, 0.1);		  // at the measurement, up to the robot's correction
+	EXPECT_GT(held_off, 0.1);		  // not at the measurement ...
+	EXPECT_GT(held_from_old, 0.05);	  // ... nor where it was
+}
+
+TEST(DslamUnitsLocalSlam, BringToFrontKeepsTheOthersBehind)
+{
+	const Eigen::Matrix2d R = Eigen::Vector2d(0.02, 2e-4).asDiagonal();
+	const std::vector<Eigen::Vector2d> F = {{3, 1}, {2, -2}, {4, 3}, {-1, 3}};
+	LocalSlam ls;
+	std::vector<IdentifiedMeasurement> scan;
+	for (int i = 0; i < 4; ++i) scan.push_back(measure(i + 1, Pose2::Zero(), F[i], R));
+	ls.addFeatures(scan, kSensor);
+	const Eigen::VectorXd x = ls.state();
+	const Eigen::MatrixXd P = ls.covariance();
+	ls.bringToFront({3, 1});
+	EXPECT_EQ(ls.order(), (std::vector<LandmarkId>{3, 1, 2, 4}));
+	const std::vector<Eigen::Index> perm = {0, 1, 2, 7, 8, 3, 4, 5, 6, 9, 10};
+	EXPECT_LT((ls.state() - x(perm)).norm(), 1e-15 * x.norm());
+	EXPECT_LT((ls.covariance() - P(perm, perm)).norm(), 1e-15 * P.norm());
 }
 
 TEST(DslamUnitsLocalSlam, ArrangePermutesTheJointGaussian)

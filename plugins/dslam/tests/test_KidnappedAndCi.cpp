@@ -100,10 +100,10 @@ TEST(CovarianceIntersection, RobotMarginalReplacementKeepsTheConditional)
 {
 	Eigen::MatrixXd A = Eigen::MatrixXd::Random(5, 5);
 	const GaussianState s{Eigen::VectorXd::Random(5), A * A.transpose() + 0.5 * Eigen::MatrixXd::Identity(5, 5)};
-	EXPECT_LT((withRobotMarginal(s, robotMarginal(s)).cov - s.cov).norm(), 1e-12);
+	EXPECT_LT((withLeadingMarginal(s, robotMarginal(s)).cov - s.cov).norm(), 1e-12);
 
 	GaussianState robot{s.mean.head<3>() + Eigen::Vector3d(0.2, -0.1, 0.05), 0.5 * s.cov.topLeftCorner<3, 3>()};
-	const GaussianState t = withRobotMarginal(s, robot);
+	const GaussianState t = withLeadingMarginal(s, robot);
 	const Eigen::MatrixXd K = s.cov.bottomLeftCorner(2, 3) * s.cov.topLeftCorner<3, 3>().inverse();
 	EXPECT_LT((t.mean.tail<2>() - (s.mean.tail<2>() + K * Eigen::Vector3d(0.2, -0.1, 0.05))).norm(), 1e-12);
 	const auto conditional = [](const Eigen::MatrixXd& P) {
