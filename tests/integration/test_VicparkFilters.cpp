@@ -1,4 +1,4 @@
-// The map-joining filters of configs/vicpark/ on Victoria Park, held against
+// The map-joining filters and D-SLAM of configs/vicpark/ on Victoria Park, held against
 // the full-SLAM optimum of the same rawlog under the same calibrated noise
 // (there is no ground truth): each map near the optimum's, with at least 95%
 // of the optimum's trees inside the filter's own 95% ellipses (a consistent
@@ -24,7 +24,7 @@ namespace
 {
 using namespace esif;
 
-class VicparkMapJoining : public ::testing::Test
+class VicparkFilters : public ::testing::Test
 {
    protected:
 	static void SetUpTestSuite()
@@ -64,10 +64,10 @@ class VicparkMapJoining : public ::testing::Test
 	static std::unique_ptr<test::TempDir> dir_;
 	static std::optional<std::string> rawlog_;
 };
-std::unique_ptr<test::TempDir> VicparkMapJoining::dir_;
-std::optional<std::string> VicparkMapJoining::rawlog_;
+std::unique_ptr<test::TempDir> VicparkFilters::dir_;
+std::optional<std::string> VicparkFilters::rawlog_;
 
-TEST_F(VicparkMapJoining, SlsjfIsWithinThreeMetresOfTheOptimumAndConsistent)
+TEST_F(VicparkFilters, SlsjfIsWithinThreeMetresOfTheOptimumAndConsistent)
 {
 	const RunDifference d = fromOptimum("slsjf");
 	EXPECT_GE(d.landmarks_matched, 148u);
@@ -75,7 +75,7 @@ TEST_F(VicparkMapJoining, SlsjfIsWithinThreeMetresOfTheOptimumAndConsistent)
 	EXPECT_GE(*d.landmarks_inside_own95_fraction, 0.95);
 }
 
-TEST_F(VicparkMapJoining, MapJoiningIsWithinThreeMetresOfTheOptimumAndConsistent)
+TEST_F(VicparkFilters, MapJoiningIsWithinThreeMetresOfTheOptimumAndConsistent)
 {
 	const RunDifference d = fromOptimum("dslam_lmj");
 	EXPECT_GE(d.landmarks_matched, 148u);
@@ -83,7 +83,7 @@ TEST_F(VicparkMapJoining, MapJoiningIsWithinThreeMetresOfTheOptimumAndConsistent
 	EXPECT_GE(*d.landmarks_inside_own95_fraction, 0.95);
 }
 
-TEST_F(VicparkMapJoining, SmoothedSlsjfIsNearerTheOptimumThanThePlainFilter)
+TEST_F(VicparkFilters, SmoothedSlsjfIsNearerTheOptimumThanThePlainFilter)
 {
 	// Relinearised, the map keeps only the differences in the measurements
 	// left out (above): 1.3 m against the plain SLSJF's 1.56 m.
@@ -92,7 +92,7 @@ TEST_F(VicparkMapJoining, SmoothedSlsjfIsNearerTheOptimumThanThePlainFilter)
 	EXPECT_GE(*d.landmarks_inside_own95_fraction, 0.95);
 }
 
-TEST_F(VicparkMapJoining, OnlineSlsjfWithShortMapsIsAsNearAsTheSmoothedOne)
+TEST_F(VicparkFilters, OnlineSlsjfWithShortMapsIsAsNearAsTheSmoothedOne)
 {
 	const RunDifference d = fromOptimum("slsjf_online");
 	EXPECT_GE(d.landmarks_matched, 148u);
@@ -100,7 +100,7 @@ TEST_F(VicparkMapJoining, OnlineSlsjfWithShortMapsIsAsNearAsTheSmoothedOne)
 	EXPECT_GE(*d.landmarks_inside_own95_fraction, 0.95);
 }
 
-TEST_F(VicparkMapJoining, MapJoiningWithoutIdsFindsTheTreesNearTheOptimum)
+TEST_F(VicparkFilters, MapJoiningWithoutIdsFindsTheTreesNearTheOptimum)
 {
 	// The tree IDs hidden (dslam_lmj_jcbb.ini: start-pose frame, 50-step
 	// maps), scored against them. Measured: 94.8% of the measurements on
@@ -119,6 +119,38 @@ TEST_F(VicparkMapJoining, MapJoiningWithoutIdsFindsTheTreesNearTheOptimum)
 	std::cout << "dslam_lmj_jcbb: recall " << *stats.number("da_recall") << ", " << *d.landmark_rms_m
 			  << " m RMS from the optimum\n";
 	EXPECT_LT(*d.landmark_rms_m, 1.5 * 1.83);
+}
+
+TEST_F(VicparkFilters, DslamIsWithinTwoAndAHalfMetresOfTheOptimumAndConsistent)
+{
+	// Measured: 1.67 m, every tree inside its own 95% ellipse (the book's
+	// local SLAM, dropping a tree the first scan that misses it: 1.86 m).
+	const RunDifference d = fromOptimum("dslam");
+	EXPECT_GE(d.landmarks_matched, 148u);
+	EXPECT_LT(*d.landmark_rms_m, 2.5);
+	EXPECT_GE(*d.landmarks_inside_own95_fraction, 0.95);
+}
+
+TEST_F(VicparkFilters, DslamWithoutIdsFindsTheTreesNearTheOptimum)
+{
+	// The tree IDs hidden (dslam_jcbb.ini: trees held out of view for 1000
+	// steps anchor the relative tests of lone sightings), scored against
+	// them. Measured: 95.9% of the measurements on their tree's landmark,
+	// 96.8% precision, 144 trees found and 7 duplicated, 2.36 m from the
+	// optimum where the twin with IDs is 1.67 m (1.41 times). The bounds are
+	// the targets, recall loosened by one point (95%: 94%): the
+	// sweep's failing runs (docs/results/no_ids.md) are below 85%, its good
+	// ones 95.8-96.3%.
+	const std::string out = run("dslam_jcbb");
+	const Stats stats = Stats::load(out + "/stats.json");
+	EXPECT_GE(*stats.number("da_recall"), 0.94);
+	EXPECT_GE(*stats.number("da_precision"), 0.95);
+	EXPECT_NEAR(*stats.number("landmarks"), 151, 8);
+	const RunDifference d = runDifference(readRunOutputs(out), readRunOutputs(dir_->file("ceres_full")), std::nullopt);
+	const RunDifference twin = fromOptimum("dslam");
+	std::cout << "dslam_jcbb: recall " << *stats.number("da_recall") << ", " << *d.landmark_rms_m
+			  << " m RMS from the optimum\n";
+	EXPECT_LT(*d.landmark_rms_m, 1.5 * *twin.landmark_rms_m);
 }
 
 }  // namespace
