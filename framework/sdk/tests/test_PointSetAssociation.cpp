@@ -272,6 +272,44 @@ TEST(PointSetAssociation, RepairDropsThePairTheJointTestBlamesNotTheFarthest)
 	}
 }
 
+TEST(PointSetAssociation, ConditionalDistanceIsTheRiseOfTheJointDistance)
+{
+	// Candidates sharing a 2 m placement error (a rigid offset) beside their
+	// own 0.1 m; observed points independent (0.1 m). For an unpaired point,
+	// the distance given the accepted pairs must equal the rise of the exact
+	// joint distance were the pair added (block inverse of the joint
+	// covariance), for its nearest candidate in that sense. Both sides are a
+	// few small solves: 1e-9 relative.
+	PointSets s;
+	s.candidates.resize(4, 2);
+	s.candidates << 0, 0, 10, 0, 0, 10, 5, 5;
+	Eigen::MatrixXd common = Eigen::MatrixXd::Zero(8, 2);
+	for (int c = 0; c < 4; ++c) common.block<2, 2>(2 * c, 0) = Eigen::Matrix2d::Identity();
+	s.candidates_cov = 0.01 * Eigen::MatrixXd::Identity(8, 8) + 4.0 * common * common.transpose();
+	const Eigen::RowVector2d offset(1.0, 0.5);
+	s.observed.resize(4, 2);
+	s.observed << s.candidates.row(0) + offset, s.candidates.row(1) + offset, s.candidates.row(2) + offset,
+		s.candidates.row(3) + offset + Eigen::RowVector2d(1.5, 0);
+	s.observed_cov = 0.01 * Eigen::MatrixXd::Identity(8, 8);
+
+	const auto r = associatePointSets(s, AssociationMethod::Jcbb, kGate, kGate);
+	ASSERT_EQ(r.candidate_of, (std::vector<int>{0, 1, 2, -1}));
+	const double base = referenceJointDistance2(s, r.candidate_of);
+	double rise = std::numeric_limits<double>::infinity();
+	for (int c = 0; c < 4; ++c)
+	{
+		std::vector<int> with = r.candidate_of;
+		with[3] = c;
+		rise = std::min(rise, referenceJointDistance2(s, with) - base);
+	}
+	EXPECT_NEAR(r.conditional_min_distance2[3], rise, 1e-9 * rise);
+	// 1.5 m off given the offset the three pairs fix (~0.15 m sigma), but
+	// 1.6 alone, where the 2 m placement error hides it.
+	EXPECT_GT(r.conditional_min_distance2[3], 50);
+	EXPECT_LT(r.min_distance2[3], 3);
+	for (int i = 0; i < 3; ++i) EXPECT_EQ(r.conditional_min_distance2[i], std::numeric_limits<double>::infinity());
+}
+
 TEST(PointSetAssociation, CandidateIsClaimedOnce)
 {
 	PointSets s;

@@ -71,6 +71,44 @@ Eigen::Index farthestAlone(const PointSets& s, const StackedPairs& p)
 	return worst;
 }
 
+/// For each observed point without a candidate, its smallest squared
+/// distance to a candidate conditioned on the accepted pairs `p`: with
+/// nu_A, S_AA the stacked pairs and C = Cov(nu_ic, nu_A), the pair (i, c)
+/// has innovation mean C S_AA^-1 nu_A and covariance S_ic - C S_AA^-1 C^T.
+std::vector<double> conditionalMinDistances2(const PointSets& s, const std::vector<int>& candidate_of,
+											 const std::vector<double>& min_distance2)
+{
+	std::vector<double> out(candidate_of.size(), std::numeric_limits<double>::infinity());
+	const StackedPairs p = stackedPairs(s, candidate_of);
+	const Eigen::LLT<Eigen::MatrixXd> pairs(p.S);
+	const bool conditioned = !p.obs.empty() && pairs.info() == Eigen::Success;
+	const Eigen::VectorXd w = conditioned ? pairs.solve(p.nu) : Eigen::VectorXd();
+	const auto k = static_cast<Eigen::Index>(p.obs.size());
+	for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(candidate_of.size()); ++i)
+	{
+		if (candidate_of[i] >= 0) continue;
+		if (!conditioned)
+		{
+			out[i] = min_distance2[i];
+			continue;
+		}
+		for (Eigen::Index c = 0; c < s.candidates.rows(); ++c)
+		{
+			Eigen::MatrixXd C(2, 2 * k);
+			for (Eigen::Index a = 0; a < k; ++a)
+				C.middleCols<2>(2 * a) =
+					s.observed_cov.block<2, 2>(2 * i, 2 * p.obs[a]) + s.candidates_cov.block<2, 2>(2 * c, 2 * p.cand[a]);
+			const Eigen::Matrix2d S = s.observed_cov.block<2, 2>(2 * i, 2 * i) +
+				s.candidates_cov.block<2, 2>(2 * c, 2 * c) - C * pairs.solve(C.transpose());
+			const Eigen::LLT<Eigen::Matrix2d> llt(S);
+			if (llt.info() != Eigen::Success) continue;
+			const Eigen::Vector2d nu = (s.observed.row(i) - s.candidates.row(c)).transpose() - C * w;
+			out[i] = std::min(out[i], nu.dot(llt.solve(nu)));
+		}
+	}
+	return out;
+}
+
 /// Each candidate's covariance for MRPT: its joint block plus the covariance
 /// of its nearest observed point (Euclidean).
 Eigen::MatrixXd mrptPredictionCovariance(const PointSets& s)
@@ -189,6 +227,7 @@ PointAssociation associatePointSets(const PointSets& sets, AssociationMethod met
 	const auto M = sets.observed.rows(), N = sets.candidates.rows();
 	out.candidate_of.assign(M, -1);
 	out.min_distance2.assign(M, std::numeric_limits<double>::infinity());
+	out.conditional_min_distance2 = out.min_distance2;
 	if (M == 0 || N == 0) return out;  // MRPT asserts both are non-empty
 
 	const double individual_gate = chi2Quantile(gate_quantile, 2);
@@ -240,6 +279,7 @@ PointAssociation associatePointSets(const PointSets& sets, AssociationMethod met
 		out.candidate_of[verdict.blamed >= 0 ? p.obs[verdict.blamed] : farthestAlone(sets, p)] = -1;
 		++out.pairs_dropped;
 	}
+	out.conditional_min_distance2 = conditionalMinDistances2(sets, out.candidate_of, out.min_distance2);
 	return out;
 }
 

@@ -18,6 +18,10 @@ void MapLevelAssociationParams::declareAssociation(ParamBinder& b, const char* a
 	b.real("new_feature_chi2_quantile", new_feature_chi2_quantile,
 		   "confidence beyond which an unmatched local feature is new, not ambiguous (then left out)",
 		   Bounds::openUnit());
+	b.enumeration<NewFeatureTest>("new_feature_test", new_feature_test,
+								  {{"alone", NewFeatureTest::Alone}, {"given_pairs", NewFeatureTest::GivenPairs}},
+								  "an unmatched local feature's distance to each candidate: alone (the authors'), or "
+								  "given the map's accepted pairs (their shared placement error taken out)");
 	b.real("id_gate_chi2_quantile", id_gate_chi2_quantile,
 		   "with IDs, a local feature whose same-ID global feature fails this chi-square quantile is left out "
 		   "(misread ID); 1 = no gate",

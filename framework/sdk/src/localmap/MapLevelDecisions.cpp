@@ -15,10 +15,12 @@ MapLevelDecisions decideMapFeatures(const PointSets& sets, const MapLevelAssocia
 	out.jcbb_nodes = result.jcbb_nodes;
 	out.fell_back = result.fell_back;
 	const double new_gate = chi2Quantile(params.new_feature_chi2_quantile, 2);
+	const auto& distance2 = params.new_feature_test == NewFeatureTest::GivenPairs ? result.conditional_min_distance2
+																				  : result.min_distance2;
 	for (std::size_t i = 0; i < result.candidate_of.size(); ++i)
-		out.outcome.push_back(result.candidate_of[i] >= 0				 ? MapFeatureOutcome::Matched
-							  : result.min_distance2[i] > new_gate ? MapFeatureOutcome::New
-																	 : MapFeatureOutcome::PoorlyObserved);
+		out.outcome.push_back(result.candidate_of[i] >= 0 ? MapFeatureOutcome::Matched
+							  : distance2[i] > new_gate	  ? MapFeatureOutcome::New
+														  : MapFeatureOutcome::PoorlyObserved);
 	return out;
 }
 

@@ -47,6 +47,12 @@ struct PointAssociation
 	/// distance to any candidate (infinity when there is none): tells a new
 	/// point from an ambiguous one.
 	std::vector<double> min_distance2;
+	/// For each observed point left unpaired, the smallest squared distance
+	/// to any candidate given the accepted pairs: the rise of the joint
+	/// distance were that pair added, with the pairs' correlated innovations
+	/// (a shared placement error) taken out. The same as min_distance2 when
+	/// no pair is accepted; infinity for paired points.
+	std::vector<double> conditional_min_distance2;
 	/// Exact joint squared Mahalanobis distance of the accepted pairs.
 	double joint_distance2 = 0;
 	/// Pairs MRPT proposed that the exact joint test removed.

@@ -19,6 +19,14 @@ enum class MapAssociationMethod
 	NearestNeighbor	 ///< MRPT nearest neighbour on the same candidates
 };
 
+/// Against what an unmatched local feature's distance to the candidates is
+/// judged new (MapLevelDecisions.h).
+enum class NewFeatureTest
+{
+	Alone,	   ///< each candidate on its own (the authors')
+	GivenPairs	///< conditioned on the map's accepted pairs
+};
+
 struct MapLevelAssociationParams
 {
 	MapAssociationMethod association = MapAssociationMethod::Auto;	///< auto | known_ids | jcbb | nn
@@ -28,6 +36,13 @@ struct MapLevelAssociationParams
 	/// quantile from every candidate; otherwise it is ambiguous and left out
 	/// of the update (the authors' "poor observation").
 	double new_feature_chi2_quantile = 0.9999;
+	/// ... from every candidate alone, or given the map's accepted pairs
+	/// (PointAssociation::conditional_min_distance2): with the placement
+	/// error the pairs share taken out, a sighting beside a mapped feature is
+	/// new rather than left out, but a local map more confident than it
+	/// should be then starts duplicates (docs/plugins/dslam_lmj.md, "New or
+	/// poorly observed").
+	NewFeatureTest new_feature_test = NewFeatureTest::Alone;
 	/// With IDs: a local feature whose same-ID global feature fails this
 	/// chi-square quantile (2 dof) is left out (misread ID); 1 = no gate.
 	/// 0.9999 as the local-map builder's gate (LandmarkEkf).
