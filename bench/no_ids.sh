@@ -31,20 +31,27 @@ set +e
 "$esif" compare --configs "$without" --rawlog "$vp" --reference "$out/vicpark_ids/ceres_full" --out "$out/vicpark_no_ids" >/dev/null
 set -e
 
+# One run of a sweep: `config` with KEY=VALUE settings replaced, run on
+# Victoria Park into sweep folder `folder` as `name` (a failure leaves its
+# error line in name.err).
+sweep_run() {
+  local folder=$1 name=$2 config=$3; shift 3
+  local edits=(-e "s|^calibration = ../calibration/|calibration = $PWD/configs/calibration/|" -e "s|^label .*|label = $name|")
+  for kv in "$@"; do edits+=(-e "s|^${kv%%=*} = .*|${kv%%=*} = ${kv#*=}|"); done
+  mkdir -p "$out/$folder"
+  sed "${edits[@]}" "$config" > "$work/$name.ini"
+  set +e
+  "$esif" run -q --no-figures --config "$work/$name.ini" --rawlog "$vp" --out "$out/$folder/$name" \
+    --reference-run "$out/vicpark_ids/ceres_full" >/dev/null 2>"$out/$folder/$name.err"
+  set -e
+}
+
 # D-SLAM map joining without IDs: the upper level's frame against the local
-# maps' length (the no-ID config's two keys that differ from its twin).
-sweep=$out/dslam_lmj_sweep
-mkdir -p "$sweep"
+# maps' length.
 for frame in pair start_pose; do
   for steps in 35 50 70 100 150; do
-    sed -e "s|^calibration = ../calibration/|calibration = $PWD/configs/calibration/|" \
-        -e "s|^local_map_steps = .*|local_map_steps = $steps|" \
-        -e "s|^upper_level_frame = .*|upper_level_frame = $frame|" \
-        -e "s|^label .*|label = ${frame}_$steps|" configs/vicpark/dslam_lmj_jcbb.ini > "$work/${frame}_$steps.ini"
-    set +e
-    "$esif" run -q --no-figures --config "$work/${frame}_$steps.ini" --rawlog "$vp" --out "$sweep/${frame}_$steps" \
-      --reference-run "$out/vicpark_ids/ceres_full" >/dev/null 2>"$sweep/${frame}_$steps.err"
-    set -e
+    sweep_run dslam_lmj_sweep "${frame}_$steps" configs/vicpark/dslam_lmj_jcbb.ini \
+      "local_map_steps=$steps" "upper_level_frame=$frame"
   done
 done
 
@@ -52,19 +59,10 @@ done
 # (local_hold_steps; 0 = the book) against the anchors' cut
 # (held_anchor_max_sd_m; 1000 m = no cut), the rest of the no-ID config as
 # shipped.
-hold_sweep=$out/dslam_hold_sweep
-mkdir -p "$hold_sweep"
 for hold in 0 50 200 500 1000 3000; do
   for cut in 0.5 1000; do
-    name=hold_${hold}_cut_$cut
-    sed -e "s|^calibration = ../calibration/|calibration = $PWD/configs/calibration/|" \
-        -e "s|^local_hold_steps = .*|local_hold_steps = $hold|" \
-        -e "s|^held_anchor_max_sd_m = .*|held_anchor_max_sd_m = $cut|" \
-        -e "s|^label .*|label = $name|" configs/vicpark/dslam_jcbb.ini > "$work/$name.ini"
-    set +e
-    "$esif" run -q --no-figures --config "$work/$name.ini" --rawlog "$vp" --out "$hold_sweep/$name" \
-      --reference-run "$out/vicpark_ids/ceres_full" >/dev/null 2>"$hold_sweep/$name.err"
-    set -e
+    sweep_run dslam_hold_sweep "hold_${hold}_cut_$cut" configs/vicpark/dslam_jcbb.ini \
+      "local_hold_steps=$hold" "held_anchor_max_sd_m=$cut"
   done
 done
 
