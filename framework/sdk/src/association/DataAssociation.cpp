@@ -76,30 +76,21 @@ Eigen::MatrixXd pairDistances(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y
 
 /// The fallback's joint compatibility test (Neira & Tardos 2001): while the
 /// pairs fail it, the pair that contributes most to the joint distance is
-/// dropped (jcbb::jointVerdict; the one with the largest individual
-/// distance when the joint covariance is not positive definite). One
-/// O(k^3) factorisation per test.
+/// dropped (jcbb::dropUntilJointlyCompatible; the one with the largest
+/// individual distance when the joint covariance is not positive definite).
 std::size_t enforceJointCompatibility(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
 									  const Eigen::MatrixXd& d2, double quantile, std::vector<int>& candidate_of)
 {
-	std::size_t dropped = 0;
-	for (;;)
+	const auto stack = [&](const std::vector<int>& pairs) { return jcbb::jointInnovation(z, y, S, pairs); };
+	const auto farthest = [&](const jcbb::JointInnovation& joint)
 	{
-		const jcbb::JointInnovation joint = jcbb::jointInnovation(z, y, S, candidate_of);
-		const auto pairs = static_cast<int>(joint.observations.size());
-		if (pairs == 0) return dropped;
-		const jcbb::JointVerdict verdict = jcbb::jointVerdict(joint.nu, joint.S, chi2Quantile(quantile, 2 * pairs));
-		if (verdict.passes) return dropped;
-		std::size_t worst = 0;
-		double worst_d2 = -1;
-		if (verdict.blamed >= 0)
-			worst = static_cast<std::size_t>(joint.observations[verdict.blamed]);
-		else
-			for (std::size_t i = 0; i < candidate_of.size(); ++i)
-				if (candidate_of[i] >= 0 && d2(i, candidate_of[i]) > worst_d2) worst_d2 = d2(i, candidate_of[i]), worst = i;
-		candidate_of[worst] = -1;
-		++dropped;
-	}
+		Eigen::Index worst = joint.observations.front();
+		for (const Eigen::Index i : joint.observations)
+			if (d2(i, candidate_of[i]) > d2(worst, candidate_of[worst])) worst = i;
+		return worst;
+	};
+	double distance2 = 0;
+	return jcbb::dropUntilJointlyCompatible(candidate_of, quantile, stack, farthest, distance2);
 }
 
 /// Individually compatible candidates of each observation (what the search branches on).

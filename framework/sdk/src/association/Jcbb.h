@@ -15,6 +15,8 @@
 /// map-level association of point sets, PointSetAssociation.cpp, still calls
 /// MRPT's and repairs its pick by an exchange step.)
 
+#include <esif/association/Chi2.h>
+
 #include <Eigen/Core>
 #include <cstddef>
 #include <vector>
@@ -68,5 +70,31 @@ struct JointVerdict
 	Eigen::Index blamed = -1;  ///< when it fails: the pair to drop; -1 when S is not positive definite
 };
 JointVerdict jointVerdict(const Eigen::VectorXd& nu, const Eigen::MatrixXd& S, double bound);
+
+/// The joint-compatibility repair both associations share: while the pairs
+/// of `candidate_of`, stacked by `stack` (anything with nu, S and the
+/// observations of its pairs), fail the joint test at `quantile` (2 dof per
+/// pair), the pair jointVerdict blames is dropped; `fallback` (given the
+/// stack) names the observation to drop when the joint covariance is not
+/// positive definite. Returns the pairs dropped; `distance2` is the last
+/// joint distance (0 without pairs).
+template <class Stack, class Fallback>
+std::size_t dropUntilJointlyCompatible(std::vector<int>& candidate_of, double quantile, Stack stack,
+									   Fallback fallback, double& distance2)
+{
+	std::size_t dropped = 0;
+	for (;;)
+	{
+		const auto joint = stack(candidate_of);
+		const auto pairs = static_cast<int>(joint.observations.size());
+		distance2 = 0;
+		if (pairs == 0) return dropped;
+		const JointVerdict verdict = jointVerdict(joint.nu, joint.S, chi2Quantile(quantile, 2 * pairs));
+		distance2 = verdict.distance2;
+		if (verdict.passes) return dropped;
+		candidate_of[verdict.blamed >= 0 ? joint.observations[verdict.blamed] : fallback(joint)] = -1;
+		++dropped;
+	}
+}
 
 }  // namespace esif::jcbb

@@ -39,21 +39,21 @@ struct StackedPairs
 {
 	Eigen::VectorXd nu;
 	Eigen::MatrixXd S;
-	std::vector<Eigen::Index> obs, cand;
+	std::vector<Eigen::Index> observations, cand;
 };
 StackedPairs stackedPairs(const PointSets& s, const std::vector<int>& candidate_of)
 {
 	StackedPairs p;
 	for (std::size_t i = 0; i < candidate_of.size(); ++i)
-		if (candidate_of[i] >= 0) p.obs.push_back(static_cast<Eigen::Index>(i)), p.cand.push_back(candidate_of[i]);
-	const Eigen::Index k = static_cast<Eigen::Index>(p.obs.size());
+		if (candidate_of[i] >= 0) p.observations.push_back(static_cast<Eigen::Index>(i)), p.cand.push_back(candidate_of[i]);
+	const Eigen::Index k = static_cast<Eigen::Index>(p.observations.size());
 	p.S.resize(2 * k, 2 * k);
 	p.nu.resize(2 * k);
 	for (Eigen::Index a = 0; a < k; ++a)
 	{
-		p.nu.segment<2>(2 * a) = (s.observed.row(p.obs[a]) - s.candidates.row(p.cand[a])).transpose();
+		p.nu.segment<2>(2 * a) = (s.observed.row(p.observations[a]) - s.candidates.row(p.cand[a])).transpose();
 		for (Eigen::Index b = 0; b < k; ++b)
-			p.S.block<2, 2>(2 * a, 2 * b) = s.observed_cov.block<2, 2>(2 * p.obs[a], 2 * p.obs[b]) +
+			p.S.block<2, 2>(2 * a, 2 * b) = s.observed_cov.block<2, 2>(2 * p.observations[a], 2 * p.observations[b]) +
 				s.candidates_cov.block<2, 2>(2 * p.cand[a], 2 * p.cand[b]);
 	}
 	return p;
@@ -66,8 +66,9 @@ Eigen::Index farthestAlone(const PointSets& s, const StackedPairs& p)
 {
 	Eigen::Index worst = 0;
 	double worst_d2 = -1;
-	for (std::size_t a = 0; a < p.obs.size(); ++a)
-		if (const double d2 = pairDistance2(s, p.obs[a], p.cand[a]); d2 > worst_d2) worst_d2 = d2, worst = p.obs[a];
+	for (std::size_t a = 0; a < p.observations.size(); ++a)
+		if (const double d2 = pairDistance2(s, p.observations[a], p.cand[a]); d2 > worst_d2)
+			worst_d2 = d2, worst = p.observations[a];
 	return worst;
 }
 
@@ -81,9 +82,9 @@ std::vector<double> conditionalMinDistances2(const PointSets& s, const std::vect
 	std::vector<double> out(candidate_of.size(), std::numeric_limits<double>::infinity());
 	const StackedPairs p = stackedPairs(s, candidate_of);
 	const Eigen::LLT<Eigen::MatrixXd> pairs(p.S);
-	const bool conditioned = !p.obs.empty() && pairs.info() == Eigen::Success;
+	const bool conditioned = !p.observations.empty() && pairs.info() == Eigen::Success;
 	const Eigen::VectorXd w = conditioned ? pairs.solve(p.nu) : Eigen::VectorXd();
-	const auto k = static_cast<Eigen::Index>(p.obs.size());
+	const auto k = static_cast<Eigen::Index>(p.observations.size());
 	for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(candidate_of.size()); ++i)
 	{
 		if (candidate_of[i] >= 0) continue;
@@ -97,7 +98,7 @@ std::vector<double> conditionalMinDistances2(const PointSets& s, const std::vect
 			Eigen::MatrixXd C(2, 2 * k);
 			for (Eigen::Index a = 0; a < k; ++a)
 				C.middleCols<2>(2 * a) =
-					s.observed_cov.block<2, 2>(2 * i, 2 * p.obs[a]) + s.candidates_cov.block<2, 2>(2 * c, 2 * p.cand[a]);
+					s.observed_cov.block<2, 2>(2 * i, 2 * p.observations[a]) + s.candidates_cov.block<2, 2>(2 * c, 2 * p.cand[a]);
 			const Eigen::Matrix2d S = s.observed_cov.block<2, 2>(2 * i, 2 * i) +
 				s.candidates_cov.block<2, 2>(2 * c, 2 * c) - C * pairs.solve(C.transpose());
 			const Eigen::LLT<Eigen::Matrix2d> llt(S);
@@ -264,21 +265,9 @@ PointAssociation associatePointSets(const PointSets& sets, AssociationMethod met
 	// Exact joint compatibility; repair by dropping the pair whose removal
 	// lowers the joint distance most (jcbb::jointVerdict), not the one
 	// farthest on its own.
-	for (;;)
-	{
-		const StackedPairs p = stackedPairs(sets, out.candidate_of);
-		const auto pairs = static_cast<int>(p.obs.size());
-		if (pairs == 0)
-		{
-			out.joint_distance2 = 0;
-			break;
-		}
-		const jcbb::JointVerdict verdict = jcbb::jointVerdict(p.nu, p.S, chi2Quantile(joint_quantile, 2 * pairs));
-		out.joint_distance2 = verdict.distance2;
-		if (verdict.passes) break;
-		out.candidate_of[verdict.blamed >= 0 ? p.obs[verdict.blamed] : farthestAlone(sets, p)] = -1;
-		++out.pairs_dropped;
-	}
+	out.pairs_dropped += jcbb::dropUntilJointlyCompatible(
+		out.candidate_of, joint_quantile, [&](const std::vector<int>& pairs) { return stackedPairs(sets, pairs); },
+		[&](const StackedPairs& p) { return farthestAlone(sets, p); }, out.joint_distance2);
 	out.conditional_min_distance2 = conditionalMinDistances2(sets, out.candidate_of, out.min_distance2);
 	return out;
 }
