@@ -91,6 +91,20 @@ TEST(NoiseCalibration, KeepsTheOtherNoiseComponentWhenOneIsSet)
 	EXPECT_NEAR(m.cov(1, 1), 0.001, 1e-15);
 }
 
+TEST(NoiseCalibration, SetsTheSightingNoiseOnlyWhenGiven)
+{
+	NoiseCalibration c;
+	c.range_std_m = 0.5;
+	EXPECT_FALSE(calibratedStep(stepWithOdometryAndScan(), c).scan->measurements[0].sighting_cov);
+	c.sighting_range_std_m = 0.2;
+	const auto m = calibratedStep(stepWithOdometryAndScan(), c).scan->measurements[0];
+	ASSERT_TRUE(m.sighting_cov);
+	EXPECT_NEAR((*m.sighting_cov)(0, 0), 0.04, 1e-15);
+	EXPECT_NEAR((*m.sighting_cov)(1, 1), m.cov(1, 1), 1e-15);  // the bearing's as fused
+	EXPECT_NEAR(m.cov(0, 0), 0.25, 1e-15);
+	EXPECT_NEAR(sightingCov(m)(0, 0), 0.04, 1e-15);
+}
+
 TEST(NoiseCalibration, ARangeBelowItsBiasStaysAtZero)
 {
 	NoiseCalibration c;
@@ -107,6 +121,7 @@ TEST(NoiseCalibration, FileRoundTrip)
 	c.odometry_std_scale_phi = 3.25;
 	c.range_std_m = 0.1477;
 	c.bearing_bias_deg = -0.111;
+	c.sighting_bearing_std_deg = 0.686;
 	const std::string path = dir.file("calibration.ini");
 	writeTextAtomically(path, noiseCalibrationText(c, "fitted by hand\n\ntwo lines"));
 	const std::string text = test::readText(path);
@@ -115,6 +130,7 @@ TEST(NoiseCalibration, FileRoundTrip)
 	EXPECT_EQ(back.odometry_std_scale_phi, 3.25);
 	EXPECT_EQ(back.range_std_m, 0.1477);
 	EXPECT_EQ(back.bearing_bias_deg, -0.111);
+	EXPECT_EQ(back.sighting_bearing_std_deg, 0.686);
 	EXPECT_EQ(back.odometry_turn_scale, 1);
 }
 

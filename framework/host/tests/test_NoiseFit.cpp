@@ -148,3 +148,30 @@ TEST(SensorWindowCheck, IndependentErrorsStayFlatAndALandmarksOwnErrorGrows)
 	EXPECT_NEAR(correlated[0].range_normalised, 2.0, 0.3);
 	EXPECT_GT(correlated[1].range_normalised, 8.0);	 // 17 expected; a draw of 196 landmark errors spreads it
 }
+
+TEST(NoiseFit, ASensorHorizonInflatesTheFusedNoiseAndKeepsOneSightingsForAssociation)
+{
+	// Each landmark given a range error of its own of 0.1 m (as in the window
+	// check above): one sighting's range error is then 0.14 m, a sum of 16
+	// sightings of one landmark errs by far more than 16 independent ones.
+	ReferencedLog ref = grid196();
+	std::mt19937 rng(3);
+	std::normal_distribution<double> own(0, 0.1);
+	std::map<LandmarkId, double> error_of;
+	for (const auto& [id, p] : ref.landmarks) error_of[id] = own(rng);
+	for (auto& step : ref.log.steps)
+		if (step.scan)
+			for (auto& m : step.scan->measurements)
+				if (m.id) m.range_m += error_of[*m.id];
+	NoiseFitSettings horizon16;
+	horizon16.sensor_horizon = 16;
+	const auto one = fit(ref), inflated = fit(ref, horizon16);
+	EXPECT_EQ(one.fitted.sighting_range_std_m, 0);	// no horizon: one noise for both
+	// The sighting noise is the fit of one measurement, to the spread of 196
+	// landmark errors (a variance from 196 draws: 10%, 5% on the sigma).
+	EXPECT_EQ(inflated.fitted.sighting_range_std_m, one.fitted.range_std_m);
+	EXPECT_EQ(inflated.fitted.sighting_bearing_std_deg, one.fitted.bearing_std_deg);
+	EXPECT_NEAR(one.fitted.range_std_m, std::hypot(0.1, 0.1), 0.1 * std::hypot(0.1, 0.1));
+	// Fused: inflated toward sqrt(1 + 16 / 2) = 3x (own error half the variance).
+	EXPECT_GT(inflated.fitted.range_std_m, 2 * inflated.fitted.sighting_range_std_m);
+}

@@ -194,4 +194,55 @@ TEST(LandmarkEkfAmbiguity, TwinsCloserThanTheSensorResolvesAreMatchedNotWaitedOn
 	EXPECT_EQ(ekf.core().landmarkCount(), 1u);
 	EXPECT_EQ(ekf.ambiguousWaits(), 0u);
 }
+
+/// `s` with every measurement's fused noise inflated to 0.5 m, 3 deg (errors
+/// that repeat over sightings, as calibrated on MRCLAM) and, with `sighting`,
+/// the noise of one sighting alone at 0.1 m, 0.5 deg.
+StepInput withInflatedNoise(StepInput s, bool sighting)
+{
+	for (auto& m : s.scan->measurements)
+	{
+		m.cov = Eigen::Vector2d(0.25, std::pow(3 * M_PI / 180, 2)).asDiagonal();
+		if (sighting) m.sighting_cov = Eigen::Vector2d(0.01, std::pow(0.5 * M_PI / 180, 2)).asDiagonal();
+	}
+	return s;
+}
+
+/// The kind of association a cylinder 0.8 m beside one seen 16 times from
+/// the same pose gets, 6 m ahead.
+Association::Kind neighbourBesideAWellMappedLandmark(bool sighting)
+{
+	LandmarkEkf ekf(distanceAssociation(false, 0));
+	for (std::size_t k = 0; k < 16; ++k)
+		ekf.processStep(withInflatedNoise(step(k, k ? 0.0 : -1.0, 1e-3, 1e-4, {{6.0, 0.0}}), sighting));
+	const Eigen::Vector2d neighbour(std::hypot(6.0, 0.8), std::atan2(0.8, 6.0));
+	const auto r = ekf.processStep(withInflatedNoise(step(16, 0.0, 1e-3, 1e-4, {neighbour}), sighting));
+	return r.associations.at(0).kind;
+}
+
+TEST(LandmarkEkfSightingNoise, ANeighbourBeyondOneSightingsNoiseIsNewNotMerged)
+{
+	// The landmark's lateral sigma after 16 fused sightings: 6 m x 3 deg / 4 =
+	// 0.08 m. Against the inflated noise (0.31 m lateral at 6 m) the neighbour
+	// 0.8 m off is at d2 = 0.64 / (0.08^2 + 0.31^2) = 6.2, inside the 0.99
+	// gate (9.2): merged. Against one sighting's noise (0.05 m lateral),
+	// d2 = 0.64 / (0.08^2 + 0.05^2) = 72, beyond the new-landmark gate (18.4).
+	EXPECT_EQ(neighbourBesideAWellMappedLandmark(false), Association::Kind::Matched);
+	EXPECT_EQ(neighbourBesideAWellMappedLandmark(true), Association::Kind::New);
+}
+
+TEST(LandmarkEkfSightingNoise, FusionKeepsTheInflatedNoise)
+{
+	// The sighting noise decides associations only: the same matches fuse
+	// to the same estimate with or without it.
+	LandmarkEkf inflated(distanceAssociation(false, 0)), both(distanceAssociation(false, 0));
+	for (std::size_t k = 0; k < 5; ++k)
+	{
+		const StepInput s = step(k, k ? 0.1 : -1.0, 1e-2, 1e-3, {{6.0 - 0.1 * k, 0.01 * k}});
+		inflated.processStep(withInflatedNoise(s, false));
+		both.processStep(withInflatedNoise(s, true));
+	}
+	EXPECT_EQ(inflated.core().state(), both.core().state());
+	EXPECT_EQ(inflated.core().covariance(), both.core().covariance());
+}
 }  // namespace

@@ -30,6 +30,11 @@ void parameterTable(std::ostream& out, const NoiseFitResult& fit)
 	row("odometry_std_scale_phi", fit.start.odometry_std_scale_phi, fit.fitted.odometry_std_scale_phi, 3);
 	row("range_std_m", fit.start.range_std_m, fit.fitted.range_std_m, 4);
 	row("bearing_std_deg", fit.start.bearing_std_deg, fit.fitted.bearing_std_deg, 3);
+	if (fit.fitted.sighting_range_std_m > 0 || fit.fitted.sighting_bearing_std_deg > 0)
+	{
+		row("sighting_range_std_m (association)", fit.start.range_std_m, fit.fitted.sighting_range_std_m, 4);
+		row("sighting_bearing_std_deg (association)", fit.start.bearing_std_deg, fit.fitted.sighting_bearing_std_deg, 3);
+	}
 	row("range_bias_m", fit.start.range_bias_m, fit.fitted.range_bias_m, 4);
 	row("bearing_bias_deg", fit.start.bearing_bias_deg, fit.fitted.bearing_bias_deg, 3);
 }
@@ -102,7 +107,8 @@ std::string calibrationReportText(const CalibrationReport& report, const NoiseFi
 		<< "; sensor: " << report.fit.sensor.outliers << " of " << report.fit.sensor.measurements
 		<< " measurements judged outliers (prior " << settings.likelihood.outlier_fraction << ")";
 	if (settings.sensor_horizon > 1)
-		out << ", noise inflated for sums of up to " << settings.sensor_horizon << " sightings of one landmark";
+		out << ", noise inflated for sums of up to " << settings.sensor_horizon
+			<< " sightings of one landmark (association tests keep the noise of one sighting)";
 	out << ".\n";
 	for (const auto& c : report.checks) out << "rawlog: " << c.rawlog << (c.reference.empty() ? "" : ", reference: " + c.reference) << "\n";
 	out << "\n";

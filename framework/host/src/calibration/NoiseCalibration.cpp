@@ -31,6 +31,11 @@ void NoiseCalibration::declare(ParamBinder& b)
 		   Bounds::closed(0, 1e3));
 	b.real("bearing_std_deg", bearing_std_deg, "bearing noise 1-sigma [deg]; 0 = each observation's own",
 		   Bounds::closed(0, 90));
+	b.real("sighting_range_std_m", sighting_range_std_m,
+		   "range noise of one sighting alone, for association tests [m]; 0 = range_std_m", Bounds::closed(0, 1e3));
+	b.real("sighting_bearing_std_deg", sighting_bearing_std_deg,
+		   "bearing noise of one sighting alone, for association tests [deg]; 0 = bearing_std_deg",
+		   Bounds::closed(0, 90));
 	b.real("range_bias_m", range_bias_m, "range bias (measured - true) taken out of every measurement [m]",
 		   Bounds::closed(-100, 100));
 	b.real("bearing_bias_deg", bearing_bias_deg,
@@ -41,7 +46,7 @@ bool NoiseCalibration::isIdentity() const
 {
 	return odometry_distance_scale == 1 && odometry_turn_scale == 1 && odometry_heading_drift_deg_per_m == 0 &&
 		odometry_std_scale_xy == 1 && odometry_std_scale_phi == 1 && range_std_m == 0 && bearing_std_deg == 0 &&
-		range_bias_m == 0 && bearing_bias_deg == 0;
+		sighting_range_std_m == 0 && sighting_bearing_std_deg == 0 && range_bias_m == 0 && bearing_bias_deg == 0;
 }
 
 NoiseCalibration loadNoiseCalibration(const std::string& path)
@@ -94,6 +99,14 @@ StepInput calibratedStep(const StepInput& step, const NoiseCalibration& c)
 		if (c.range_std_m > 0 || c.bearing_std_deg > 0) m.cov(0, 1) = m.cov(1, 0) = 0;
 		if (c.range_std_m > 0) m.cov(0, 0) = c.range_std_m * c.range_std_m;
 		if (c.bearing_std_deg > 0) m.cov(1, 1) = std::pow(c.bearing_std_deg * kRadPerDeg, 2);
+		if (c.sighting_range_std_m > 0 || c.sighting_bearing_std_deg > 0)
+		{
+			Eigen::Matrix2d sighting = m.cov;
+			sighting(0, 1) = sighting(1, 0) = 0;
+			if (c.sighting_range_std_m > 0) sighting(0, 0) = c.sighting_range_std_m * c.sighting_range_std_m;
+			if (c.sighting_bearing_std_deg > 0) sighting(1, 1) = std::pow(c.sighting_bearing_std_deg * kRadPerDeg, 2);
+			m.sighting_cov = sighting;
+		}
 	}
 	return out;
 }

@@ -70,11 +70,12 @@ void LandmarkEkf::dropLandmarks(std::vector<std::size_t> indices)
 	for (std::size_t i = 0; i < ids_.size(); ++i) index_of_[ids_[i]] = i;
 }
 
-double LandmarkEkf::innovationDistance2(std::size_t index, const RangeBearing& m, const Pose2& sensor) const
+double LandmarkEkf::innovationDistance2(
+	std::size_t index, const RangeBearing& m, const Eigen::Matrix2d& noise, const Pose2& sensor) const
 {
 	const auto h = core_.predictMeasurement(index, sensor);
 	Eigen::Vector2d nu(m.range_m - h.z(0), wrapAngle(m.bearing_rad - h.z(1)));
-	const Eigen::Matrix2d S = core_.predictionCovariance({index}, sensor) + m.cov;
+	const Eigen::Matrix2d S = core_.predictionCovariance({index}, sensor) + noise;
 	const Eigen::LLT<Eigen::Matrix2d> llt(S);
 	if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
 	return nu.dot(llt.solve(nu));
@@ -140,7 +141,10 @@ StepReport LandmarkEkf::associateByIds(const StepInput& step, std::vector<EkfSla
 			throw InputError(
 				"step " + std::to_string(step.index) + ", measurement " + std::to_string(i) +
 				": no landmark ID but association = known_ids");
-		if (const auto index = indexOf(*ms[i].id)) d2[i] = innovationDistance2(*index, ms[i], sensor);
+		// The ID gate is an outlier test of the sensor's own hypothesis: it
+		// takes the noise the update will assume (a wrongly rejected ID loses
+		// a valid measurement).
+		if (const auto index = indexOf(*ms[i].id)) d2[i] = innovationDistance2(*index, ms[i], ms[i].cov, sensor);
 		if (const auto [it, first] = used.emplace(*ms[i].id, i); !first && d2[i] < d2[it->second]) it->second = i;
 	}
 
@@ -205,9 +209,10 @@ StepReport LandmarkEkf::associateByDistance(const Scan& scan, std::vector<EkfSla
 		in.predictions.row(j) = core_.predictMeasurement(candidates[j], sensor).z.transpose();
 	in.covariance = core_.predictionCovariance(candidates, sensor);
 	// MRPT's association takes one noise for all measurements of a scan: the
-	// sensor's nominal covariance (that of the first measurement).
+	// sensor's nominal covariance (that of the first measurement), of one
+	// sighting (sightingCov: a gate compares one measurement's innovation).
 	for (std::size_t j = 0; j < candidates.size() && !ms.empty(); ++j)
-		in.covariance.block<2, 2>(2 * j, 2 * j) += ms.front().cov;
+		in.covariance.block<2, 2>(2 * j, 2 * j) += sightingCov(ms.front());
 
 	const auto result = associate(
 		in, params_.association == EkfAssociation::NearestNeighbor ? AssociationMethod::NearestNeighbor
@@ -251,9 +256,10 @@ bool LandmarkEkf::isAmbiguous(
 	const double margin = params_.ambiguityMarginDistance2();
 	if (margin <= 0) return false;
 	Eigen::VectorXd d2(static_cast<Eigen::Index>(candidates.size()));
-	for (std::size_t j = 0; j < candidates.size(); ++j) d2(static_cast<Eigen::Index>(j)) = innovationDistance2(candidates[j], m, sensor);
+	for (std::size_t j = 0; j < candidates.size(); ++j)
+		d2(static_cast<Eigen::Index>(j)) = innovationDistance2(candidates[j], m, sightingCov(m), sensor);
 	const Eigen::Vector2d z_chosen = core_.predictMeasurement(candidates[chosen], sensor).z;
-	const Eigen::LLT<Eigen::Matrix2d> sensor_noise(m.cov);
+	const Eigen::LLT<Eigen::Matrix2d> sensor_noise(sightingCov(m));
 	return ambiguousMatch(d2, static_cast<Eigen::Index>(chosen), margin, [&](Eigen::Index j) {
 		Eigen::Vector2d dz = core_.predictMeasurement(candidates[static_cast<std::size_t>(j)], sensor).z - z_chosen;
 		dz(1) = wrapAngle(dz(1));
@@ -265,7 +271,7 @@ bool LandmarkEkf::confirmedSighting(const RangeBearing& m, const Pose2& sensor, 
 {
 	const LandmarkFromMeasurement p = landmarkFromRangeBearing(core_.robot(), sensor, m.range_m, m.bearing_rad);
 	Eigen::Matrix2d cov = p.d_robot * core_.robotCov() * p.d_robot.transpose() +
-		p.d_measurement * m.cov * p.d_measurement.transpose();
+		p.d_measurement * sightingCov(m) * p.d_measurement.transpose();
 	cov = (0.5 * (cov + cov.transpose())).eval();
 	return tentative_.confirm(std::nullopt, p.position, cov, step);
 }

@@ -34,6 +34,12 @@ struct NoiseCalibration
 	/// Range-bearing noise (1 sigma); 0 keeps each observation's own.
 	double range_std_m = 0;
 	double bearing_std_deg = 0;
+	/// The noise of a single sighting (1 sigma), when range_std_m and
+	/// bearing_std_deg are inflated for errors that repeat over the sightings
+	/// of one landmark (esif calibrate --sensor-horizon): what association
+	/// tests use (RangeBearing::sighting_cov). 0 = as the fused noise.
+	double sighting_range_std_m = 0;
+	double sighting_bearing_std_deg = 0;
 	/// Constant bias of the sensor, measured minus true: taken out of every
 	/// measurement (range - bias, bearing - bias).
 	double range_bias_m = 0;
@@ -58,7 +64,8 @@ std::string noiseCalibrationText(const NoiseCalibration& calibration, const std:
 
 /// `step` with the calibration applied (systematic odometry errors taken
 /// out, odometry covariance scaled, sensor bias taken out of every
-/// measurement, a range never below zero, its noise replaced when set).
+/// measurement, a range never below zero, its noise replaced when set, its
+/// sighting noise set when given).
 StepInput calibratedStep(const StepInput& step, const NoiseCalibration& calibration);
 
 /// calibratedStep() of every step, in place.

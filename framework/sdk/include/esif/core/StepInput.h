@@ -40,11 +40,20 @@ struct RangeBearing
 {
 	double range_m = 0;
 	double bearing_rad = 0;	 ///< in (-pi, pi], counter-clockwise from the sensor's x axis
-	/// Covariance of (range [m], bearing [rad]).
+	/// Covariance of (range [m], bearing [rad]): what an estimator fuses.
 	Eigen::Matrix2d cov = Eigen::Matrix2d::Identity();
 	/// Landmark identity when the sensor provides it (known data association).
 	std::optional<LandmarkId> id;
+	/// Covariance of this one measurement alone, when it differs from `cov`:
+	/// what an association test compares an innovation against (sightingCov()).
+	/// A calibration sets it when errors repeat over the sightings of one
+	/// landmark: `cov` is then inflated so that sums of sightings fuse
+	/// consistently, and would widen every gate by the same factor.
+	std::optional<Eigen::Matrix2d> sighting_cov;
 };
+
+/// The noise of one sighting: `sighting_cov` when set, otherwise `cov`.
+inline const Eigen::Matrix2d& sightingCov(const RangeBearing& m) { return m.sighting_cov ? *m.sighting_cov : m.cov; }
 
 /// All range-bearing measurements taken at one robot pose.
 struct Scan

@@ -105,8 +105,9 @@ class LandmarkEkf
 	StepReport associateScan(const StepInput& step, std::vector<EkfSlamCore::Match>& matches);
 	StepReport associateByIds(const StepInput& step, std::vector<EkfSlamCore::Match>& matches);
 	/// Squared Mahalanobis distance of measurement `m` of landmark `index`
-	/// from its prediction (covariance H P H^T + R).
-	double innovationDistance2(std::size_t index, const RangeBearing& m, const Pose2& sensor) const;
+	/// from its prediction (covariance H P H^T + noise).
+	double innovationDistance2(
+		std::size_t index, const RangeBearing& m, const Eigen::Matrix2d& noise, const Pose2& sensor) const;
 	/// Marginalises out the landmarks `indices` (their IDs leave the map).
 	void dropLandmarks(std::vector<std::size_t> indices);
 	StepReport associateByDistance(const Scan& scan, std::vector<EkfSlamCore::Match>& matches);
