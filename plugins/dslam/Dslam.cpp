@@ -176,17 +176,16 @@ void Dslam::addHeldAnchors(const Scan& scan, const std::vector<TrackedMeasuremen
 	std::unordered_set<LandmarkId> in_scan;
 	for (const auto& t : tracked)
 		if (t.feature) in_scan.insert(*t.feature);
-	const LocalSlam::HeldPrediction held = local_.predictHeld(scan.sensor_on_robot, Eigen::Matrix2d::Zero());
 	const double max_var = params_.held_anchor_max_sd_m * params_.held_anchor_max_sd_m;
 	for (std::size_t k = 0; k < local_.order().size(); ++k)
 	{
 		const LandmarkId id = local_.order()[k];
 		if (in_scan.count(id) || !map_->supported(id)) continue;
-		const auto r = static_cast<Eigen::Index>(k);
+		const LocalSlam::FeaturePrediction held = local_.predictHeldFeature(k, scan.sensor_on_robot);
 		RangeBearing virtual_measurement;
-		virtual_measurement.range_m = held.predictions(r, 0);
-		virtual_measurement.bearing_rad = held.predictions(r, 1);
-		virtual_measurement.cov = held.covariance.block<2, 2>(2 * r, 2 * r);
+		virtual_measurement.range_m = held.z(0);
+		virtual_measurement.bearing_rad = held.z(1);
+		virtual_measurement.cov = held.covariance;
 		const double range2 = virtual_measurement.range_m * virtual_measurement.range_m;
 		if (std::max(virtual_measurement.cov(0, 0), range2 * virtual_measurement.cov(1, 1)) > max_var) continue;
 		anchors.push_back({virtual_measurement, id});

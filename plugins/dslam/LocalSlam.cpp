@@ -88,6 +88,11 @@ LocalSlam::HeldPrediction LocalSlam::predictHeld(const Pose2& sensor_on_robot, c
 	return out;
 }
 
+LocalSlam::FeaturePrediction LocalSlam::predictHeldFeature(std::size_t k, const Pose2& sensor_on_robot) const
+{
+	return {ekf_.predictMeasurement(k, sensor_on_robot).z, ekf_.predictionCovariance({k}, sensor_on_robot)};
+}
+
 void LocalSlam::reindex()
 {
 	index_of_.clear();

@@ -79,6 +79,16 @@ class LocalSlam
 	};
 	HeldPrediction predictHeld(const Pose2& sensor_on_robot, const Eigen::Matrix2d& R) const;
 
+	/// Predicted measurement of the held feature order()[k] and its H P H^T
+	/// (robot uncertainty included, no sensor noise): one diagonal block of
+	/// predictHeld(), in constant time.
+	struct FeaturePrediction
+	{
+		Eigen::Vector2d z;
+		Eigen::Matrix2d covariance;
+	};
+	FeaturePrediction predictHeldFeature(std::size_t k, const Pose2& sensor_on_robot) const;
+
 	/// State [robot; features in order()] and its covariance (step C).
 	Eigen::VectorXd state() const { return ekf_.state(); }
 	Eigen::MatrixXd covariance() const { return ekf_.covariance(); }
