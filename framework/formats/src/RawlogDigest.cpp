@@ -13,6 +13,8 @@ namespace
 class Crc
 {
    public:
+	Crc() = default;
+	explicit Crc(std::uint32_t running) : crc_(running) {}
 	template <class T>
 	void add(const T& value)
 	{
@@ -44,32 +46,45 @@ void addScan(Crc& crc, const Scan& scan)
 		crc.add(m.id.value_or(-1));
 	}
 }
+
+void addStep(Crc& crc, const StepInput& step)
+{
+	crc.add(step.index);
+	crc.add(step.time_s);
+	crc.add(step.odometry.has_value());
+	if (step.odometry)
+	{
+		crc.add(step.odometry->delta.x());
+		crc.add(step.odometry->delta.y());
+		crc.add(step.odometry->delta(2));
+		crc.addMatrix(step.odometry->cov.data(), 9);
+	}
+	crc.add(step.scan.has_value());
+	if (step.scan) addScan(crc, *step.scan);
+}
 }  // namespace
 
 std::uint32_t digestOf(const Rawlog& log)
 {
 	Crc crc;
 	crc.add(log.steps.size());
-	for (const StepInput& step : log.steps)
-	{
-		crc.add(step.index);
-		crc.add(step.time_s);
-		crc.add(step.odometry.has_value());
-		if (step.odometry)
-		{
-			crc.add(step.odometry->delta.x());
-			crc.add(step.odometry->delta.y());
-			crc.add(step.odometry->delta(2));
-			crc.addMatrix(step.odometry->cov.data(), 9);
-		}
-		crc.add(step.scan.has_value());
-		if (step.scan) addScan(crc, *step.scan);
-	}
+	for (const StepInput& step : log.steps) addStep(crc, step);
 	for (const auto& ids : log.true_ids)
 		for (const auto& id : ids) crc.add(id.value_or(-1));
 	crc.add(log.truncation_warning.has_value());
 	crc.add(log.measurement_count);
 	return crc.value();
+}
+
+StepsDigest::StepsDigest() : crc_(Crc().value()) {}
+
+void StepsDigest::add(const StepInput& step, const std::vector<std::optional<LandmarkId>>& ids)
+{
+	Crc crc(crc_);
+	addStep(crc, step);
+	crc.add(ids.size());
+	for (const auto& id : ids) crc.add(id.value_or(-1));
+	crc_ = crc.value();
 }
 
 }  // namespace esif

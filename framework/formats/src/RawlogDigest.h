@@ -14,4 +14,19 @@ namespace esif
 /// measurement and its ID), the IDs as stored and whether the file was cut.
 std::uint32_t digestOf(const Rawlog& log);
 
+/// CRC-32 over steps added one at a time as they are read (each step's
+/// index, time, odometry and scan, then the IDs of its measurements as
+/// stored): tells whether a second read of a file gave the steps of the
+/// first (RawlogSource::steps_digest).
+class StepsDigest
+{
+   public:
+	StepsDigest();
+	void add(const StepInput& step, const std::vector<std::optional<LandmarkId>>& ids);
+	std::uint32_t value() const { return crc_; }
+
+   private:
+	std::uint32_t crc_;
+};
+
 }  // namespace esif

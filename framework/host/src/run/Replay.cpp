@@ -62,6 +62,7 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 	ReplayResult out;
 	out.record.plugin = plugin.GetRuntimeClass()->className;
 	out.record.rawlog = log.path;
+	out.record.frames_source = log.source;
 	out.landmark_counts.reserve(log.steps.size());
 	out.reports.reserve(log.steps.size());
 	out.record.trajectory.reserve(log.steps.size());
@@ -88,10 +89,11 @@ ReplayResult replay(FilterPlugin& plugin, const Rawlog& log, const ReplayOptions
 		const PoseEstimate pose = plugin.robotPose();
 		out.record.trajectory.push_back({k, step.time_s, pose});
 		const Pose2 p = pose.mean;
-		if (log.frames[k] &&
+		// A step with a scan has a sensory frame, kept or to be read again.
+		if (step.scan &&
 			(!last_keyframe || (p.head<2>() - last_keyframe->head<2>()).norm() >= options.keyframe_min_distance_m))
 		{
-			out.record.keyframes.push_back({pose, log.frames[k], k});
+			out.record.keyframes.push_back({pose, k < log.frames.size() ? log.frames[k] : nullptr, k});
 			last_keyframe = p;
 		}
 	};

@@ -79,6 +79,9 @@ RawlogReadOptions readOptionsOf(const HostParams& host)
 	options.sensor_std_bearing_rad = host.sensor_std_bearing_deg * M_PI / 180.0;
 	options.odometry_obs_std_xy_m = host.odometry_obs_std_xy_m;
 	options.odometry_obs_std_phi_rad = host.odometry_obs_std_phi_deg * M_PI / 180.0;
+	// map.simplemap reads its keyframes' frames again from the file
+	// (RawlogFrames.h): a large log's frames are most of its memory.
+	options.keep_frames = false;
 	return options;
 }
 

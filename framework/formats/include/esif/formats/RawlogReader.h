@@ -15,6 +15,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,13 +39,46 @@ struct RawlogReadOptions
 	/// with it (the EKF's quadratically), and no landmark detector returns
 	/// thousands per scan; a larger count is a corrupt or hostile file.
 	std::size_t max_measurements_per_scan = 1000;
+	/// Keep every step's MRPT sensory frame (Rawlog::frames). Without them
+	/// the frames are null, and a map writer reads the ones it needs again
+	/// from the file (RawlogFrames.h): on a long log they are most of what
+	/// reading it holds.
+	bool keep_frames = true;
+};
+
+/// What tells one state of a file from another without reading it: a file
+/// replaced or rewritten since it was read differs in one of these.
+struct FileStamp
+{
+	std::uintmax_t device = 0, inode = 0, size = 0;
+	std::int64_t modified_ns = 0;
+	bool operator==(const FileStamp& o) const
+	{
+		return device == o.device && inode == o.inode && size == o.size && modified_ns == o.modified_ns;
+	}
+};
+
+/// The stamp of `path` now; InputError naming it when it cannot be read.
+FileStamp stampOf(const std::string& path);
+
+/// Where a Rawlog's steps came from, so that the file can be read again for
+/// what was not kept (RawlogFrames.h): the file as it was when read, the
+/// options it was read with, and a checksum of the steps it gave.
+struct RawlogSource
+{
+	std::string path;
+	FileStamp stamp;
+	RawlogReadOptions options;
+	std::size_t steps = 0;
+	std::uint32_t steps_digest = 0;
 };
 
 struct Rawlog
 {
 	std::string path;
 	std::vector<StepInput> steps;
-	/// The sensory frame behind each step (null for odometry-only steps), for maps.
+	/// The sensory frame behind each step (null for odometry-only steps, and
+	/// for every step when RawlogReadOptions::keep_frames is off), for maps.
 	std::vector<mrpt::obs::CSensoryFrame::Ptr> frames;
 	/// Landmark IDs of each step's measurements as stored in the file.
 	std::vector<std::vector<std::optional<LandmarkId>>> true_ids;
@@ -52,6 +86,8 @@ struct Rawlog
 	std::optional<std::string> truncation_warning;
 	std::size_t measurement_count = 0;
 	bool has_odometry = false;
+	/// The file it was read from (none when read from memory).
+	std::optional<RawlogSource> source;
 };
 
 /// Reads a whole rawlog. Throws InputError (one line naming the file, and the

@@ -4,6 +4,7 @@
 
 #include <esif/core/Estimate.h>
 #include <esif/formats/GroundTruth.h>
+#include <esif/formats/RawlogReader.h>
 
 #include <mrpt/obs/CSensoryFrame.h>
 
@@ -25,6 +26,8 @@ struct TrajectoryPoint
 struct Keyframe
 {
 	PoseEstimate pose;
+	/// Null when the replay did not keep the log's frames: the map writer
+	/// then reads it again from RunRecord::frames_source.
 	mrpt::obs::CSensoryFrame::Ptr frame;
 	/// The step the frame was taken at, so that a smoother's re-estimated
 	/// trajectory (FilterPlugin::smoothedTrajectory) can replace `pose`.
@@ -37,6 +40,9 @@ struct RunRecord
 	std::string rawlog;	 ///< rawlog path
 	std::vector<TrajectoryPoint> trajectory;
 	std::vector<Keyframe> keyframes;
+	/// The rawlog to read the keyframes' frames from when they were not kept
+	/// (RawlogFrames.h); none when every keyframe holds its frame.
+	std::optional<RawlogSource> frames_source;
 	Estimate final_estimate;
 	/// Ground truth in the initial-pose frame (the estimate's frame), if known.
 	std::optional<GroundTruth> truth;

@@ -1,0 +1,49 @@
+// A long log is replayed within a memory limit that its MRPT sensory frames
+// would exceed: the replay does not keep them, and map.simplemap reads the
+// keyframes' frames again from the rawlog (RawlogFrames.h), one at a time.
+//
+// The limit: this 150,000-step log (1.8 measurements per scan) was measured
+// with prlimit bisection (RLIMIT_AS) to need 600-650 MiB of address space
+// without the frames and 850-900 MiB with them (every step's frame kept, as
+// before). 750 MiB leaves at least 100 MiB either way.
+
+#include <ChildProcess.h>
+#include <EsifTestSupport.h>
+
+#include <mrpt/maps/CSimpleMap.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using esif::test::sourcePath;
+using esif::test::TempDir;
+
+TEST(ReplayMemory, ALongLogIsReplayedWithinALimitItsSensoryFramesWouldExceed)
+{
+	TempDir dir;
+	// 100 features in a 20 m square, a 3 m 90-degree sensor: few measurements
+	// per scan, so the frames (about 1 kB each) outweigh the rest of the log.
+	std::ofstream(dir.file("long.ini")) << "[simulation]\nseed = 1\nworld_size_m = 20\nfeatures_per_side = 10\n"
+										   "dt_s = 0.1\nsteps = 150000\nspeed_mps = 1.0\nmax_turn_rate_deg_s = 45\n"
+										   "waypoint_margin_m = 3\nsensor_max_range_m = 3\nsensor_fov_deg = 90\n";
+	const std::string rawlog = dir.file("long.rawlog");
+	ASSERT_EQ(esif::test::finish(esif::test::spawnEsif({"simulate", "--config", dir.file("long.ini"), "--out", rawlog}))
+				  .first,
+			  0);
+	const auto [code, text] = esif::test::finish(esif::test::spawnEsif(
+		{"run", "-q", "--no-figures", "--config", sourcePath("configs/ekf.ini"), "--rawlog", rawlog, "--out",
+		 dir.file("run")},
+		esif::test::SpawnLimits{{}, rlim_t{750} << 20, {}}));
+	ASSERT_EQ(code, 0) << text;
+
+	// Every scan is a keyframe (keyframe_min_distance_m = 0), each with its frame.
+	mrpt::maps::CSimpleMap map;
+	ASSERT_TRUE(map.loadFromFile(dir.file("run/map.simplemap")));
+	EXPECT_EQ(map.size(), 150000u);
+	std::size_t observations = 0;
+	for (std::size_t i = 0; i < map.size(); i += 1000) observations += std::get<1>(map.get(i))->size();
+	EXPECT_GT(observations, 0u);
+}
