@@ -157,6 +157,12 @@ std::uint32_t checkInSandbox(const std::string& path, const InflatedFile& file, 
 		case SandboxOutcome::Kind::kFailed:
 			throw InputError(oneLineReason(outcome.message));
 		case SandboxOutcome::Kind::kOutOfMemory:
+			// Under a limit the process was started with, a corrupt count and
+			// a file too large for the limit look alike.
+			if (outcome.address_space_cap > 0)
+				throw InputError(entry + " declares more data than the file holds, or the file needs more than the " +
+								 std::to_string(outcome.address_space_cap >> 20) +
+								 " MiB of address space this process may use (RLIMIT_AS)");
 			throw InputError(entry + " declares more data than the file holds: reading it needs over " +
 							 std::to_string(limits.address_space_bytes >> 20) + " MiB, the limit for " +
 							 std::to_string(file.bytes.size()) + " bytes of rawlog");

@@ -26,6 +26,7 @@ struct SharedReport
 	SandboxProgress progress;
 	SandboxOutcome::Kind kind;
 	char message[1024];
+	std::uint64_t address_space_cap;
 };
 
 /// Address space the process maps now (/proc/self/statm, first field):
@@ -60,15 +61,24 @@ void silenceOutput()
 	close(null);
 }
 
-void applyLimits(const SandboxLimits& limits)
+void applyLimits(const SandboxLimits& limits, SharedReport& shared)
 {
 	// The child must not outlive the parent (e.g. `esif run` stopped by SIGTERM).
 	prctl(PR_SET_PDEATHSIG, SIGKILL);
 	if (limits.address_space_bytes > 0)
 	{
 		const rlim_t as = mappedBytes() + limits.address_space_bytes;
-		const rlimit r{as, as};
-		setrlimit(RLIMIT_AS, &r);
+		// Above a limit the process was started under, the child keeps that
+		// one: the parent must then not read a failed allocation as the
+		// work's fault alone.
+		rlimit inherited{};
+		if (getrlimit(RLIMIT_AS, &inherited) == 0 && inherited.rlim_cur != RLIM_INFINITY && inherited.rlim_cur < as)
+			shared.address_space_cap = inherited.rlim_cur;
+		else
+		{
+			const rlimit r{as, as};
+			setrlimit(RLIMIT_AS, &r);
+		}
 	}
 	if (limits.cpu_seconds > 0)
 	{
@@ -93,7 +103,7 @@ void report(SharedReport& shared, SandboxOutcome::Kind kind, const char* message
 	// end the child (the watcher forwards them to it, and Ctrl-C reaches it).
 	termination::unblockSignals();
 	silenceOutput();
-	applyLimits(limits);
+	applyLimits(limits, shared);
 	try
 	{
 		work(shared.progress);
@@ -129,6 +139,7 @@ SandboxOutcome outcomeOf(int status, const SharedReport& shared)
 	SandboxOutcome out;
 	out.position = shared.progress.position;
 	out.result = shared.progress.result;
+	out.address_space_cap = shared.address_space_cap;
 	if (status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
 	{
 		out.kind = shared.kind;

@@ -43,6 +43,9 @@ struct SandboxOutcome
 	int signal_number = 0;
 	std::size_t position = 0;  ///< the last SandboxProgress::position the child wrote
 	std::uint64_t result = 0;  ///< the SandboxProgress::result it wrote
+	/// The address-space limit the process was started under, when it was
+	/// lower than the one asked for (the child then ran under it); 0 otherwise.
+	std::uint64_t address_space_cap = 0;
 };
 
 /// Calls `work(progress)` in a forked child under `limits` and waits for it.
