@@ -11,6 +11,8 @@
 #    local SLAM holds a tree out of view against its anchors' cut;
 #  - MRCLAM dataset 6, robots 1-5: every configs/mrclam/ config with the
 #    barcodes and without (*_jcbb), against the Vicon ground truth.
+#    Beside them, what each measurement's nearest cylinder would be from the
+#    true pose (bench/mrclam_true_pose_association.py).
 # The datasets are third-party (never committed): imported into out/data/ on
 # first use (VICPARK_TXT, MRCLAM_DIR). Writes out/bench/no_ids/; with
 # --update-docs, docs/results/no_ids.md. About 5 minutes.
@@ -164,6 +166,18 @@ for label in labels:
     print("| %s | %s (%s) | %s (%s) | %s | %d | %d |" % (label, f(med(rmse), "{:.3f}"), " ".join(f(v, "{:.2f}") for v in rmse),
           f(med(nees), "{:.2f}"), " ".join(f(v, "{:.1f}") for v in nees), maps, failed, suspect))
 PY
+
+{
+  echo
+  echo "## MRCLAM: what a perfect pose would associate"
+  echo
+  echo "\`bench/mrclam_true_pose_association.py\`: each measurement's nearest cylinder (Mahalanobis) from the robot's Vicon pose,"
+  echo "under the noise of one sighting and under the noise the filters fuse (inflated for 16 sightings of one cylinder,"
+  echo "\`configs/calibration/mrclam.ini\`). The cluster is the group of cylinders 0.15-0.2 m apart. What remains of the"
+  echo "filters' errors at cluster level comes from their pose, not from the sensor."
+  echo
+  python3 bench/mrclam_true_pose_association.py "$mrclam_dir" configs/calibration/mrclam.ini
+} >> "$work/report.md"
 
 if [ "$update_docs" = 1 ]; then
   {
