@@ -25,7 +25,7 @@ void readFramesAgain(const RawlogSource& source, const std::vector<std::size_t>&
 	if (!steps.empty() && steps.back() >= source.steps)
 		throw InputError(source.path + ": step " + std::to_string(steps.back()) + " asked for, the log has " +
 						 std::to_string(source.steps));
-	if (!(stampOf(source.path) == source.stamp)) throw InputError(changed(source, "replaced or modified"));
+	if (!(identityOf(source.path) == source.identity)) throw InputError(changed(source, "replaced or modified"));
 
 	GzipReadStream stream(source.path);
 	auto archive = mrpt::serialization::archiveFrom(stream);

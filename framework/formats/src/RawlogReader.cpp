@@ -192,7 +192,7 @@ Rawlog readVouchedFor(const std::string& path, const InflatedFile& file, const R
 }
 }  // namespace
 
-FileStamp stampOf(const std::string& path)
+FileIdentity identityOf(const std::string& path)
 {
 	struct stat st{};
 	if (::stat(path.c_str(), &st) != 0) throw InputError(path + ": cannot read the file's status: " + std::strerror(errno));
@@ -215,9 +215,9 @@ Rawlog readRawlog(const std::string& path, const RawlogReadOptions& options)
 	// A rawlog whose replacement (with its ground truth) was cut in two by a
 	// kill is not read beside a ground truth that is not its own.
 	requireCompleteFileSet(path);
-	const FileStamp stamp = stampOf(path);
+	const FileIdentity identity = identityOf(path);
 	Rawlog log = readVouchedFor(path, inflateFile(path), options);
-	log.source->stamp = stamp;
+	log.source->identity = identity;
 	return log;
 }
 

@@ -5,7 +5,7 @@
 /// keep_frames): one forward pass that holds one entry at a time, so a map
 /// of keyframes is written without the whole log's frames in memory.
 ///
-/// Only the file that was read is read again: its stamp (RawlogSource) is
+/// Only the file that was read is read again: its identity (RawlogSource) is
 /// compared before the pass, since MRPT's deserialisers trust what they read
 /// and only the first read was checked in a sandbox (RawlogReader.h), and
 /// the checksum of its steps after it.
@@ -23,7 +23,7 @@ using FrameVisitor = std::function<void(std::size_t step, const mrpt::obs::CSens
 
 /// Calls `each` with the frame of every step of `steps` (strictly
 /// increasing), in order. Throws InputError naming the file when it changed
-/// since it was read (stamp or steps), or when a step of `steps` has no
+/// since it was read (identity or steps), or when a step of `steps` has no
 /// frame (an odometry-only step) or lies beyond the log.
 void readFramesAgain(const RawlogSource& source, const std::vector<std::size_t>& steps, const FrameVisitor& each);
 

@@ -48,18 +48,18 @@ struct RawlogReadOptions
 
 /// What tells one state of a file from another without reading it: a file
 /// replaced or rewritten since it was read differs in one of these.
-struct FileStamp
+struct FileIdentity
 {
 	std::uintmax_t device = 0, inode = 0, size = 0;
 	std::int64_t modified_ns = 0;
-	bool operator==(const FileStamp& o) const
+	bool operator==(const FileIdentity& o) const
 	{
 		return device == o.device && inode == o.inode && size == o.size && modified_ns == o.modified_ns;
 	}
 };
 
-/// The stamp of `path` now; InputError naming it when it cannot be read.
-FileStamp stampOf(const std::string& path);
+/// The identity of `path` now; InputError naming it when it cannot be read.
+FileIdentity identityOf(const std::string& path);
 
 /// Where a Rawlog's steps came from, so that the file can be read again for
 /// what was not kept (RawlogFrames.h): the file as it was when read, the
@@ -67,7 +67,7 @@ FileStamp stampOf(const std::string& path);
 struct RawlogSource
 {
 	std::string path;
-	FileStamp stamp;
+	FileIdentity identity;
 	RawlogReadOptions options;
 	std::size_t steps = 0;
 	std::uint32_t steps_digest = 0;
