@@ -15,7 +15,7 @@ std::vector<TrackedMeasurement> trackHeldFeatures(const LocalSlam& local, const 
 
 	// One noise for all, as the map-level association (RelativeAssociation):
 	// a scan's measurements share their sensor's covariance.
-	const LocalSlam::HeldPrediction held = local.predictHeld(scan.sensor_on_robot, sightingCov(ms.front()));
+	const LocalSlam::HeldPrediction held = local.predictHeld(scan.sensor_on_robot, sightingCov(scan, ms.front()));
 	AssociationInput in;
 	in.observations.resize(static_cast<Eigen::Index>(ms.size()), 2);
 	for (std::size_t i = 0; i < ms.size(); ++i) in.observations.row(static_cast<Eigen::Index>(i)) << ms[i].range_m, ms[i].bearing_rad;

@@ -160,7 +160,11 @@ void StepBuilder::onScan(const CObservationBearingRange& obs, const mrpt::obs::C
 		throw InputError(where + ": one scan holds " + std::to_string(obs.sensedData.size()) +
 						 " measurements, more than max_measurements_per_scan = " +
 						 std::to_string(options_.max_measurements_per_scan));
+	// Reserved: grown one by one, a scan's vectors hold up to twice their
+	// measurements, and the steps of a long log are most of what a run holds.
 	std::vector<std::optional<LandmarkId>> ids;
+	ids.reserve(obs.sensedData.size());
+	scan.measurements.reserve(obs.sensedData.size());
 	for (std::size_t i = 0; i < obs.sensedData.size(); ++i)
 	{
 		const auto& m = obs.sensedData[i];

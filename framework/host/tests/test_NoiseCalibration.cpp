@@ -95,14 +95,15 @@ TEST(NoiseCalibration, SetsTheSightingNoiseOnlyWhenGiven)
 {
 	NoiseCalibration c;
 	c.range_std_m = 0.5;
-	EXPECT_FALSE(calibratedStep(stepWithOdometryAndScan(), c).scan->measurements[0].sighting_cov);
+	EXPECT_FALSE(calibratedStep(stepWithOdometryAndScan(), c).scan->sighting_cov);
 	c.sighting_range_std_m = 0.2;
-	const auto m = calibratedStep(stepWithOdometryAndScan(), c).scan->measurements[0];
-	ASSERT_TRUE(m.sighting_cov);
-	EXPECT_NEAR((*m.sighting_cov)(0, 0), 0.04, 1e-15);
-	EXPECT_NEAR((*m.sighting_cov)(1, 1), m.cov(1, 1), 1e-15);  // the bearing's as fused
+	const Scan scan = *calibratedStep(stepWithOdometryAndScan(), c).scan;
+	const RangeBearing& m = scan.measurements[0];
+	ASSERT_TRUE(scan.sighting_cov);
+	EXPECT_NEAR((*scan.sighting_cov)(0, 0), 0.04, 1e-15);
+	EXPECT_NEAR((*scan.sighting_cov)(1, 1), m.cov(1, 1), 1e-15);  // the bearing's as fused
 	EXPECT_NEAR(m.cov(0, 0), 0.25, 1e-15);
-	EXPECT_NEAR(sightingCov(m)(0, 0), 0.04, 1e-15);
+	EXPECT_NEAR(sightingCov(scan, m)(0, 0), 0.04, 1e-15);
 }
 
 TEST(NoiseCalibration, ARangeBelowItsBiasStaysAtZero)

@@ -200,11 +200,8 @@ TEST(LandmarkEkfAmbiguity, TwinsCloserThanTheSensorResolvesAreMatchedNotWaitedOn
 /// the noise of one sighting alone at 0.1 m, 0.5 deg.
 StepInput withInflatedNoise(StepInput s, bool sighting)
 {
-	for (auto& m : s.scan->measurements)
-	{
-		m.cov = Eigen::Vector2d(0.25, std::pow(3 * M_PI / 180, 2)).asDiagonal();
-		if (sighting) m.sighting_cov = Eigen::Vector2d(0.01, std::pow(0.5 * M_PI / 180, 2)).asDiagonal();
-	}
+	for (auto& m : s.scan->measurements) m.cov = Eigen::Vector2d(0.25, std::pow(3 * M_PI / 180, 2)).asDiagonal();
+	if (sighting) s.scan->sighting_cov = Eigen::Vector2d(0.01, std::pow(0.5 * M_PI / 180, 2)).asDiagonal();
 	return s;
 }
 

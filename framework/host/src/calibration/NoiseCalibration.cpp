@@ -99,14 +99,16 @@ StepInput calibratedStep(const StepInput& step, const NoiseCalibration& c)
 		if (c.range_std_m > 0 || c.bearing_std_deg > 0) m.cov(0, 1) = m.cov(1, 0) = 0;
 		if (c.range_std_m > 0) m.cov(0, 0) = c.range_std_m * c.range_std_m;
 		if (c.bearing_std_deg > 0) m.cov(1, 1) = std::pow(c.bearing_std_deg * kRadPerDeg, 2);
-		if (c.sighting_range_std_m > 0 || c.sighting_bearing_std_deg > 0)
-		{
-			Eigen::Matrix2d sighting = m.cov;
-			sighting(0, 1) = sighting(1, 0) = 0;
-			if (c.sighting_range_std_m > 0) sighting(0, 0) = c.sighting_range_std_m * c.sighting_range_std_m;
-			if (c.sighting_bearing_std_deg > 0) sighting(1, 1) = std::pow(c.sighting_bearing_std_deg * kRadPerDeg, 2);
-			m.sighting_cov = sighting;
-		}
+	}
+	if ((c.sighting_range_std_m > 0 || c.sighting_bearing_std_deg > 0) && !out.scan->measurements.empty())
+	{
+		// One per scan: the sensor's noise of one sighting, each component
+		// not given kept as the fused one.
+		Eigen::Matrix2d sighting = out.scan->measurements.front().cov;
+		sighting(0, 1) = sighting(1, 0) = 0;
+		if (c.sighting_range_std_m > 0) sighting(0, 0) = c.sighting_range_std_m * c.sighting_range_std_m;
+		if (c.sighting_bearing_std_deg > 0) sighting(1, 1) = std::pow(c.sighting_bearing_std_deg * kRadPerDeg, 2);
+		out.scan->sighting_cov = sighting;
 	}
 	return out;
 }

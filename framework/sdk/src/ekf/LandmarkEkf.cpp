@@ -212,7 +212,7 @@ StepReport LandmarkEkf::associateByDistance(const Scan& scan, std::vector<EkfSla
 	// sensor's nominal covariance (that of the first measurement), of one
 	// sighting (sightingCov: a gate compares one measurement's innovation).
 	for (std::size_t j = 0; j < candidates.size() && !ms.empty(); ++j)
-		in.covariance.block<2, 2>(2 * j, 2 * j) += sightingCov(ms.front());
+		in.covariance.block<2, 2>(2 * j, 2 * j) += sightingCov(scan, ms.front());
 
 	const auto result = associate(
 		in, params_.association == EkfAssociation::NearestNeighbor ? AssociationMethod::NearestNeighbor
@@ -230,7 +230,7 @@ StepReport LandmarkEkf::associateByDistance(const Scan& scan, std::vector<EkfSla
 	for (std::size_t i = 0; i < ms.size(); ++i)
 	{
 		const int c = result.candidate_of[i];
-		if (c >= 0 && !taken[c] && lone_pair && isAmbiguous(ms[i], sensor, candidates, static_cast<std::size_t>(c)))
+		if (c >= 0 && !taken[c] && lone_pair && isAmbiguous(scan, ms[i], candidates, static_cast<std::size_t>(c)))
 		{
 			++ambiguous_waits_;
 			report.associations.push_back({Association::Kind::Rejected, -1});
@@ -251,15 +251,16 @@ StepReport LandmarkEkf::associateByDistance(const Scan& scan, std::vector<EkfSla
 }
 
 bool LandmarkEkf::isAmbiguous(
-	const RangeBearing& m, const Pose2& sensor, const std::vector<std::size_t>& candidates, std::size_t chosen) const
+	const Scan& scan, const RangeBearing& m, const std::vector<std::size_t>& candidates, std::size_t chosen) const
 {
+	const Pose2 sensor = scan.sensor_on_robot;
 	const double margin = params_.ambiguityMarginDistance2();
 	if (margin <= 0) return false;
 	Eigen::VectorXd d2(static_cast<Eigen::Index>(candidates.size()));
 	for (std::size_t j = 0; j < candidates.size(); ++j)
-		d2(static_cast<Eigen::Index>(j)) = innovationDistance2(candidates[j], m, sightingCov(m), sensor);
+		d2(static_cast<Eigen::Index>(j)) = innovationDistance2(candidates[j], m, sightingCov(scan, m), sensor);
 	const Eigen::Vector2d z_chosen = core_.predictMeasurement(candidates[chosen], sensor).z;
-	const Eigen::LLT<Eigen::Matrix2d> sensor_noise(sightingCov(m));
+	const Eigen::LLT<Eigen::Matrix2d> sensor_noise(sightingCov(scan, m));
 	return ambiguousMatch(d2, static_cast<Eigen::Index>(chosen), margin, [&](Eigen::Index j) {
 		Eigen::Vector2d dz = core_.predictMeasurement(candidates[static_cast<std::size_t>(j)], sensor).z - z_chosen;
 		dz(1) = wrapAngle(dz(1));
@@ -267,11 +268,12 @@ bool LandmarkEkf::isAmbiguous(
 	});
 }
 
-bool LandmarkEkf::confirmedSighting(const RangeBearing& m, const Pose2& sensor, std::size_t step)
+bool LandmarkEkf::confirmedSighting(const Scan& scan, const RangeBearing& m, std::size_t step)
 {
+	const Pose2 sensor = scan.sensor_on_robot;
 	const LandmarkFromMeasurement p = landmarkFromRangeBearing(core_.robot(), sensor, m.range_m, m.bearing_rad);
 	Eigen::Matrix2d cov = p.d_robot * core_.robotCov() * p.d_robot.transpose() +
-		p.d_measurement * sightingCov(m) * p.d_measurement.transpose();
+		p.d_measurement * sightingCov(scan, m) * p.d_measurement.transpose();
 	cov = (0.5 * (cov + cov.transpose())).eval();
 	return tentative_.confirm(std::nullopt, p.position, cov, step);
 }
@@ -284,7 +286,7 @@ void LandmarkEkf::addNewLandmarks(const Scan& scan, std::size_t step, StepReport
 		auto& a = report.associations[i];
 		if (a.kind != Association::Kind::New) continue;
 		const auto& m = scan.measurements[i];
-		if (a.id < 0 && params_.confirm_new_landmarks && !confirmedSighting(m, sensor, step))
+		if (a.id < 0 && params_.confirm_new_landmarks && !confirmedSighting(scan, m, step))
 		{
 			a.kind = Association::Kind::Rejected;
 			++unconfirmed_sightings_;

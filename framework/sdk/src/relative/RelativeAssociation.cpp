@@ -71,7 +71,7 @@ AssociationInput RelativeAssociation::absoluteInput(const Scan& scan, const Pose
 		Hf.block<2, 2>(2 * j, 2 * j) = h.d_landmark;
 	}
 	in.covariance = Hr * robot_cov * Hr.transpose() + Hf * candidate_cov * Hf.transpose();
-	for (Eigen::Index j = 0; j < k && !ms.empty(); ++j) in.covariance.block<2, 2>(2 * j, 2 * j) += sightingCov(ms.front());
+	for (Eigen::Index j = 0; j < k && !ms.empty(); ++j) in.covariance.block<2, 2>(2 * j, 2 * j) += sightingCov(scan, ms.front());
 	return in;
 }
 
@@ -162,7 +162,7 @@ void RelativeAssociation::dropUncheckedAmbiguousMatch(
 {
 	if (matches.size() != 1 || matches.front().anchor) return;	// checked by eq. (3.45), or nothing to check
 	const Eigen::Index i = matches.front().measurement, c = matches.front().candidate;
-	const Eigen::LLT<Eigen::Matrix2d> noise(sightingCov(scan.measurements[static_cast<std::size_t>(i)]));
+	const Eigen::LLT<Eigen::Matrix2d> noise(sightingCov(scan, scan.measurements[static_cast<std::size_t>(i)]));
 	const bool ambiguous = ambiguousMatch(d2.row(i).transpose(), c, ambiguity_margin_d2_, [&](Eigen::Index j) {
 		Eigen::Vector2d dz = (in.predictions.row(j) - in.predictions.row(c)).transpose();
 		dz(1) = wrapAngle(dz(1));
@@ -240,7 +240,7 @@ double RelativeAssociation::relativeTest(const std::vector<Match>& matches, cons
 	{
 		const auto& meas = scan.measurements[matches[a].measurement];
 		z.segment<2>(2 * a) = measurementOf(meas);
-		Rz.block<2, 2>(2 * a, 2 * a) = sightingCov(meas);
+		Rz.block<2, 2>(2 * a, 2 * a) = sightingCov(scan, meas);
 	}
 	const PointSet seen = pointsInRobotFrame(z, Rz, sensor);
 	std::vector<ReferenceCandidate> refs(m);

@@ -37,7 +37,7 @@ struct NoiseCalibration
 	/// The noise of a single sighting (1 sigma), when range_std_m and
 	/// bearing_std_deg are inflated for errors that repeat over the sightings
 	/// of one landmark (esif calibrate --sensor-horizon): what association
-	/// tests use (RangeBearing::sighting_cov). 0 = as the fused noise.
+	/// tests use (Scan::sighting_cov). 0 = as the fused noise.
 	double sighting_range_std_m = 0;
 	double sighting_bearing_std_deg = 0;
 	/// Constant bias of the sensor, measured minus true: taken out of every

@@ -44,16 +44,7 @@ struct RangeBearing
 	Eigen::Matrix2d cov = Eigen::Matrix2d::Identity();
 	/// Landmark identity when the sensor provides it (known data association).
 	std::optional<LandmarkId> id;
-	/// Covariance of this one measurement alone, when it differs from `cov`:
-	/// what an association test compares an innovation against (sightingCov()).
-	/// A calibration sets it when errors repeat over the sightings of one
-	/// landmark: `cov` is then inflated so that sums of sightings fuse
-	/// consistently, and would widen every gate by the same factor.
-	std::optional<Eigen::Matrix2d> sighting_cov;
 };
-
-/// The noise of one sighting: `sighting_cov` when set, otherwise `cov`.
-inline const Eigen::Matrix2d& sightingCov(const RangeBearing& m) { return m.sighting_cov ? *m.sighting_cov : m.cov; }
 
 /// All range-bearing measurements taken at one robot pose.
 struct Scan
@@ -62,7 +53,22 @@ struct Scan
 	double max_range_m = 0;	 ///< 0 when unknown/unlimited
 	double fov_rad = 0;	 ///< full field of view; 0 when unknown
 	std::vector<RangeBearing> measurements;
+	/// Covariance of one measurement alone, when it differs from each
+	/// measurement's `cov`: what an association test compares an innovation
+	/// against (sightingCov()). A calibration sets it when errors repeat over
+	/// the sightings of one landmark: `cov` is then inflated so that sums of
+	/// sightings fuse consistently, and would widen every gate by the same
+	/// factor. One per scan, the sensor's: a long log holds millions of
+	/// measurements.
+	std::optional<Eigen::Matrix2d> sighting_cov;
 };
+
+/// The noise of one sighting of `m`, a measurement of `scan`: the scan's
+/// sighting_cov when set, otherwise the measurement's own.
+inline const Eigen::Matrix2d& sightingCov(const Scan& scan, const RangeBearing& m)
+{
+	return scan.sighting_cov ? *scan.sighting_cov : m.cov;
+}
 
 /// One step of a replay: an odometry increment (if any) followed by the
 /// measurements taken at the new pose (if any).

@@ -113,12 +113,12 @@ class LandmarkEkf
 	StepReport associateByDistance(const Scan& scan, std::vector<EkfSlamCore::Match>& matches);
 	std::vector<std::size_t> candidatesFor(const Scan& scan) const;
 	/// Whether a candidate other than `chosen` is within the ambiguity margin of it for `m`.
-	bool isAmbiguous(const RangeBearing& m, const Pose2& sensor, const std::vector<std::size_t>& candidates,
+	bool isAmbiguous(const Scan& scan, const RangeBearing& m, const std::vector<std::size_t>& candidates,
 					 std::size_t chosen) const;
 	void addNewLandmarks(const Scan& scan, std::size_t step, StepReport& report);
 	/// Whether a sighting without ID that would start a landmark is confirmed
 	/// by an earlier one (TentativeFeatures); if not, it is held.
-	bool confirmedSighting(const RangeBearing& m, const Pose2& sensor, std::size_t step);
+	bool confirmedSighting(const Scan& scan, const RangeBearing& m, std::size_t step);
 
 	EkfAssociationParams params_;
 	double gate_distance2_new_ = 0;	 // chi-square value of new_landmark_chi2_quantile
