@@ -117,7 +117,7 @@ TEST(RawlogFrames, ARawlogChangedSinceItWasReadIsRefusedAndNoMapIsWritten)
 	EXPECT_FALSE(fs::exists(dir.file("map.simplemap")));
 }
 
-TEST(RawlogFrames, AStepWithoutAFrameOrBeyondTheLogIsAnError)
+TEST(RawlogFrames, AStepBeyondTheLogIsAnError)
 {
 	const Rawlog log = readRawlog(test::sourcePath("rawlogs/grid196.rawlog"), withoutFrames());
 	const auto none = [](std::size_t, const mrpt::obs::CSensoryFrame::Ptr&) {};
