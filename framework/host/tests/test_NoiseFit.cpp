@@ -47,6 +47,21 @@ ReferencedLog distorted(ReferencedLog ref, const NoiseCalibration& distortion)
 	return ref;
 }
 
+/// Gives each landmark of `ref` a range error of its own, drawn once with
+/// standard deviation `sigma` [m] (seed 3), added to every measurement of it:
+/// an error that repeats over the sightings of one landmark.
+void addLandmarkRangeErrors(ReferencedLog& ref, double sigma)
+{
+	std::mt19937 rng(3);
+	std::normal_distribution<double> own(0, sigma);
+	std::map<LandmarkId, double> error_of;
+	for (const auto& [id, p] : ref.landmarks) error_of[id] = own(rng);
+	for (auto& step : ref.log.steps)
+		if (step.scan)
+			for (auto& m : step.scan->measurements)
+				if (m.id) m.range_m += error_of[*m.id];
+}
+
 NoiseFitResult fit(const ReferencedLog& ref, NoiseFitSettings settings = {})
 {
 	settings.horizon_steps = 200;  // grid196 closes loops over hundreds of steps
@@ -136,14 +151,7 @@ TEST(SensorWindowCheck, IndependentErrorsStayFlatAndALandmarksOwnErrorGrows)
 	EXPECT_NEAR(white[1].range_normalised, 1.0, 0.2);
 	// Each landmark given a range error of its own of 1 sigma: the sum over
 	// W sightings grows as W + W^2 / W... normalised, 1 + W.
-	std::mt19937 rng(3);
-	std::normal_distribution<double> own(0, 0.1);
-	std::map<LandmarkId, double> error_of;
-	for (const auto& [id, p] : ref.landmarks) error_of[id] = own(rng);
-	for (auto& step : ref.log.steps)
-		if (step.scan)
-			for (auto& m : step.scan->measurements)
-				if (m.id) m.range_m += error_of[*m.id];
+	addLandmarkRangeErrors(ref, 0.1);
 	auto correlated = sensorWindowChecks(ref.log.steps, ref.path, ref.landmarks, {1, 16});
 	EXPECT_NEAR(correlated[0].range_normalised, 2.0, 0.3);
 	EXPECT_GT(correlated[1].range_normalised, 8.0);	 // 17 expected; a draw of 196 landmark errors spreads it
@@ -155,14 +163,7 @@ TEST(NoiseFit, ASensorHorizonInflatesTheFusedNoiseAndKeepsOneSightingsForAssocia
 	// check above): one sighting's range error is then 0.14 m, a sum of 16
 	// sightings of one landmark errs by far more than 16 independent ones.
 	ReferencedLog ref = grid196();
-	std::mt19937 rng(3);
-	std::normal_distribution<double> own(0, 0.1);
-	std::map<LandmarkId, double> error_of;
-	for (const auto& [id, p] : ref.landmarks) error_of[id] = own(rng);
-	for (auto& step : ref.log.steps)
-		if (step.scan)
-			for (auto& m : step.scan->measurements)
-				if (m.id) m.range_m += error_of[*m.id];
+	addLandmarkRangeErrors(ref, 0.1);
 	NoiseFitSettings horizon16;
 	horizon16.sensor_horizon = 16;
 	const auto one = fit(ref), inflated = fit(ref, horizon16);
