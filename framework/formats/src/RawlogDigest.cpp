@@ -3,6 +3,7 @@
 
 #include "RawlogDigest.h"
 
+#include <stdexcept>
 #include <zlib.h>
 
 namespace esif
@@ -66,11 +67,12 @@ void addStep(Crc& crc, const StepInput& step)
 
 std::uint32_t digestOf(const Rawlog& log)
 {
-	Crc crc;
+	// The steps and their IDs were summed as the read ended
+	// (RawlogSource::steps_digest); the times normalised since are a function
+	// of them.
+	if (!log.source) throw std::logic_error("digestOf: a rawlog read without its steps' digest");
+	Crc crc(log.source->steps_digest);
 	crc.add(log.steps.size());
-	for (const StepInput& step : log.steps) addStep(crc, step);
-	for (const auto& ids : log.true_ids)
-		for (const auto& id : ids) crc.add(id.value_or(-1));
 	crc.add(log.truncation_warning.has_value());
 	crc.add(log.measurement_count);
 	return crc.value();

@@ -10,8 +10,10 @@
 
 namespace esif
 {
-/// CRC-32 (zlib) over every step (index, time, odometry, scan with each
-/// measurement and its ID), the IDs as stored and whether the file was cut.
+/// CRC-32 (zlib) of what one read gave: the digest of its steps
+/// (RawlogSource::steps_digest: each step's index, time, odometry, scan and
+/// the IDs as stored), their number, the measurement count and whether the
+/// file was cut. std::logic_error for a Rawlog without a source digest.
 std::uint32_t digestOf(const Rawlog& log);
 
 /// CRC-32 over steps added one at a time as they are read (each step's
