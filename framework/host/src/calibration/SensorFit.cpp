@@ -110,7 +110,7 @@ SensorFit fitSensor(const std::vector<ReferencedLog>& logs, const NoiseFitSettin
 	if (settings.sensor_noise && settings.sensor_horizon > 1)
 	{
 		// The fit is the noise of one sighting: association tests keep it
-		// (RangeBearing::sighting_cov), fusion takes the inflated noise.
+		// (Scan::sighting_cov), fusion takes the inflated noise.
 		c.sighting_range_std_m = c.range_std_m, c.sighting_bearing_std_deg = c.bearing_std_deg;
 		inflateForSightings(logs, settings.sensor_horizon, c);
 	}
