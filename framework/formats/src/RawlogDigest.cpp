@@ -72,7 +72,7 @@ std::uint32_t digestOf(const Rawlog& log)
 	// of them.
 	if (!log.source) throw std::logic_error("digestOf: a rawlog read without its steps' digest");
 	Crc crc(log.source->steps_digest);
-	crc.add(log.steps.size());
+	crc.add(log.stepCount());
 	crc.add(log.truncation_warning.has_value());
 	crc.add(log.measurement_count);
 	return crc.value();

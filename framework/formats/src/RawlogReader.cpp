@@ -29,15 +29,50 @@ using rawlog_entries::StepBuilder;
 
 /// Timestamps are used when present and strictly increasing; otherwise (e.g.
 /// simul-landmarks stamps every entry with the generation wall time) the
-/// step index stands in for time.
-void normaliseTimes(std::vector<StepInput>& steps)
+/// step index stands in for time. Watched one step at a time.
+class TimeCheck
 {
-	bool usable = true;
-	for (std::size_t k = 0; k < steps.size() && usable; ++k)
-		usable = std::isfinite(steps[k].time_s) && (k == 0 || steps[k].time_s > steps[k - 1].time_s);
-	if (!usable)
-		for (auto& s : steps) s.time_s = static_cast<double>(s.index);
-}
+   public:
+	void add(double t)
+	{
+		usable_ = usable_ && std::isfinite(t) && (first_ || t > last_);
+		first_ = false;
+		last_ = t;
+	}
+	bool usable() const { return usable_; }
+
+   private:
+	bool usable_ = true, first_ = true;
+	double last_ = 0;
+};
+
+/// What one read collects from its steps, kept or not.
+struct StepAccumulator
+{
+	Rawlog& out;
+	const RawlogReadOptions& options;
+	StepsDigest digest;
+	TimeCheck times;
+	std::size_t count = 0;
+	bool any_scan = false;
+
+	void accept(BuiltStep&& built)
+	{
+		built.step.index = count++;
+		digest.add(built.step, built.ids);
+		times.add(built.step.time_s);
+		if (built.step.scan)
+		{
+			any_scan = true;
+			for (const auto& m : built.step.scan->measurements) out.any_landmark_id |= m.id.has_value();
+		}
+		out.true_ids.push_back(std::move(built.ids));
+		if (!options.keep_steps) return;
+		out.steps.push_back(std::move(built.step));
+		out.frames.push_back(options.keep_frames ? std::move(built.frame) : nullptr);
+	}
+};
+
 /// Reads every entry of an inflated rawlog into steps. `progress` tells a
 /// sandbox which entry is being read when MRPT's deserialiser fails on it.
 Rawlog parseRawlog(const std::string& path, const InflatedFile& file, const RawlogReadOptions& options,
@@ -49,11 +84,14 @@ Rawlog parseRawlog(const std::string& path, const InflatedFile& file, const Rawl
 
 	Rawlog out;
 	out.path = path;
-	StepBuilder builder(options, [&out, &options](BuiltStep&& built) {
-		built.step.index = out.steps.size();
-		out.steps.push_back(std::move(built.step));
-		out.frames.push_back(options.keep_frames ? std::move(built.frame) : nullptr);
-		out.true_ids.push_back(std::move(built.ids));
+	StepAccumulator steps{out, options};
+	// Each step is taken in when the next one is built: a cut at the very
+	// end may leave a final odometry without its scan, kept only if the file
+	// ended cleanly.
+	std::optional<BuiltStep> last;
+	StepBuilder builder(options, [&](BuiltStep&& built) {
+		if (last) steps.accept(std::move(*last));
+		last = std::move(built);
 	});
 	EntryVisitor visitor(builder, path);
 	for (std::size_t entry = 0;; ++entry)
@@ -70,7 +108,7 @@ Rawlog parseRawlog(const std::string& path, const InflatedFile& file, const Rawl
 		{
 			if (entry == 0) throw InputError(path + ": not an MRPT rawlog (empty or unreadable first entry)");
 			out.truncation_warning = path + ": file ends inside entry " + std::to_string(entry) +
-				"; read up to step " + std::to_string(out.steps.size());
+				"; read up to step " + std::to_string(steps.count + (last ? 1 : 0));
 			break;
 		}
 		catch (const std::bad_alloc&)
@@ -86,7 +124,7 @@ Rawlog parseRawlog(const std::string& path, const InflatedFile& file, const Rawl
 			if (stream.getPosition() < file.bytes.size() && !stream.endedInsideValue())
 				throw InputError(path + ": entry " + std::to_string(entry) + " is corrupt: " + oneLineReason(e.what()));
 			out.truncation_warning = path + ": file ends inside entry " + std::to_string(entry) +
-				"; read up to step " + std::to_string(out.steps.size());
+				"; read up to step " + std::to_string(steps.count + (last ? 1 : 0));
 			break;
 		}
 		visitor.visit(obj, entry);
@@ -95,27 +133,18 @@ Rawlog parseRawlog(const std::string& path, const InflatedFile& file, const Rawl
 	out.has_odometry = builder.hasOdometry();
 	out.measurement_count = builder.measurementCount();
 	if (file.stream_truncated && !out.truncation_warning)
-		out.truncation_warning = path + ": gzip stream is cut after entry " + std::to_string(out.steps.size());
-	// A cut at the very end may leave a final odometry without its scan: keep
-	// it only if the file ended cleanly.
-	if (out.truncation_warning && !out.steps.empty() && !out.steps.back().scan)
-	{
-		out.steps.pop_back();
-		out.frames.pop_back();
-		out.true_ids.pop_back();
-	}
+		out.truncation_warning = path + ": gzip stream is cut after entry " + std::to_string(steps.count + (last ? 1 : 0));
+	if (last && !(out.truncation_warning && !last->step.scan)) steps.accept(std::move(*last));
 
-	if (out.steps.empty()) throw InputError(path + ": rawlog holds no odometry and no range-bearing observation");
+	if (steps.count == 0) throw InputError(path + ": rawlog holds no odometry and no range-bearing observation");
 	if (!out.has_odometry) throw InputError(path + ": rawlog holds no odometry (CActionRobotMovement2D or CObservationOdometry)");
-	if (out.measurement_count == 0 &&
-		std::none_of(out.steps.begin(), out.steps.end(), [](const StepInput& s) { return s.scan.has_value(); }))
+	if (out.measurement_count == 0 && !steps.any_scan)
 		throw InputError(path + ": rawlog holds no range-bearing observations (CObservationBearingRange)");
-	// Before the times are normalised: a second read (RawlogFrames.h) checks
-	// the steps as the file gives them.
-	StepsDigest digest;
-	for (std::size_t k = 0; k < out.steps.size(); ++k) digest.add(out.steps[k], out.true_ids[k]);
-	out.source = RawlogSource{path, {}, options, out.steps.size(), digest.value()};
-	normaliseTimes(out.steps);
+	// The digest is of the steps as the file gives them, before the times
+	// are normalised: a second read (RawlogSteps.h) checks the same.
+	out.source = RawlogSource{path, {}, options, steps.count, steps.digest.value(), !steps.times.usable()};
+	if (!steps.times.usable())
+		for (auto& s : out.steps) s.time_s = static_cast<double>(s.index);
 	return out;
 }
 
@@ -204,7 +233,9 @@ FileIdentity identityOf(const std::string& path)
 Rawlog readRawlogFromMemory(const std::string& name, std::string bytes, const RawlogReadOptions& options)
 {
 	if (bytes.empty()) throw InputError(name + ": file holds no data");
-	Rawlog log = readVouchedFor(name, InflatedFile{std::move(bytes), false}, options);
+	RawlogReadOptions kept = options;
+	kept.keep_steps = true;	 // no file to read them again from
+	Rawlog log = readVouchedFor(name, InflatedFile{std::move(bytes), false}, kept);
 	log.source.reset();	 // no file to read again
 	return log;
 }

@@ -4,6 +4,7 @@
 
 #include <esif/core/Errors.h>
 #include <esif/formats/RawlogReader.h>
+#include <esif/formats/RawlogSteps.h>
 
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/maps/CSimpleMap.h>
@@ -177,6 +178,53 @@ TEST(RawlogReader, TruncatedFileIsReadToItsLastCompleteStep)
 	EXPECT_GT(cut.steps.size(), 10u);
 	EXPECT_LT(cut.steps.size(), full.steps.size());
 	EXPECT_TRUE(cut.steps.back().scan.has_value());
+}
+
+TEST(RawlogReader, ALeanReadOfACutFileCountsTheStepsAFullReadKeeps)
+{
+	// 20 complete steps, then an odometry whose scan was cut in the middle:
+	// the odometry-only step before the cut is dropped by both reads, and the
+	// steps read again (RawlogSteps.h) are the steps kept.
+	test::TempDir dir;
+	const std::string plain = dir.file("cut.rawlog");
+	{
+		mrpt::io::CFileOutputStream f(plain);
+		auto ar = mrpt::serialization::archiveFrom(f);
+		for (int k = 0; k < 20; ++k) ar << *odometryAction(0.1, 0.01) << *frameOf(scan({{1.0f, 7}, {2.0f, 8}}));
+		ar << *odometryAction(0.1, 0.01);
+	}
+	const auto complete = std::filesystem::file_size(plain);
+	{
+		mrpt::io::CFileOutputStream f(plain, mrpt::io::OpenMode::APPEND);
+		auto ar = mrpt::serialization::archiveFrom(f);
+		ar << *frameOf(scan({{1.0f, 7}, {2.0f, 8}}));
+	}
+	std::filesystem::resize_file(plain, complete + (std::filesystem::file_size(plain) - complete) / 2);
+
+	const Rawlog kept = readRawlog(plain);
+	RawlogReadOptions options;
+	options.keep_steps = false;
+	const Rawlog lean = readRawlog(plain, options);
+	ASSERT_TRUE(kept.truncation_warning);
+	EXPECT_EQ(lean.truncation_warning, kept.truncation_warning);
+	ASSERT_EQ(kept.steps.size(), 20u);
+	EXPECT_TRUE(kept.steps.back().scan.has_value());
+	EXPECT_TRUE(lean.steps.empty());
+	EXPECT_EQ(lean.stepCount(), 20u);
+	EXPECT_EQ(lean.true_ids, kept.true_ids);
+	EXPECT_EQ(lean.measurement_count, kept.measurement_count);
+	ASSERT_TRUE(lean.source && kept.source);
+	EXPECT_EQ(lean.source->steps_digest, kept.source->steps_digest);
+
+	RawlogStepStream stream(*lean.source, "test");
+	for (std::size_t k = 0; k < 20; ++k)
+	{
+		const RawlogStep& step = stream.next();
+		EXPECT_EQ(step.input.index, k);
+		ASSERT_TRUE(step.input.scan);
+		EXPECT_EQ(step.input.scan->measurements.size(), 2u);
+	}
+	EXPECT_NO_THROW(stream.finish());
 }
 
 TEST(RawlogReader, MissingNotRawlogAndEmptyFilesAreErrors)

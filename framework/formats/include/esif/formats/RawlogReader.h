@@ -44,6 +44,12 @@ struct RawlogReadOptions
 	/// from the file (RawlogFrames.h): on a long log they are most of what
 	/// reading it holds.
 	bool keep_frames = true;
+	/// Keep every step (Rawlog::steps). Without them `steps` and `frames`
+	/// stay empty and a replay reads the steps again from the file, one at a
+	/// time (RawlogSteps.h): on a log longer than the estimate is large, the
+	/// steps are most of what a run would hold. Reading from memory keeps
+	/// them whatever this says (there is no file to read again).
+	bool keep_steps = true;
 };
 
 /// What tells one state of a file from another without reading it: a file
@@ -71,6 +77,9 @@ struct RawlogSource
 	RawlogReadOptions options;
 	std::size_t steps = 0;
 	std::uint32_t steps_digest = 0;
+	/// The file's timestamps were unusable (missing, or not strictly
+	/// increasing): each step's time is its index.
+	bool times_are_indices = false;
 };
 
 struct Rawlog
@@ -86,8 +95,16 @@ struct Rawlog
 	std::optional<std::string> truncation_warning;
 	std::size_t measurement_count = 0;
 	bool has_odometry = false;
+	/// Whether any measurement reaches the plugins with a landmark ID (after
+	/// RawlogReadOptions::hide_landmark_ids).
+	bool any_landmark_id = false;
 	/// The file it was read from (none when read from memory).
 	std::optional<RawlogSource> source;
+
+	/// Steps in the log, kept or not (RawlogReadOptions::keep_steps).
+	std::size_t stepCount() const { return steps.empty() && source ? source->steps : steps.size(); }
+	/// Whether the steps were left in the file, to be read again (RawlogSteps.h).
+	bool stepsLeftInFile() const { return steps.empty() && source && source->steps > 0; }
 };
 
 /// Reads a whole rawlog. Throws InputError (one line naming the file, and the
