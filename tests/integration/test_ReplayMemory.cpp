@@ -1,11 +1,13 @@
-// A long log is replayed within a memory limit that its MRPT sensory frames
-// would exceed: the replay does not keep them, and map.simplemap reads the
-// keyframes' frames again from the rawlog (RawlogFrames.h), one at a time.
+// A long log is replayed within a memory limit: the replay holds neither the
+// log's steps nor its MRPT sensory frames; it reads the steps again from the
+// rawlog one at a time (RawlogSteps.h), and map.simplemap the keyframes'
+// frames (RawlogFrames.h).
 //
 // The limit: this 150,000-step log (1.8 measurements per scan) was measured
-// with prlimit bisection (RLIMIT_AS) to need 600-650 MiB of address space
-// without the frames and 850-900 MiB with them (every step's frame kept, as
-// before). 750 MiB leaves at least 100 MiB either way.
+// with prlimit bisection (RLIMIT_AS, 50 MiB steps) to need 550-600 MiB of
+// address space with the steps read again, 600-650 MiB with every step kept,
+// and 850-900 MiB with every step's frame kept too. 750 MiB leaves at least
+// 150 MiB.
 
 #include <ChildProcess.h>
 #include <EsifTestSupport.h>

@@ -9,8 +9,10 @@
 #include <esif/core/NumberToken.h>
 #include <esif/core/TextInput.h>
 #include <esif/formats/AssociationFile.h>
+
 #include <esif/safeio/AtomicFile.h>
 
+#include <functional>
 #include <optional>
 #include <sstream>
 
@@ -136,36 +138,63 @@ RecordedAssociations readAssociationFile(const std::string& path, std::size_t ra
 	return out;
 }
 
-void applyAssociations(Rawlog& log, const RecordedAssociations& recorded, const std::string& path)
+namespace
 {
-	if (recorded.steps.size() != log.steps.size())
+/// InputError naming `path` unless the recorded run had `steps` steps and
+/// `measurements(k)` measurements at step k.
+void checkFit(const RecordedAssociations& recorded, std::size_t steps,
+			  const std::function<std::size_t(std::size_t)>& measurements, const std::string& path)
+{
+	if (recorded.steps.size() != steps)
 		throw InputError(
 			path + ": recorded for " + std::to_string(recorded.steps.size()) + " steps, the rawlog has " +
-			std::to_string(log.steps.size()));
-	// Check every step before changing any, so that a mismatch leaves `log` as it was.
-	for (std::size_t k = 0; k < log.steps.size(); ++k)
+			std::to_string(steps));
+	for (std::size_t k = 0; k < steps; ++k)
 	{
-		const auto& scan = log.steps[k].scan;
-		const std::size_t measurements = scan ? scan->measurements.size() : 0;
 		const std::size_t recorded_here = recorded.steps[k].associations.size();
-		if (recorded_here != measurements)
+		if (recorded_here != measurements(k))
 			throw InputError(
 				path + ": step " + std::to_string(k) + ": " + std::to_string(recorded_here) + " associations for " +
-				std::to_string(measurements) + " measurements");
+				std::to_string(measurements(k)) + " measurements");
 	}
-	for (std::size_t k = 0; k < log.steps.size(); ++k)
+}
+}  // namespace
+
+void applyAssociations(Rawlog& log, const RecordedAssociations& recorded, const std::string& path)
+{
+	// Check every step before changing any, so that a mismatch leaves `log` as it was.
+	checkFit(recorded, log.steps.size(), [&](std::size_t k) {
+		const auto& scan = log.steps[k].scan;
+		return scan ? scan->measurements.size() : 0;
+	}, path);
+	for (std::size_t k = 0; k < log.steps.size(); ++k) applyRecordedStep(log.steps[k], recorded.steps[k]);
+}
+
+void checkAssociationsFit(const Rawlog& log, const RecordedAssociations& recorded, const std::string& path)
+{
+	checkFit(recorded, log.stepCount(), [&](std::size_t k) { return log.true_ids[k].size(); }, path);
+}
+
+void applyRecordedStep(StepInput& step, const StepReport& recorded)
+{
+	if (!step.scan) return;
+	auto& measurements = step.scan->measurements;
+	for (std::size_t j = 0; j < measurements.size() && j < recorded.associations.size(); ++j)
 	{
-		if (!log.steps[k].scan) continue;
-		auto& measurements = log.steps[k].scan->measurements;
-		for (std::size_t j = 0; j < measurements.size(); ++j)
-		{
-			const Association& a = recorded.steps[k].associations[j];
-			if (a.kind == Association::Kind::Rejected)
-				measurements[j].id.reset();
-			else
-				measurements[j].id = a.id;
-		}
+		const Association& a = recorded.associations[j];
+		if (a.kind == Association::Kind::Rejected)
+			measurements[j].id.reset();
+		else
+			measurements[j].id = a.id;
 	}
+}
+
+bool anyIdGiven(const RecordedAssociations& recorded)
+{
+	for (const auto& step : recorded.steps)
+		for (const auto& a : step.associations)
+			if (a.kind != Association::Kind::Rejected) return true;
+	return false;
 }
 
 }  // namespace esif

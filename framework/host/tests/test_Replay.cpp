@@ -6,6 +6,9 @@
 #include <FakePlugin.h>
 #include <FakeRawlog.h>
 
+#include <EsifTestSupport.h>
+
+#include <esif/formats/RawlogReader.h>
 #include <esif/run/Replay.h>
 
 #include <gtest/gtest.h>
@@ -162,6 +165,72 @@ TEST(Replay, FinalReportsOfWrongShapeNameThePlugin)
 	auto short_step = finalReportsOfFourSteps();
 	short_step[0].associations.pop_back();
 	expectLogicError(short_step, "final report of 1 associations for 2 measurements at step 0");
+}
+
+/// Reads grid196 keeping its steps or leaving them in the file.
+esif::Rawlog grid196(bool keep_steps)
+{
+	esif::RawlogReadOptions options;
+	options.keep_steps = keep_steps;
+	return esif::readRawlog(esif::test::sourcePath("rawlogs/grid196.rawlog"), options);
+}
+
+/// Every step's report and pose, and the audit, of two replays.
+void expectSameReplay(const esif::ReplayResult& a, const esif::ReplayResult& b)
+{
+	ASSERT_EQ(a.reports.size(), b.reports.size());
+	for (std::size_t k = 0; k < a.reports.size(); ++k)
+	{
+		ASSERT_EQ(a.reports[k].associations.size(), b.reports[k].associations.size()) << "step " << k;
+		for (std::size_t i = 0; i < a.reports[k].associations.size(); ++i)
+		{
+			EXPECT_EQ(a.reports[k].associations[i].kind, b.reports[k].associations[i].kind);
+			EXPECT_EQ(a.reports[k].associations[i].id, b.reports[k].associations[i].id);
+		}
+		EXPECT_EQ(a.record.trajectory[k].pose.mean, b.record.trajectory[k].pose.mean) << "step " << k;
+		EXPECT_EQ(a.record.trajectory[k].time_s, b.record.trajectory[k].time_s) << "step " << k;
+	}
+	EXPECT_EQ(a.record.keyframes.size(), b.record.keyframes.size());
+	EXPECT_EQ(a.audit.matchedCount(), b.audit.matchedCount());
+	EXPECT_EQ(a.audit.wrongCount(), b.audit.wrongCount());
+	EXPECT_EQ(a.ospa_cutoff_m, b.ospa_cutoff_m);
+}
+
+TEST(Replay, StepsReadAgainFromTheFileReplayAsStepsKept)
+{
+	FakePlugin kept_plugin, lean_plugin;
+	const esif::Rawlog kept = grid196(true), lean = grid196(false);
+	ASSERT_TRUE(lean.stepsLeftInFile());
+	const auto a = esif::replay(kept_plugin, kept, kQuiet);
+	const auto b = esif::replay(lean_plugin, lean, kQuiet);
+	ASSERT_EQ(b.reports.size(), kept.steps.size());
+	expectSameReplay(a, b);
+	EXPECT_TRUE(a.ospa_cutoff_m.has_value());
+}
+
+TEST(Replay, EachStepIsPreparedBeforeThePluginSeesIt)
+{
+	// Every measurement's ID taken away: the fake plugin then rejects them all.
+	esif::ReplayOptions options(0, false);
+	std::size_t prepared = 0;
+	options.prepare = [&prepared](esif::StepInput& step) {
+		++prepared;
+		if (step.scan)
+			for (auto& m : step.scan->measurements) m.id.reset();
+	};
+	for (const bool keep : {true, false})
+	{
+		FakePlugin plugin;
+		prepared = 0;
+		const esif::Rawlog log = grid196(keep);
+		const auto result = esif::replay(plugin, log, options);
+		EXPECT_EQ(prepared, log.stepCount()) << "keep_steps " << keep;
+		EXPECT_EQ(result.audit.matchedCount(), 0u) << "keep_steps " << keep;
+		if (keep)
+		{
+			EXPECT_TRUE(log.steps[1].scan->measurements[0].id) << "the kept steps stay as read";
+		}
+	}
 }
 
 }  // namespace

@@ -34,11 +34,20 @@ void AssociationAudit::recordGivenIds(const StepReport& report, const StepInput&
 	if (!step.scan) return;
 	const auto& measurements = step.scan->measurements;
 	for (std::size_t i = 0; i < measurements.size() && i < report.associations.size(); ++i)
-	{
-		if (!measurements[i].id) continue;
-		++given_ids_;
-		given_ids_rejected_ += report.associations[i].kind == Association::Kind::Rejected;
-	}
+		if (measurements[i].id) countGivenId(report.associations[i]);
+}
+
+void AssociationAudit::recordGivenIds(const StepReport& report, const std::vector<bool>& given, std::size_t first)
+{
+	tracks_given_ = true;
+	for (std::size_t i = 0; i < report.associations.size() && first + i < given.size(); ++i)
+		if (given[first + i]) countGivenId(report.associations[i]);
+}
+
+void AssociationAudit::countGivenId(const Association& a)
+{
+	++given_ids_;
+	given_ids_rejected_ += a.kind == Association::Kind::Rejected;
 }
 
 std::size_t AssociationAudit::usedOn(LandmarkId id) const

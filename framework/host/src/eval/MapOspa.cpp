@@ -28,11 +28,21 @@ double largestPositionSigma(const RangeBearing& m)
 
 std::optional<double> ospaCutoff(const std::vector<StepInput>& steps)
 {
-	std::vector<double> sigmas;
-	for (const StepInput& step : steps)
-		if (step.scan)
-			for (const RangeBearing& m : step.scan->measurements) sigmas.push_back(largestPositionSigma(m));
-	if (sigmas.empty()) return std::nullopt;
+	OspaCutoff cutoff;
+	for (const StepInput& step : steps) cutoff.add(step);
+	return cutoff.value();
+}
+
+void OspaCutoff::add(const StepInput& step)
+{
+	if (step.scan)
+		for (const RangeBearing& m : step.scan->measurements) sigmas_.push_back(largestPositionSigma(m));
+}
+
+std::optional<double> OspaCutoff::value() const
+{
+	if (sigmas_.empty()) return std::nullopt;
+	std::vector<double> sigmas = sigmas_;
 	const auto middle = sigmas.begin() + static_cast<std::ptrdiff_t>(sigmas.size() / 2);
 	std::nth_element(sigmas.begin(), middle, sigmas.end());
 	static const double gate_sigmas = std::sqrt(chi2Quantile(0.9999, 2));

@@ -6,6 +6,7 @@ namespace esif
 {
 bool hasAnyLandmarkId(const Rawlog& log)
 {
+	if (log.any_landmark_id) return true;
 	for (const auto& step : log.steps)
 		if (step.scan)
 			for (const auto& m : step.scan->measurements)

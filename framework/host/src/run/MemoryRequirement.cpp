@@ -38,12 +38,16 @@ std::optional<double> cgroupLimit()
 }
 }  // namespace
 
-std::optional<std::size_t> landmarksInLog(const Rawlog& log)
+std::optional<std::size_t> landmarksInLog(const Rawlog& log, const RecordedAssociations* recorded)
 {
 	std::set<LandmarkId> ids;
 	for (const auto& step : log.true_ids)
 		for (const auto& id : step)
 			if (id) ids.insert(*id);
+	if (ids.empty() && recorded)
+		for (const auto& step : recorded->steps)
+			for (const auto& a : step.associations)
+				if (a.kind != Association::Kind::Rejected) ids.insert(a.id);
 	if (ids.empty())
 		for (const auto& step : log.steps)
 			if (step.scan)
@@ -67,9 +71,9 @@ MemoryBudget memoryBudget()
 }
 
 void requireMemory(const FilterPlugin& plugin, const Rawlog& log, const std::string& config_path,
-				   const MemoryBudget& budget)
+				   const MemoryBudget& budget, const RecordedAssociations* recorded)
 {
-	const auto landmarks = landmarksInLog(log);
+	const auto landmarks = landmarksInLog(log, recorded);
 	if (!landmarks) return;
 	const auto bytes = plugin.bytesForLandmarks(*landmarks);
 	if (!bytes || *bytes <= budget.bytes) return;

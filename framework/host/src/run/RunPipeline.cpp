@@ -72,7 +72,7 @@ Stats collectStats(
 	const auto cost = plugin.costFigures();
 	setRunIdentityStats(s, host, plugin, request.config_path);
 	s.set("rawlog", StatValue(request.rawlog_path));
-	s.set("steps", StatValue(static_cast<long long>(log.steps.size())));
+	s.set("steps", StatValue(static_cast<long long>(log.stepCount())));
 	s.set("measurements", StatValue(static_cast<long long>(log.measurement_count)));
 	s.set("landmarks", StatValue(static_cast<long long>(result.record.final_estimate.landmarks.size())));
 	s.set("wall_s", StatValue(result.wall_s));
@@ -83,6 +83,22 @@ Stats collectStats(
 	if (!result.fusion_costs.empty()) setLocalMapJoinStats(s, result.fusion_costs.size(), {}, result.fusion_costs);
 	setPluginCounters(s, cost);
 	return s;
+}
+
+/// How the replay shows its progress and prepares each step read: the noise
+/// calibration, then a recorded run's associations (the order the steps
+/// were changed in when they were all kept).
+ReplayOptions replayOptionsOf(
+	const HostParams& host, const RunRequest& request, const std::optional<RecordedAssociations>& recorded)
+{
+	ReplayOptions options(host.keyframe_min_distance_m, request.progress_bar);
+	const bool calibrated = !host.noise.isIdentity();
+	if (calibrated || recorded)
+		options.prepare = [&host, &recorded, calibrated](StepInput& step) {
+			if (calibrated) step = calibratedStep(step, host.noise);
+			if (recorded) applyRecordedStep(step, recorded->steps[step.index]);
+		};
+	return options;
 }
 
 /// The whole run, writing into request.out_dir (the partial folder).
@@ -97,33 +113,42 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 	const auto associations = locateAssociations(cfg, host, request.associations_from.has_value());
 	auto initial_estimate = readInitialRun(cfg, host);
 
-	Rawlog log = times.time("read", [&] { return readRawlog(request.rawlog_path, readOptionsOf(host)); });
+	RawlogReadOptions read_options = readOptionsOf(host);
+	// The replay reads the steps again, one at a time (RawlogSteps.h): on a
+	// long log they are most of what the run would hold.
+	read_options.keep_steps = false;
+	Rawlog log = times.time("read", [&] { return readRawlog(request.rawlog_path, read_options); });
 	if (log.truncation_warning) std::cerr << "esif: warning: " << *log.truncation_warning << "\n";
-	applyNoiseCalibration(log.steps, host.noise);
-	if (associations) applyAssociations(log, readAssociationFile(*associations, log.steps.size()), *associations);
+	std::optional<RecordedAssociations> recorded;
+	if (associations)
+	{
+		recorded = readAssociationFile(*associations, log.stepCount());
+		checkAssociationsFit(log, *recorded, *associations);
+		log.any_landmark_id = anyIdGiven(*recorded);
+	}
 	scoreAgainstMeasurementTruth(
 		log, request.ground_truth_prefix.value_or(groundTruthPrefixFor(request.rawlog_path)));
 	requireLandmarkIds(*plugin, log, {cfg.origin(), host.hide_landmark_ids, associations.value_or("")});
-	requireMemory(*plugin, log, cfg.origin(), memoryBudget());
+	requireMemory(*plugin, log, cfg.origin(), memoryBudget(), recorded ? &*recorded : nullptr);
 	if (initial_estimate)
 	{
-		requireInitialRunCovers(cfg, *initial_estimate, log.steps.size());
+		requireInitialRunCovers(cfg, *initial_estimate, log.stepCount());
 		plugin->setInitialEstimate(std::move(*initial_estimate));
 	}
 	auto truth = findGroundTruth(request.ground_truth_prefix, request.rawlog_path);
 	if (truth)
-		if (const auto problem = groundTruthProblem(*truth, log.steps.size(), log.truncation_warning.has_value()))
+		if (const auto problem = groundTruthProblem(*truth, log.stepCount(), log.truncation_warning.has_value()))
 		{
 			std::cerr << "esif: warning: " << *problem << "; accuracy and consistency figures left null\n";
 			truth.reset();
 		}
 	const auto reference_run =
-		request.reference_run ? std::optional<RunOutputs>(readReferenceRun(*request.reference_run, log.steps.size()))
+		request.reference_run ? std::optional<RunOutputs>(readReferenceRun(*request.reference_run, log.stepCount()))
 							  : std::nullopt;
-	ReplayResult result = replay(*plugin, log, {host.keyframe_min_distance_m, request.progress_bar});
+	ReplayResult result = replay(*plugin, log, replayOptionsOf(host, request, recorded));
 	const std::map<LandmarkId, LandmarkId> filter_to_true = result.audit.filterToTrue();
 	const LandmarkIdentities identities = landmarkIdentities(result.audit, result.record.final_estimate.landmarks);
-	MapScores scores{scoreAssociations(identities, result.audit), ospaCutoff(log.steps), std::nullopt};
+	MapScores scores{scoreAssociations(identities, result.audit), result.ospa_cutoff_m, std::nullopt};
 
 	std::optional<Accuracy> accuracy;
 	if (truth)
@@ -164,7 +189,7 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 	std::string nees_reference;
 	if (reference_run)
 	{
-		nees_against = stateReferenceOf(*reference_run, log.steps.size());
+		nees_against = stateReferenceOf(*reference_run, log.stepCount());
 		nees_reference = request.reference_run_name.value_or(*request.reference_run);
 	}
 	else if (result.record.truth)

@@ -54,4 +54,17 @@ RecordedAssociations readAssociationFile(const std::string& path, std::size_t ra
 /// or another number of measurements at some step, than `log` holds.
 void applyAssociations(Rawlog& log, const RecordedAssociations& recorded, const std::string& path);
 
+/// The check of applyAssociations alone, for a log whose steps are applied
+/// one at a time (applyRecordedStep) as they are read again: the measurements
+/// of each step are counted by `log.true_ids`.
+void checkAssociationsFit(const Rawlog& log, const RecordedAssociations& recorded, const std::string& path);
+
+/// Makes `step`'s measurement IDs those of its report in the recorded run
+/// (checked to fit by checkAssociationsFit).
+void applyRecordedStep(StepInput& step, const StepReport& recorded);
+
+/// Whether the recorded run gives any measurement a landmark ID (it did not
+/// reject them all).
+bool anyIdGiven(const RecordedAssociations& recorded);
+
 }  // namespace esif

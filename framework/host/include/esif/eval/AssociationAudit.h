@@ -23,6 +23,9 @@ class AssociationAudit
 	/// ID for (the rawlog's shown, or another run's associations) and which
 	/// of those it rejected anyway.
 	void recordGivenIds(const StepReport& report, const StepInput& step);
+	/// The same with `given[first + i]` telling whether measurement i of the
+	/// step had an ID (a replay's record of the steps it no longer holds).
+	void recordGivenIds(const StepReport& report, const std::vector<bool>& given, std::size_t first);
 
 	/// Whether recordGivenIds was called (rawlog runs); measurements given an
 	/// ID, and those of them rejected.
@@ -59,6 +62,8 @@ class AssociationAudit
 	std::size_t wrongCount() const;
 
    private:
+	void countGivenId(const Association& a);
+
 	std::size_t new_ = 0, matched_ = 0, rejected_ = 0, with_truth_ = 0;
 	bool tracks_given_ = false;
 	std::size_t given_ids_ = 0, given_ids_rejected_ = 0;

@@ -29,6 +29,17 @@ namespace esif
 /// when no step holds a measurement.
 std::optional<double> ospaCutoff(const std::vector<StepInput>& steps);
 
+/// The same, gathered one step at a time (a replay that does not hold its steps).
+class OspaCutoff
+{
+   public:
+	void add(const StepInput& step);
+	std::optional<double> value() const;
+
+   private:
+	std::vector<double> sigmas_;  // of each measurement's position, largest axis
+};
+
 /// OSPA (order kOspaOrder, cut-off `c`) of the final map against the true
 /// landmarks it could have found: those of `observed` (the true landmarks
 /// of the measurements) the ground truth places, or every landmark of the

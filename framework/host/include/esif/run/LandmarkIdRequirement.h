@@ -20,7 +20,8 @@ struct LandmarkIdSource
 	std::string associations_file;	///< associations.txt applied to the rawlog; empty when none
 };
 
-/// Whether any measurement of `log` carries a landmark ID.
+/// Whether any measurement of `log` carries a landmark ID: as the read
+/// found them (Rawlog::any_landmark_id), or in a step kept.
 bool hasAnyLandmarkId(const Rawlog& log);
 
 /// Throws ConfigError when `plugin` needs landmark IDs and no measurement of

@@ -6,6 +6,7 @@
 /// log is refused with one line naming the memory it would need, rather
 /// than swapping for hours or being killed by the kernel.
 
+#include <esif/formats/AssociationFile.h>
 #include <esif/formats/RawlogReader.h>
 #include <esif/plugin/FilterPlugin.h>
 
@@ -18,8 +19,10 @@ namespace esif
 /// How many landmarks `log` holds, when it says: the distinct true landmarks
 /// of its measurements (the rawlog's IDs, kept even when hidden from the
 /// plugin, or the simulator's measurement truth); nullopt when no
-/// measurement carries an ID.
-std::optional<std::size_t> landmarksInLog(const Rawlog& log);
+/// measurement carries an ID. Without true landmarks, those of a recorded
+/// run's associations when the plugin is given them (`recorded`), else of
+/// the steps kept.
+std::optional<std::size_t> landmarksInLog(const Rawlog& log, const RecordedAssociations* recorded = nullptr);
 
 /// The memory a process may use here [bytes] and what sets it: the smallest
 /// of the physical memory, the soft RLIMIT_AS and RLIMIT_DATA, and the
@@ -35,6 +38,6 @@ MemoryBudget memoryBudget();
 /// both amounts when `plugin` says its estimate of the log's landmarks needs
 /// more than `budget`.
 void requireMemory(const FilterPlugin& plugin, const Rawlog& log, const std::string& config_path,
-				   const MemoryBudget& budget);
+				   const MemoryBudget& budget, const RecordedAssociations* recorded = nullptr);
 
 }  // namespace esif

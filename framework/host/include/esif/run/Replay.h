@@ -22,14 +22,24 @@
 #include <esif/plugin/FilterPlugin.h>
 #include <esif/plugin/LocalMapJoiner.h>
 
+#include <functional>
+#include <optional>
 #include <vector>
 
 namespace esif
 {
 struct ReplayOptions
 {
+	ReplayOptions(double keyframe_min_distance = 0, bool progress = true)
+		: keyframe_min_distance_m(keyframe_min_distance), progress_bar(progress)
+	{
+	}
+
 	double keyframe_min_distance_m = 0;
 	bool progress_bar = true;  ///< shown only when stderr is a terminal
+	/// Applied to each step before the plugin sees it (a noise calibration,
+	/// a recorded run's associations); none: the steps as read.
+	std::function<void(StepInput&)> prepare;
 };
 
 struct ReplayResult
@@ -48,9 +58,15 @@ struct ReplayResult
 	/// A map-joining plugin's LocalMapJoiner::fusionCosts() after finish()
 	/// (empty for other plugins), for localmap_times.png and the join_* stats.
 	std::vector<LocalMapFusionCost> fusion_costs;
+	/// The OSPA cut-off of the measurement noise the plugin was given
+	/// (ospaCutoff(), MapOspa.h); nullopt without measurements.
+	std::optional<double> ospa_cutoff_m;
 };
 
-/// Runs `plugin` over every step of `log`. A NumericalError from the plugin
+/// Runs `plugin` over every step of `log`, kept in memory or, when the read
+/// left them in the file (Rawlog::stepsLeftInFile), read again one at a
+/// time (RawlogSteps.h: InputError naming the file when it changed since).
+/// A NumericalError from the plugin
 /// is rethrown with the step index prefixed. When the plugin offers a
 /// smoothed trajectory after finish(), it must hold exactly one pose per step
 /// (else std::logic_error naming the plugin: a plugin bug, not bad input); it
