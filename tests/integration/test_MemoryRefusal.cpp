@@ -22,14 +22,12 @@ TEST(MemoryRefusal, TheEkfOnAMapTooLargeForTheLimitIsRefusedBeforeItStarts)
 	// against a 600 MiB address space, in which esif itself runs
 	// (test_hostile_inputs runs the EKF under the same limit).
 	TempDir dir;
-	std::ofstream(dir.file("dense.ini")) << "[simulation]\nseed = 1\nworld_size_m = 300\nfeatures_per_side = 300\n"
-											"dt_s = 3\nsteps = 12\nspeed_mps = 10\nsensor_max_range_m = 17\n"
-											"sensor_fov_deg = 360\n";
+	const auto simulated = esif::test::simulateScenario(
+		dir, "dense",
+		"seed = 1\nworld_size_m = 300\nfeatures_per_side = 300\ndt_s = 3\nsteps = 12\nspeed_mps = 10\n"
+		"sensor_max_range_m = 17\nsensor_fov_deg = 360\n");
+	ASSERT_EQ(simulated.exit_code, 0) << simulated.out;
 	const std::string rawlog = dir.file("dense.rawlog");
-	ASSERT_EQ(esif::test::finish(esif::test::spawnEsif(
-				  {"simulate", "--config", dir.file("dense.ini"), "--out", rawlog}))
-				  .first,
-			  0);
 	const std::string ekf = sourcePath("configs/ekf.ini");
 	const auto [code, text] = esif::test::finish(esif::test::spawnEsif(
 		{"run", "-q", "--no-figures", "--config", ekf, "--rawlog", rawlog, "--out", dir.file("o")},

@@ -16,29 +16,48 @@
 
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
 
-namespace fs = std::filesystem;
+namespace
+{
 using esif::test::sourcePath;
 using esif::test::TempDir;
+
+/// A 150,000-step tour of a 20 m square (1 m/s, at most 45 deg/s),
+/// simulated into DIR/NAME.rawlog; `world` gives the features and sensor.
+std::string simulatedTour(const TempDir& dir, const std::string& name, const std::string& world)
+{
+	const auto r = esif::test::simulateScenario(
+		dir, name,
+		"seed = 1\nworld_size_m = 20\ndt_s = 0.1\nsteps = 150000\nspeed_mps = 1.0\nmax_turn_rate_deg_s = 45\n"
+		"waypoint_margin_m = 3\n" +
+			world);
+	EXPECT_EQ(r.exit_code, 0) << r.out;
+	return dir.file(name + ".rawlog");
+}
+
+/// `esif run` of the EKF on `rawlog` into DIR/run within 750 MiB of address
+/// space: its exit code and output.
+std::pair<int, std::string> runEkfWithin750MiB(const TempDir& dir, const std::string& rawlog)
+{
+	return esif::test::finish(esif::test::spawnEsif(
+		{"run", "-q", "--no-figures", "--config", sourcePath("configs/ekf.ini"), "--rawlog", rawlog, "--out",
+		 dir.file("run")},
+		esif::test::SpawnLimits{{}, rlim_t{750} << 20, {}}));
+}
+}  // namespace
 
 TEST(ReplayMemory, ALongLogIsReplayedWithinALimitItsSensoryFramesWouldExceed)
 {
 	TempDir dir;
 	// 100 features in a 20 m square, a 3 m 90-degree sensor: few measurements
 	// per scan, so the frames (about 1 kB each) outweigh the rest of the log.
-	std::ofstream(dir.file("long.ini")) << "[simulation]\nseed = 1\nworld_size_m = 20\nfeatures_per_side = 10\n"
-										   "dt_s = 0.1\nsteps = 150000\nspeed_mps = 1.0\nmax_turn_rate_deg_s = 45\n"
-										   "waypoint_margin_m = 3\nsensor_max_range_m = 3\nsensor_fov_deg = 90\n";
-	const std::string rawlog = dir.file("long.rawlog");
-	ASSERT_EQ(esif::test::finish(esif::test::spawnEsif({"simulate", "--config", dir.file("long.ini"), "--out", rawlog}))
-				  .first,
-			  0);
-	const auto [code, text] = esif::test::finish(esif::test::spawnEsif(
-		{"run", "-q", "--no-figures", "--config", sourcePath("configs/ekf.ini"), "--rawlog", rawlog, "--out",
-		 dir.file("run")},
-		esif::test::SpawnLimits{{}, rlim_t{750} << 20, {}}));
+	const std::string rawlog =
+		simulatedTour(dir, "long", "features_per_side = 10\nsensor_max_range_m = 3\nsensor_fov_deg = 90\n");
+	ASSERT_FALSE(::testing::Test::HasFailure());
+	const auto [code, text] = runEkfWithin750MiB(dir, rawlog);
 	ASSERT_EQ(code, 0) << text;
 
 	// Every scan is a keyframe (keyframe_min_distance_m = 0), each with its frame.
@@ -60,17 +79,10 @@ TEST(ReplayMemory, ALogOfManyMeasurementsIsReplayedWithoutHoldingItsSteps)
 	// 568 MB. 750 MiB leaves 75 MiB either way: a replay that held the steps
 	// again would fail here.
 	TempDir dir;
-	std::ofstream(dir.file("dense.ini")) << "[simulation]\nseed = 1\nworld_size_m = 20\nfeatures_per_side = 4\n"
-											"dt_s = 0.1\nsteps = 150000\nspeed_mps = 1.0\nmax_turn_rate_deg_s = 45\n"
-											"waypoint_margin_m = 3\nsensor_max_range_m = 40\nsensor_fov_deg = 360\n";
-	const std::string rawlog = dir.file("dense.rawlog");
-	ASSERT_EQ(
-		esif::test::finish(esif::test::spawnEsif({"simulate", "--config", dir.file("dense.ini"), "--out", rawlog})).first,
-		0);
-	const auto [code, text] = esif::test::finish(esif::test::spawnEsif(
-		{"run", "-q", "--no-figures", "--config", sourcePath("configs/ekf.ini"), "--rawlog", rawlog, "--out",
-		 dir.file("run")},
-		esif::test::SpawnLimits{{}, rlim_t{750} << 20, {}}));
+	const std::string rawlog =
+		simulatedTour(dir, "dense", "features_per_side = 4\nsensor_max_range_m = 40\nsensor_fov_deg = 360\n");
+	ASSERT_FALSE(::testing::Test::HasFailure());
+	const auto [code, text] = runEkfWithin750MiB(dir, rawlog);
 	ASSERT_EQ(code, 0) << text;
 	// Every measurement was replayed: associations.txt has a row for each.
 	std::ifstream associations(dir.file("run/associations.txt"));

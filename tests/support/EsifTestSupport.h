@@ -190,6 +190,17 @@ inline CommandResult simulateSmall(const std::string& rawlog, const std::string&
 		"--out '" + rawlog + "'");
 }
 
+/// Writes `simulation_section` (the [simulation] keys of a scenario, without
+/// the section line) to DIR/NAME.ini and runs `esif simulate` on it into
+/// DIR/NAME.rawlog, with its ground truth beside it.
+inline CommandResult simulateScenario(const TempDir& dir, const std::string& name,
+									  const std::string& simulation_section)
+{
+	const std::string ini = dir.file(name + ".ini");
+	std::ofstream(ini) << "[simulation]\n" << simulation_section;
+	return runEsif("simulate --config " + quoted(ini) + " --out " + quoted(dir.file(name + ".rawlog")));
+}
+
 /// The Victoria Park dataset (third-party data: read from the shared data
 /// folder beside the checkout, never committed, nor anything made from it).
 inline std::string victoriaParkDataset() { return sourcePath("../shared/data/victoria_park/victoria_park.txt"); }
