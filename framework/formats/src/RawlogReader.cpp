@@ -49,6 +49,8 @@ class TimeCheck
 /// What one read collects from its steps, kept or not.
 struct StepAccumulator
 {
+	StepAccumulator(Rawlog& out_, const RawlogReadOptions& options_) : out(out_), options(options_) {}
+
 	Rawlog& out;
 	const RawlogReadOptions& options;
 	StepsDigest digest;
@@ -84,7 +86,7 @@ Rawlog parseRawlog(const std::string& path, const InflatedFile& file, const Rawl
 
 	Rawlog out;
 	out.path = path;
-	StepAccumulator steps{out, options};
+	StepAccumulator steps(out, options);
 	// Each step is taken in when the next one is built: a cut at the very
 	// end may leave a final odometry without its scan, kept only if the file
 	// ended cleanly.

@@ -14,6 +14,15 @@
 
 namespace esif
 {
+namespace
+{
+/// The one line for a file that is not what the first read found.
+InputError changedSinceRead(const RawlogSource& source, const std::string& how, const std::string& why)
+{
+	return InputError(source.path + ": " + how + " since esif read it; " + why + ": run again");
+}
+}  // namespace
+
 /// One forward pass: entries are read until the builder has handed on a step.
 struct RawlogStepStream::Pass
 {
@@ -27,10 +36,7 @@ struct RawlogStepStream::Pass
 	{
 	}
 
-	InputError changed(const std::string& how) const
-	{
-		return InputError(source.path + ": " + how + " since esif read it; " + why + ": run again");
-	}
+	InputError changed(const std::string& how) const { return changedSinceRead(source, how, why); }
 
 	/// Reads entries until a step is built; false at the end of the data.
 	bool readUntilAStepIsBuilt()
@@ -70,7 +76,7 @@ struct RawlogStepStream::Pass
 RawlogStepStream::RawlogStepStream(const RawlogSource& source, std::string why)
 {
 	if (!(identityOf(source.path) == source.identity))
-		throw InputError(source.path + ": replaced or modified since esif read it; " + why + ": run again");
+		throw changedSinceRead(source, "replaced or modified", why);
 	pass_ = std::make_unique<Pass>(source, std::move(why));
 }
 
