@@ -168,6 +168,7 @@ void applyAssociations(Rawlog& log, const RecordedAssociations& recorded, const 
 		return scan ? scan->measurements.size() : 0;
 	}, path);
 	for (std::size_t k = 0; k < log.steps.size(); ++k) applyRecordedStep(log.steps[k], recorded.steps[k]);
+	log.any_landmark_id = anyIdGiven(recorded);
 }
 
 void checkAssociationsFit(const Rawlog& log, const RecordedAssociations& recorded, const std::string& path)

@@ -145,6 +145,7 @@ TEST(AssociationFile, ApplySetsRecordedIdsAndKeepsTrueIds)
 	const auto& s2 = log.steps[2].scan->measurements;
 	EXPECT_EQ(s2[0].id.value_or(-7), 4);
 	EXPECT_EQ(s2[1].id.value_or(-7), 9);
+	EXPECT_TRUE(log.any_landmark_id);
 	// Scoring still uses the rawlog's own IDs.
 	EXPECT_FALSE(log.true_ids[0][0].has_value());
 	EXPECT_EQ(log.true_ids[2][0].value_or(-7), 40);

@@ -48,8 +48,9 @@ void writeAssociationFile(
 RecordedAssociations readAssociationFile(const std::string& path, std::size_t rawlog_steps);
 
 /// Makes `log`'s measurement IDs those of the recorded run: the landmark ID
-/// of a new or matched measurement, none for a rejected one. `log.true_ids`
-/// stay as they are (scoring still uses the rawlog's own IDs). Throws
+/// of a new or matched measurement, none for a rejected one, and
+/// `log.any_landmark_id` says whether any is left. `log.true_ids` stay as
+/// they are (scoring still uses the rawlog's own IDs). Throws
 /// InputError naming `path` when the recorded run saw another number of steps,
 /// or another number of measurements at some step, than `log` holds.
 void applyAssociations(Rawlog& log, const RecordedAssociations& recorded, const std::string& path);
