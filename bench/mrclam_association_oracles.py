@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""Which association errors the EKF's MRCLAM error comes from: two oracles.
+
+MRCLAM's 15 cylinders stand in clusters of two or three, 0.15-0.2 m apart,
+the clusters about 2 m apart. Without the barcodes an association has two
+decisions to make: which cluster a sighting is of, and which cylinder of it.
+This runs the EKF with IDs (configs/mrclam/ekf.ini, its 0.9999 ID gate on)
+on each robot of dataset 6 three times, with three associations given
+through --associations-from, and prints the landmark RMSE against the Vicon
+ground truth:
+  - barcodes: the dataset's own IDs (the with-ID figure of issue 40);
+  - cluster oracle: every sighting given its barcode's cluster (one landmark
+    per cluster): what an association that always finds the right cluster
+    and cannot tell the cylinders of one apart achieves;
+  - nearest in cluster: the barcode's cluster, and in it the cylinder whose
+    landmark, in the with-barcode EKF's final map, is nearest (Mahalanobis,
+    the noise of one sighting) to the sighting predicted from that EKF's pose
+    at the sighting's step: what separating the cylinders by position
+    achieves, with the best map a filter of this data has. Also printed: how
+    often that nearest cylinder is the barcode's.
+Each measurement's barcode comes from `esif export g2o --landmark-edge br`
+(one BR edge per measurement, in step order); clusters are the groups of
+cylinders closer than 1 m in the ground truth the importer writes beside the
+rawlog.
+
+Usage: bench/mrclam_association_oracles.py ESIF OUT_DIR
+(rawlogs out/data/mrclam6_r1..5.rawlog, made by `esif import mrclam`).
+"""
+import configparser
+import json
+import math
+import os
+import statistics
+import subprocess
+import sys
+
+CLUSTER_M = 1.0
+EKF_CONFIG = "configs/mrclam/ekf.ini"
+
+
+def data_rows(path):
+    with open(path) as f:
+        for line in f:
+            if line.strip() and not line.startswith("#"):
+                yield line.split()
+
+
+def wrap(a):
+    return (a + math.pi) % (2 * math.pi) - math.pi
+
+
+def clusters(cylinders):
+    """Cluster of each cylinder: the smallest ID of its single-linkage group."""
+    label = {i: i for i in cylinders}
+
+    def root(i):
+        while label[i] != i:
+            i = label[i]
+        return i
+    for a in sorted(cylinders):
+        for b in sorted(cylinders):
+            if a < b and math.dist(cylinders[a], cylinders[b]) < CLUSTER_M:
+                label[root(b)] = root(a)
+    return {i: root(i) for i in cylinders}
+
+
+def measurements(esif, rawlog, g2o):
+    """(step, index in step, barcode cylinder, bearing, range) per measurement, and the step count."""
+    subprocess.run([esif, "export", "g2o", "--landmark-edge", "br", "-r", rawlog, "-o", g2o],
+                   check=True, stdout=subprocess.DEVNULL)
+    lines = open(g2o).read().splitlines()
+    steps = sum(1 for line in lines if line.startswith("VERTEX_SE2 "))
+    out, last, k = [], -1, 0
+    for line in lines:
+        if line.startswith("BR "):
+            f = line.split()
+            step = int(f[1])
+            k = k + 1 if step == last else 0
+            last = step
+            out.append((step, k, int(f[2]) - steps, float(f[3]), float(f[4])))
+    return out, steps
+
+
+def run_ekf(esif, rawlog, out, associations_from=None):
+    cmd = [esif, "run", "-q", "--no-figures", "--config", EKF_CONFIG, "--rawlog", rawlog, "--out", out]
+    if associations_from:
+        cmd += ["--associations-from", associations_from]
+    subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    path = os.path.join(out, "stats.json")
+    return json.load(open(path)) if os.path.exists(path) else None
+
+
+def write_associations(folder, steps, rows):
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, "associations.txt"), "w") as f:
+        f.write("# esif associations.txt: an oracle of bench/mrclam_association_oracles.py\n")
+        f.write("# columns: step measurement kind landmark_id\n# steps %d\n" % steps)
+        seen = set()
+        for step, k, landmark in rows:
+            f.write("%d %d %s %d\n" % (step, k, "matched" if landmark in seen else "new", landmark))
+            seen.add(landmark)
+
+
+def nearest_in_cluster(run, meas, cluster, sr, sb):
+    """The oracle's landmark for each measurement, and the share that is the barcode's cylinder."""
+    poses = [tuple(map(float, r)) for r in data_rows(os.path.join(run, "trajectory.tum"))]
+    landmarks = {int(r[0]): (float(r[1]), float(r[2])) for r in data_rows(os.path.join(run, "landmarks.txt"))}
+    rows, right = [], 0
+    for step, k, barcode, bearing, rng in meas:
+        _, x, y, _, _, _, qz, qw = poses[step]
+        th = 2 * math.atan2(qz, qw)
+
+        def d2(j):
+            lx, ly = landmarks[j]
+            er = (rng - math.hypot(lx - x, ly - y)) / sr
+            eb = wrap(bearing - wrap(math.atan2(ly - y, lx - x) - th)) / sb
+            return er * er + eb * eb
+        best = min((j for j in landmarks if cluster[j] == cluster[barcode]), key=d2)
+        right += best == barcode
+        rows.append((step, k, best))
+    return rows, right / len(meas)
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__.strip().splitlines()[-2])
+    esif, out = sys.argv[1:3]
+    cal = configparser.ConfigParser()
+    cal.read("configs/calibration/mrclam.ini")
+    sr = float(cal["calibration"]["sighting_range_std_m"])
+    sb = math.radians(float(cal["calibration"]["sighting_bearing_std_deg"]))
+    table = {"barcodes": [], "cluster oracle": [], "nearest in cluster": []}
+    right_shares = []
+    for robot in range(1, 6):
+        rawlog = "out/data/mrclam6_r%d.rawlog" % robot
+        truth = "out/data/mrclam6_r%d_ground_truth.txt" % robot
+        if not os.path.exists(rawlog):
+            sys.exit("bench/mrclam_association_oracles.py: %s not present (esif import mrclam)" % os.path.abspath(rawlog))
+        base = os.path.join(out, "r%d" % robot)
+        os.makedirs(base, exist_ok=True)
+        cylinders = {int(r[6]): (float(r[0]), float(r[1])) for r in data_rows(truth)}
+        cluster = clusters(cylinders)
+        meas, steps = measurements(esif, rawlog, os.path.join(base, "br.g2o"))
+        table["barcodes"].append(run_ekf(esif, rawlog, os.path.join(base, "barcodes")))
+        write_associations(os.path.join(base, "cluster_ids"), steps, [(s, k, cluster[b]) for s, k, b, _, _ in meas])
+        table["cluster oracle"].append(run_ekf(esif, rawlog, os.path.join(base, "cluster"), os.path.join(base, "cluster_ids")))
+        rows, share = nearest_in_cluster(os.path.join(base, "barcodes"), meas, cluster, sr, sb)
+        right_shares.append(share)
+        write_associations(os.path.join(base, "nearest_ids"), steps, rows)
+        table["nearest in cluster"].append(run_ekf(esif, rawlog, os.path.join(base, "nearest"), os.path.join(base, "nearest_ids")))
+
+    print("| association given to the EKF | landmark RMSE median [m] (per robot) | landmarks per robot | the barcode's cylinder |")
+    print("|---|---|---|---|")
+    for name, runs in table.items():
+        rmse = [s["landmark_rmse_m"] if s else None for s in runs]
+        done = [v for v in rmse if v is not None]
+        share = "100%" if name == "barcodes" else ("-" if name == "cluster oracle" else
+                                                   " ".join("%.0f%%" % (100 * v) for v in right_shares))
+        print("| %s | %s (%s) | %s | %s |" % (
+            name, "%.3f" % statistics.median(done) if done else "-",
+            " ".join("-" if v is None else "%.2f" % v for v in rmse),
+            " ".join("-" if s is None else "%d" % s["landmarks"] for s in runs), share))
+
+
+if __name__ == "__main__":
+    main()
