@@ -18,6 +18,8 @@ ground truth:
     at the sighting's step: what separating the cylinders by position
     achieves, with the best map a filter of this data has. Also printed: how
     often that nearest cylinder is the barcode's.
+Beside them, the EKF without IDs as shipped (configs/mrclam/ekf_jcbb.ini),
+and how often its associations hit the right cluster and the right cylinder.
 Each measurement's barcode comes from `esif export g2o --landmark-edge br`
 (one BR edge per measurement, in step order); clusters are the groups of
 cylinders closer than 1 m in the ground truth the importer writes beside the
@@ -36,6 +38,7 @@ import sys
 
 CLUSTER_M = 1.0
 EKF_CONFIG = "configs/mrclam/ekf.ini"
+NO_ID_CONFIG = "configs/mrclam/ekf_jcbb.ini"
 
 
 def data_rows(path):
@@ -81,8 +84,8 @@ def measurements(esif, rawlog, g2o):
     return out, steps
 
 
-def run_ekf(esif, rawlog, out, associations_from=None):
-    cmd = [esif, "run", "-q", "--no-figures", "--config", EKF_CONFIG, "--rawlog", rawlog, "--out", out]
+def run_ekf(esif, rawlog, out, associations_from=None, config=EKF_CONFIG):
+    cmd = [esif, "run", "-q", "--no-figures", "--config", config, "--rawlog", rawlog, "--out", out]
     if associations_from:
         cmd += ["--associations-from", associations_from]
     subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -99,6 +102,23 @@ def write_associations(folder, steps, rows):
         for step, k, landmark in rows:
             f.write("%d %d %s %d\n" % (step, k, "matched" if landmark in seen else "new", landmark))
             seen.add(landmark)
+
+
+def association_shares(run, meas, cluster):
+    """Of the measurements a run without IDs used: the share on a landmark of the
+    barcode's cluster and on the barcode's cylinder (through each landmark's
+    identity), and the share of all it left out."""
+    identity = {int(r[0]): int(r[1]) for r in data_rows(os.path.join(run, "landmark_identities.txt"))}
+    rows = list(data_rows(os.path.join(run, "associations.txt")))
+    used = same_cluster = same_cylinder = 0
+    for (_, _, barcode, _, _), (_, _, kind, landmark) in zip(meas, rows):
+        if kind == "rejected":
+            continue
+        used += 1
+        true = identity.get(int(landmark), -1)
+        same_cluster += true in cluster and cluster[true] == cluster[barcode]
+        same_cylinder += true == barcode
+    return same_cluster / used, same_cylinder / used, 1 - used / len(meas)
 
 
 def nearest_in_cluster(run, meas, cluster, sr, sb):
@@ -129,8 +149,8 @@ def main():
     cal.read("configs/calibration/mrclam.ini")
     sr = float(cal["calibration"]["sighting_range_std_m"])
     sb = math.radians(float(cal["calibration"]["sighting_bearing_std_deg"]))
-    table = {"barcodes": [], "cluster oracle": [], "nearest in cluster": []}
-    right_shares = []
+    table = {"barcodes": [], "cluster oracle": [], "nearest in cluster": [], "none: JCBB without IDs (ekf_jcbb)": []}
+    right_shares, no_id_shares = [], []
     for robot in range(1, 6):
         rawlog = "out/data/mrclam6_r%d.rawlog" % robot
         truth = "out/data/mrclam6_r%d_ground_truth.txt" % robot
@@ -148,18 +168,28 @@ def main():
         right_shares.append(share)
         write_associations(os.path.join(base, "nearest_ids"), steps, rows)
         table["nearest in cluster"].append(run_ekf(esif, rawlog, os.path.join(base, "nearest"), os.path.join(base, "nearest_ids")))
+        no_ids = os.path.join(base, "no_ids")
+        table["none: JCBB without IDs (ekf_jcbb)"].append(run_ekf(esif, rawlog, no_ids, config=NO_ID_CONFIG))
+        no_id_shares.append(association_shares(no_ids, meas, cluster) if table["none: JCBB without IDs (ekf_jcbb)"][-1] else None)
 
     print("| association given to the EKF | landmark RMSE median [m] (per robot) | landmarks per robot | the barcode's cylinder |")
     print("|---|---|---|---|")
     for name, runs in table.items():
         rmse = [s["landmark_rmse_m"] if s else None for s in runs]
         done = [v for v in rmse if v is not None]
-        share = "100%" if name == "barcodes" else ("-" if name == "cluster oracle" else
-                                                   " ".join("%.0f%%" % (100 * v) for v in right_shares))
+        share = {"barcodes": "100%", "nearest in cluster": " ".join("%.0f%%" % (100 * v) for v in right_shares)}.get(name, "-")
         print("| %s | %s (%s) | %s | %s |" % (
             name, "%.3f" % statistics.median(done) if done else "-",
             " ".join("-" if v is None else "%.2f" % v for v in rmse),
             " ".join("-" if s is None else "%d" % s["landmarks"] for s in runs), share))
+    print()
+    print("Without IDs, per robot: of the measurements the EKF used, the share on a landmark of the barcode's cluster and on "
+          "the barcode's cylinder (through each landmark's identity); and the share it left out (waits, gates, unconfirmed).")
+    print()
+    print("| robot | right cluster | right cylinder | left out |")
+    print("|---:|---:|---:|---:|")
+    for robot, shares in enumerate(no_id_shares, start=1):
+        print("| %d | %s |" % (robot, "- | - | -" if shares is None else " | ".join("%.1f%%" % (100 * v) for v in shares)))
 
 
 if __name__ == "__main__":
