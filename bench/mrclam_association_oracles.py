@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
-"""Which association errors the EKF's MRCLAM error comes from: two oracles.
+"""Which association errors each filter's MRCLAM error comes from: oracles.
 
 MRCLAM's 15 cylinders stand in clusters of two or three, 0.15-0.2 m apart,
 the clusters about 2 m apart. Without the barcodes an association has two
 decisions to make: which cluster a sighting is of, and which cylinder of it.
-This runs the EKF with IDs (configs/mrclam/ekf.ini, its 0.9999 ID gate on)
-on each robot of dataset 6 three times, with three associations given
-through --associations-from, and prints the landmark RMSE against the Vicon
-ground truth:
+This runs each filter with IDs (configs/mrclam/<filter>.ini, its 0.9999 ID
+gate on) on each robot of dataset 6 with three associations given through
+--associations-from, and without IDs (configs/mrclam/<filter>_jcbb.ini),
+and prints the landmark RMSE against the Vicon ground truth:
   - barcodes: the dataset's own IDs (the with-ID figure of issue 40);
   - cluster oracle: every sighting given its barcode's cluster (one landmark
     per cluster): what an association that always finds the right cluster
@@ -16,10 +16,10 @@ ground truth:
     landmark, in the with-barcode EKF's final map, is nearest (Mahalanobis,
     the noise of one sighting) to the sighting predicted from that EKF's pose
     at the sighting's step: what separating the cylinders by position
-    achieves, with the best map a filter of this data has. Also printed: how
-    often that nearest cylinder is the barcode's.
-Beside them, the EKF without IDs as shipped (configs/mrclam/ekf_jcbb.ini),
-and how often its associations hit the right cluster and the right cylinder.
+    achieves, with the best map a filter of this data has (also printed: how
+    often that nearest cylinder is the barcode's);
+  - none: the filter's own association without IDs, and how often it hits
+    the barcode's cluster and cylinder.
 Each measurement's barcode comes from `esif export g2o --landmark-edge br`
 (one BR edge per measurement, in step order); clusters are the groups of
 cylinders closer than 1 m in the ground truth the importer writes beside the
@@ -37,8 +37,7 @@ import subprocess
 import sys
 
 CLUSTER_M = 1.0
-EKF_CONFIG = "configs/mrclam/ekf.ini"
-NO_ID_CONFIG = "configs/mrclam/ekf_jcbb.ini"
+FILTERS = ["ekf", "slsjf", "dslam_lmj", "dslam"]  # configs/mrclam/<filter>.ini and <filter>_jcbb.ini
 
 
 def data_rows(path):
@@ -82,15 +81,6 @@ def measurements(esif, rawlog, g2o):
             last = step
             out.append((step, k, int(f[2]) - steps, float(f[3]), float(f[4])))
     return out, steps
-
-
-def run_ekf(esif, rawlog, out, associations_from=None, config=EKF_CONFIG):
-    cmd = [esif, "run", "-q", "--no-figures", "--config", config, "--rawlog", rawlog, "--out", out]
-    if associations_from:
-        cmd += ["--associations-from", associations_from]
-    subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    path = os.path.join(out, "stats.json")
-    return json.load(open(path)) if os.path.exists(path) else None
 
 
 def write_associations(folder, steps, rows):
@@ -141,6 +131,18 @@ def nearest_in_cluster(run, meas, cluster, sr, sb):
     return rows, right / len(meas)
 
 
+def run_filter(esif, rawlog, out, config, associations_from=None):
+    cmd = [esif, "run", "-q", "--no-figures", "--config", config, "--rawlog", rawlog, "--out", out]
+    if associations_from:
+        cmd += ["--associations-from", associations_from]
+    subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    path = os.path.join(out, "stats.json")
+    return json.load(open(path)) if os.path.exists(path) else None
+
+
+ASSOCIATIONS = ["barcodes", "cluster oracle", "nearest in cluster", "none: JCBB without IDs"]
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__.strip().splitlines()[-2])
@@ -149,8 +151,9 @@ def main():
     cal.read("configs/calibration/mrclam.ini")
     sr = float(cal["calibration"]["sighting_range_std_m"])
     sb = math.radians(float(cal["calibration"]["sighting_bearing_std_deg"]))
-    table = {"barcodes": [], "cluster oracle": [], "nearest in cluster": [], "none: JCBB without IDs (ekf_jcbb)": []}
-    right_shares, no_id_shares = [], []
+    runs = {(f, a): [] for f in FILTERS for a in ASSOCIATIONS}
+    shares = {f: [] for f in FILTERS}
+    right_shares = []
     for robot in range(1, 6):
         rawlog = "out/data/mrclam6_r%d.rawlog" % robot
         truth = "out/data/mrclam6_r%d_ground_truth.txt" % robot
@@ -161,35 +164,47 @@ def main():
         cylinders = {int(r[6]): (float(r[0]), float(r[1])) for r in data_rows(truth)}
         cluster = clusters(cylinders)
         meas, steps = measurements(esif, rawlog, os.path.join(base, "br.g2o"))
-        table["barcodes"].append(run_ekf(esif, rawlog, os.path.join(base, "barcodes")))
-        write_associations(os.path.join(base, "cluster_ids"), steps, [(s, k, cluster[b]) for s, k, b, _, _ in meas])
-        table["cluster oracle"].append(run_ekf(esif, rawlog, os.path.join(base, "cluster"), os.path.join(base, "cluster_ids")))
-        rows, share = nearest_in_cluster(os.path.join(base, "barcodes"), meas, cluster, sr, sb)
-        right_shares.append(share)
-        write_associations(os.path.join(base, "nearest_ids"), steps, rows)
-        table["nearest in cluster"].append(run_ekf(esif, rawlog, os.path.join(base, "nearest"), os.path.join(base, "nearest_ids")))
-        no_ids = os.path.join(base, "no_ids")
-        table["none: JCBB without IDs (ekf_jcbb)"].append(run_ekf(esif, rawlog, no_ids, config=NO_ID_CONFIG))
-        no_id_shares.append(association_shares(no_ids, meas, cluster) if table["none: JCBB without IDs (ekf_jcbb)"][-1] else None)
+        oracles = {"cluster oracle": os.path.join(base, "cluster_ids"), "nearest in cluster": os.path.join(base, "nearest_ids")}
+        write_associations(oracles["cluster oracle"], steps, [(s, k, cluster[b]) for s, k, b, _, _ in meas])
+        ekf_barcodes = os.path.join(base, "ekf_barcodes")
+        for f in FILTERS:
+            with_ids = "configs/mrclam/%s.ini" % f
+            runs[(f, "barcodes")].append(run_filter(esif, rawlog, os.path.join(base, f + "_barcodes"), with_ids))
+            if f == FILTERS[0]:
+                rows, share = nearest_in_cluster(ekf_barcodes, meas, cluster, sr, sb)
+                right_shares.append(share)
+                write_associations(oracles["nearest in cluster"], steps, rows)
+            for name, folder in oracles.items():
+                runs[(f, name)].append(run_filter(esif, rawlog, os.path.join(base, f + "_" + name.replace(" ", "_")),
+                                                  with_ids, folder))
+            no_ids = os.path.join(base, f + "_no_ids")
+            stats = run_filter(esif, rawlog, no_ids, "configs/mrclam/%s_jcbb.ini" % f)
+            runs[(f, ASSOCIATIONS[-1])].append(stats)
+            shares[f].append(association_shares(no_ids, meas, cluster) if stats else None)
 
-    print("| association given to the EKF | landmark RMSE median [m] (per robot) | landmarks per robot | the barcode's cylinder |")
+    print("| filter | association | landmark RMSE median [m] (per robot) | landmarks per robot |")
     print("|---|---|---|---|")
-    for name, runs in table.items():
-        rmse = [s["landmark_rmse_m"] if s else None for s in runs]
-        done = [v for v in rmse if v is not None]
-        share = {"barcodes": "100%", "nearest in cluster": " ".join("%.0f%%" % (100 * v) for v in right_shares)}.get(name, "-")
-        print("| %s | %s (%s) | %s | %s |" % (
-            name, "%.3f" % statistics.median(done) if done else "-",
-            " ".join("-" if v is None else "%.2f" % v for v in rmse),
-            " ".join("-" if s is None else "%d" % s["landmarks"] for s in runs), share))
+    for f in FILTERS:
+        for a in ASSOCIATIONS:
+            rmse = [s["landmark_rmse_m"] if s else None for s in runs[(f, a)]]
+            done = [v for v in rmse if v is not None]
+            print("| %s | %s | %s (%s) | %s |" % (
+                f, a, "%.3f" % statistics.median(done) if done else "-",
+                " ".join("-" if v is None else "%.2f" % v for v in rmse),
+                " ".join("-" if s is None else "%d" % s["landmarks"] for s in runs[(f, a)])))
     print()
-    print("Without IDs, per robot: of the measurements the EKF used, the share on a landmark of the barcode's cluster and on "
-          "the barcode's cylinder (through each landmark's identity); and the share it left out (waits, gates, unconfirmed).")
+    print("Nearest in cluster: the oracle's cylinder is the barcode's for %s of the measurements (robots 1-5)."
+          % " ".join("%.0f%%" % (100 * v) for v in right_shares))
     print()
-    print("| robot | right cluster | right cylinder | left out |")
-    print("|---:|---:|---:|---:|")
-    for robot, shares in enumerate(no_id_shares, start=1):
-        print("| %d | %s |" % (robot, "- | - | -" if shares is None else " | ".join("%.1f%%" % (100 * v) for v in shares)))
+    print("Without IDs (`configs/mrclam/<filter>_jcbb.ini`), per robot: of the measurements the filter used, the share on a "
+          "landmark of the barcode's cluster and on the barcode's cylinder (through each landmark's identity); and the "
+          "share it left out (waits, gates, unconfirmed, poorly observed).")
+    print()
+    print("| filter | right cluster | right cylinder | left out |")
+    print("|---|---|---|---|")
+    for f in FILTERS:
+        cols = [" ".join("-" if v is None else "%.1f%%" % (100 * v[c]) for v in shares[f]) for c in range(3)]
+        print("| %s | %s |" % (f, " | ".join(cols)))
 
 
 if __name__ == "__main__":

@@ -12,7 +12,7 @@
 #  - MRCLAM dataset 6, robots 1-5: every configs/mrclam/ config with the
 #    barcodes and without (*_jcbb), against the Vicon ground truth.
 #    Beside them, what each measurement's nearest cylinder would be from the
-#    true pose (bench/mrclam_true_pose_association.py), and the EKF given
+#    true pose (bench/mrclam_true_pose_association.py), and each filter given
 #    oracle associations (bench/mrclam_association_oracles.py).
 # The datasets are third-party (never committed): imported into out/data/ on
 # first use (VICPARK_TXT, MRCLAM_DIR). Writes out/bench/no_ids/; with
@@ -179,14 +179,13 @@ PY
   echo
   python3 bench/mrclam_true_pose_association.py "$mrclam_dir" configs/calibration/mrclam.ini
   echo
-  echo "## MRCLAM: which association errors the EKF's error comes from"
+  echo "## MRCLAM: which association errors each filter's error comes from"
   echo
-  echo "\`bench/mrclam_association_oracles.py\`: the EKF with IDs (\`configs/mrclam/ekf.ini\`, its 0.9999 ID gate on) given three"
-  echo "associations. The cluster oracle gives every sighting its barcode's cluster (one landmark per cluster): an association"
-  echo "that never mistakes the cluster and cannot tell its cylinders apart. Nearest in cluster keeps the barcode's cluster and"
-  echo "takes the cylinder whose landmark in the with-barcode EKF's final map is nearest to the sighting seen from that EKF's pose"
-  echo "(last column: how often that is the barcode's). Beside them the EKF without IDs as shipped, and where its associations"
-  echo "land. Issue 40's target for the EKF without IDs is 1.5 x the barcodes' median."
+  echo "\`bench/mrclam_association_oracles.py\`: each filter with IDs (\`configs/mrclam/<filter>.ini\`, its 0.9999 ID gate on) given"
+  echo "three associations, and without IDs as shipped. The cluster oracle gives every sighting its barcode's cluster (one"
+  echo "landmark per cluster): an association that never mistakes the cluster and cannot tell its cylinders apart. Nearest in"
+  echo "cluster keeps the barcode's cluster and takes the cylinder whose landmark in the with-barcode EKF's final map is nearest"
+  echo "to the sighting seen from that EKF's pose. Issue 40's target for each filter without IDs is 1.5 x its barcodes' median."
   echo
   python3 bench/mrclam_association_oracles.py "$esif" "$out/mrclam_oracles"
 } >> "$work/report.md"
