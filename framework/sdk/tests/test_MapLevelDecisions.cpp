@@ -3,12 +3,15 @@
 // ones are matched, one far from every candidate is new, and one between
 // the gates, too close to a candidate to be new yet not it, is left out;
 // "too close" judged against each candidate alone or given the accepted
-// pairs.
+// pairs; and a match another candidate, standing apart, explains as well
+// given the other pairs is left out (ambiguity_margin_chi2_quantile).
 
 #include <esif/localmap/LandmarkIdAllocator.h>
 #include <esif/localmap/MapLevelDecisions.h>
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include <set>
 
@@ -90,6 +93,82 @@ TEST(MapLevelDecisions, ASightingNearAFeatureIsNewOnceThePairsPinThePlacement)
 	}
 	EXPECT_EQ(alone.outcome[3], MapFeatureOutcome::PoorlyObserved);
 	EXPECT_EQ(given.outcome[3], MapFeatureOutcome::New);
+}
+/// Candidates at `candidates` with 0.05 m sigma; observed points with
+/// sigma `observed_sd` each, independent.
+PointSets points(const std::vector<Eigen::Vector2d>& candidates, const std::vector<Eigen::Vector2d>& observed,
+				 const std::vector<double>& observed_sd)
+{
+	PointSets s;
+	s.candidates.resize(static_cast<Eigen::Index>(candidates.size()), 2);
+	for (std::size_t c = 0; c < candidates.size(); ++c) s.candidates.row(static_cast<Eigen::Index>(c)) = candidates[c].transpose();
+	s.candidates_cov = 0.0025 * Eigen::MatrixXd::Identity(2 * s.candidates.rows(), 2 * s.candidates.rows());
+	s.observed.resize(static_cast<Eigen::Index>(observed.size()), 2);
+	s.observed_cov = Eigen::MatrixXd::Zero(2 * s.observed.rows(), 2 * s.observed.rows());
+	for (std::size_t i = 0; i < observed.size(); ++i)
+	{
+		s.observed.row(static_cast<Eigen::Index>(i)) = observed[i].transpose();
+		s.observed_cov.block<2, 2>(2 * i, 2 * i) = observed_sd[i] * observed_sd[i] * Eigen::Matrix2d::Identity();
+	}
+	return s;
+}
+
+MapLevelAssociationParams withAmbiguityMargin()
+{
+	MapLevelAssociationParams p;
+	p.ambiguity_margin_chi2_quantile = 0.99;  // margin d2 9.21 (2 dof), as configs/mrclam/ uses
+	return p;
+}
+
+TEST(MapLevelDecisions, AFeatureTwoSeparateCandidatesExplainAlikeIsLeftOut)
+{
+	// Feature 1 (0.25 m sigma) halfway between candidates 0 and 1, 1 m
+	// apart: d2 3.85 to each, both inside the 0.99 gate (9.21), so JCBB
+	// pairs it with one of them, a coin toss. Given the other pair
+	// (feature 0 on candidate 2, independent of it) nothing changes, and
+	// the two candidates stand 1 m apart, d2 15.4 in the pair's own
+	// covariance: beyond the margin, a wrong pick moves the map by 1 m.
+	const PointSets s = points({{0, 0}, {1, 0}, {5, 5}}, {{5, 5}, {0.5, 0}}, {0.1, 0.25});
+	const auto plain = decideMapFeatures(s, MapLevelAssociationParams{});
+	EXPECT_EQ(plain.outcome[1], MapFeatureOutcome::Matched);
+	const auto careful = decideMapFeatures(s, withAmbiguityMargin());
+	EXPECT_EQ(careful.outcome[0], MapFeatureOutcome::Matched);
+	EXPECT_EQ(careful.candidate_of[0], 2);
+	EXPECT_EQ(careful.outcome[1], MapFeatureOutcome::PoorlyObserved);
+	EXPECT_EQ(careful.candidate_of[1], -1);
+}
+
+TEST(MapLevelDecisions, TwinCandidatesAreNoAmbiguity)
+{
+	// The same feature between candidates 0.2 m apart (cylinders of one
+	// cluster): d2 0.6 between them in the pair's covariance, under the
+	// margin. Either pick moves the map alike, so it is matched.
+	const PointSets s = points({{0, 0}, {0.2, 0}, {5, 5}}, {{5, 5}, {0.1, 0}}, {0.1, 0.25});
+	const auto d = decideMapFeatures(s, withAmbiguityMargin());
+	EXPECT_EQ(d.outcome[1], MapFeatureOutcome::Matched);
+	EXPECT_TRUE(d.candidate_of[1] == 0 || d.candidate_of[1] == 1);
+}
+
+TEST(MapLevelDecisions, AFeatureTheOtherPairsPlaceIsNotAmbiguous)
+{
+	// A local map placed with a 0.25 m sigma error both its features share
+	// (0.1 m each of their own). Alone, feature 1 at (0.6, 0) is d2 2.1
+	// from candidate 1 and 4.8 from candidate 0, which stand d2 13 apart:
+	// ambiguous. Feature 0 sits 0.5 m left of candidate 2; given that pair
+	// the shared error is known, feature 1 lies at about (1.02, 0), d2 0.02
+	// from candidate 1 and 45 from candidate 0: matched to candidate 1.
+	PointSets s = points({{0, 0}, {1, 0}, {5, 5}}, {{4.5, 5}, {0.6, 0}}, {0.1, 0.1});
+	Eigen::MatrixXd common(4, 2);
+	common << 1, 0, 0, 1, 1, 0, 0, 1;
+	s.observed_cov += 0.0625 * common * common.transpose();
+	const auto d = decideMapFeatures(s, withAmbiguityMargin());
+	EXPECT_EQ(d.outcome[0], MapFeatureOutcome::Matched);
+	EXPECT_EQ(d.candidate_of[0], 2);
+	EXPECT_EQ(d.outcome[1], MapFeatureOutcome::Matched);
+	EXPECT_EQ(d.candidate_of[1], 1);
+	// Alone (feature 0 not there), the same feature is left out.
+	const PointSets alone = points({{0, 0}, {1, 0}, {5, 5}}, {{0.6, 0}}, {std::sqrt(0.01 + 0.0625)});
+	EXPECT_EQ(decideMapFeatures(alone, withAmbiguityMargin()).outcome[0], MapFeatureOutcome::PoorlyObserved);
 }
 }  // namespace
 

@@ -1,3 +1,4 @@
+#include <esif/association/Ambiguity.h>
 #include <esif/association/Chi2.h>
 #include <esif/association/PointSetAssociation.h>
 #include "Jcbb.h"
@@ -72,10 +73,34 @@ Eigen::Index farthestAlone(const PointSets& s, const StackedPairs& p)
 	return worst;
 }
 
+/// Point i against candidate c given the pairs `p` (point i not among
+/// them), the pairs' shared placement error taken out: with nu_A, S_AA the
+/// stacked pairs and C = Cov(nu_ic, nu_A), the pair (i, c) has innovation
+/// nu_ic - C S_AA^-1 nu_A and covariance S_ic - C S_AA^-1 C^T. `w` is
+/// S_AA^-1 nu_A; with no pairs the pair is returned as it stands.
+struct ConditionalPair
+{
+	Eigen::Vector2d nu;
+	Eigen::Matrix2d S;
+};
+ConditionalPair conditionalPair(const PointSets& s, const StackedPairs& p, const Eigen::LLT<Eigen::MatrixXd>& pairs,
+								const Eigen::VectorXd& w, Eigen::Index i, Eigen::Index c)
+{
+	ConditionalPair out{(s.observed.row(i) - s.candidates.row(c)).transpose(),
+						s.observed_cov.block<2, 2>(2 * i, 2 * i) + s.candidates_cov.block<2, 2>(2 * c, 2 * c)};
+	const auto k = static_cast<Eigen::Index>(p.observations.size());
+	if (k == 0) return out;
+	Eigen::MatrixXd C(2, 2 * k);
+	for (Eigen::Index a = 0; a < k; ++a)
+		C.middleCols<2>(2 * a) =
+			s.observed_cov.block<2, 2>(2 * i, 2 * p.observations[a]) + s.candidates_cov.block<2, 2>(2 * c, 2 * p.cand[a]);
+	out.nu -= C * w;
+	out.S -= C * pairs.solve(C.transpose());
+	return out;
+}
+
 /// For each observed point without a candidate, its smallest squared
-/// distance to a candidate conditioned on the accepted pairs `p`: with
-/// nu_A, S_AA the stacked pairs and C = Cov(nu_ic, nu_A), the pair (i, c)
-/// has innovation mean C S_AA^-1 nu_A and covariance S_ic - C S_AA^-1 C^T.
+/// distance to a candidate conditioned on the accepted pairs (conditionalPair).
 std::vector<double> conditionalMinDistances2(const PointSets& s, const std::vector<int>& candidate_of,
 											 const std::vector<double>& min_distance2)
 {
@@ -84,7 +109,6 @@ std::vector<double> conditionalMinDistances2(const PointSets& s, const std::vect
 	const Eigen::LLT<Eigen::MatrixXd> pairs(p.S);
 	const bool conditioned = !p.observations.empty() && pairs.info() == Eigen::Success;
 	const Eigen::VectorXd w = conditioned ? pairs.solve(p.nu) : Eigen::VectorXd();
-	const auto k = static_cast<Eigen::Index>(p.observations.size());
 	for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(candidate_of.size()); ++i)
 	{
 		if (candidate_of[i] >= 0) continue;
@@ -95,16 +119,10 @@ std::vector<double> conditionalMinDistances2(const PointSets& s, const std::vect
 		}
 		for (Eigen::Index c = 0; c < s.candidates.rows(); ++c)
 		{
-			Eigen::MatrixXd C(2, 2 * k);
-			for (Eigen::Index a = 0; a < k; ++a)
-				C.middleCols<2>(2 * a) =
-					s.observed_cov.block<2, 2>(2 * i, 2 * p.observations[a]) + s.candidates_cov.block<2, 2>(2 * c, 2 * p.cand[a]);
-			const Eigen::Matrix2d S = s.observed_cov.block<2, 2>(2 * i, 2 * i) +
-				s.candidates_cov.block<2, 2>(2 * c, 2 * c) - C * pairs.solve(C.transpose());
-			const Eigen::LLT<Eigen::Matrix2d> llt(S);
+			const ConditionalPair pc = conditionalPair(s, p, pairs, w, i, c);
+			const Eigen::LLT<Eigen::Matrix2d> llt(pc.S);
 			if (llt.info() != Eigen::Success) continue;
-			const Eigen::Vector2d nu = (s.observed.row(i) - s.candidates.row(c)).transpose() - C * w;
-			out[i] = std::min(out[i], nu.dot(llt.solve(nu)));
+			out[i] = std::min(out[i], pc.nu.dot(llt.solve(pc.nu)));
 		}
 	}
 	return out;
@@ -219,6 +237,49 @@ void improveByExchange(const PointSets& s, double gate, std::vector<int>& candid
 	}
 }
 }  // namespace
+
+namespace
+{
+/// Squared distances of point i to every candidate given the pairs `p`.
+Eigen::VectorXd conditionalDistances2(const PointSets& s, const StackedPairs& p, const Eigen::LLT<Eigen::MatrixXd>& pairs,
+									  const Eigen::VectorXd& w, Eigen::Index i)
+{
+	Eigen::VectorXd d2(s.candidates.rows());
+	for (Eigen::Index c = 0; c < s.candidates.rows(); ++c)
+	{
+		const ConditionalPair pc = conditionalPair(s, p, pairs, w, i, c);
+		const Eigen::LLT<Eigen::Matrix2d> llt(pc.S);
+		d2(c) = llt.info() == Eigen::Success ? pc.nu.dot(llt.solve(pc.nu)) : std::numeric_limits<double>::infinity();
+	}
+	return d2;
+}
+}  // namespace
+
+std::vector<bool> ambiguousPairs(const PointSets& s, const std::vector<int>& candidate_of, double margin_d2)
+{
+	// One factorisation of the other pairs per pair: O(pairs^4) in all,
+	// meant for the tens of pairs of a local map associated without IDs.
+	std::vector<bool> out(candidate_of.size(), false);
+	if (margin_d2 <= 0) return out;
+	for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(candidate_of.size()); ++i)
+	{
+		const int chosen = candidate_of[i];
+		if (chosen < 0) continue;
+		std::vector<int> others = candidate_of;
+		others[i] = -1;
+		const StackedPairs p = stackedPairs(s, others);
+		const Eigen::LLT<Eigen::MatrixXd> pairs(p.S);
+		if (!p.observations.empty() && pairs.info() != Eigen::Success) continue;
+		const Eigen::VectorXd w = p.observations.empty() ? Eigen::VectorXd() : pairs.solve(p.nu);
+		const Eigen::LLT<Eigen::Matrix2d> own(conditionalPair(s, p, pairs, w, i, chosen).S);
+		if (own.info() != Eigen::Success) continue;
+		out[i] = ambiguousMatch(conditionalDistances2(s, p, pairs, w, i), chosen, margin_d2, [&](Eigen::Index j) {
+			const Eigen::Vector2d apart = (s.candidates.row(j) - s.candidates.row(chosen)).transpose();
+			return apart.dot(own.solve(apart));
+		});
+	}
+	return out;
+}
 
 PointAssociation associatePointSets(const PointSets& sets, AssociationMethod method, double gate_quantile,
 									double joint_quantile, const SearchBounds& bounds)

@@ -22,6 +22,10 @@ void MapLevelAssociationParams::declareAssociation(ParamBinder& b, const char* a
 								  {{"alone", NewFeatureTest::Alone}, {"given_pairs", NewFeatureTest::GivenPairs}},
 								  "an unmatched local feature's distance to each candidate: alone (the authors'), or "
 								  "given the map's accepted pairs (their shared placement error taken out)");
+	b.real("ambiguity_margin_chi2_quantile", ambiguity_margin_chi2_quantile,
+		   "a matched local feature is left out when, given the map's other pairs, a candidate standing apart from "
+		   "its own is within this chi-square quantile (2 dof) of being as likely; 0 = off",
+		   Bounds{0, 1, false, true});
 	b.real("id_gate_chi2_quantile", id_gate_chi2_quantile,
 		   "with IDs, a local feature whose same-ID global feature fails this chi-square quantile is left out "
 		   "(misread ID); 1 = no gate",

@@ -1,3 +1,4 @@
+#include <esif/association/Ambiguity.h>
 #include <esif/association/Chi2.h>
 #include <esif/localmap/MapLevelDecisions.h>
 
@@ -17,8 +18,13 @@ MapLevelDecisions decideMapFeatures(const PointSets& sets, const MapLevelAssocia
 	const double new_gate = chi2Quantile(params.new_feature_chi2_quantile, 2);
 	const auto& distance2 = params.new_feature_test == NewFeatureTest::GivenPairs ? result.conditional_min_distance2
 																				  : result.min_distance2;
+	const std::vector<bool> ambiguous =
+		ambiguousPairs(sets, result.candidate_of, ambiguityMarginDistance2(params.ambiguity_margin_chi2_quantile));
+	for (std::size_t i = 0; i < ambiguous.size(); ++i)
+		if (ambiguous[i]) out.candidate_of[i] = -1;  // the pair is not taken
 	for (std::size_t i = 0; i < result.candidate_of.size(); ++i)
-		out.outcome.push_back(result.candidate_of[i] >= 0 ? MapFeatureOutcome::Matched
+		out.outcome.push_back(ambiguous[i]					? MapFeatureOutcome::PoorlyObserved
+							  : result.candidate_of[i] >= 0 ? MapFeatureOutcome::Matched
 							  : distance2[i] > new_gate	  ? MapFeatureOutcome::New
 														  : MapFeatureOutcome::PoorlyObserved);
 	return out;

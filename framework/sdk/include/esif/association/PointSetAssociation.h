@@ -71,4 +71,16 @@ struct PointAssociation
 PointAssociation associatePointSets(const PointSets& sets, AssociationMethod method, double gate_quantile,
 									double joint_quantile, const SearchBounds& bounds = {});
 
+/// For each observed point paired in `candidate_of` (a result of
+/// associatePointSets): whether, given the other pairs (their shared
+/// placement error taken out), another candidate j explains the point
+/// nearly as well, within `margin_d2` (ambiguityMarginDistance2), while
+/// standing apart from the chosen one by at least margin_d2 in the pair's
+/// own conditional covariance: the map-level form of Ambiguity.h. Twins
+/// closer than that cost alike whichever is picked; candidates farther
+/// apart move the map by their distance when the wrong one is taken, and a
+/// local map whose features are poorly placed (after a blind drive) can
+/// pass the joint test with the wrong one. All false when margin_d2 <= 0.
+std::vector<bool> ambiguousPairs(const PointSets& sets, const std::vector<int>& candidate_of, double margin_d2);
+
 }  // namespace esif

@@ -43,6 +43,10 @@ struct MapLevelAssociationParams
 	/// should be then starts duplicates (docs/plugins/dslam_lmj.md, "New or
 	/// poorly observed").
 	NewFeatureTest new_feature_test = NewFeatureTest::Alone;
+	/// A matched local feature that another candidate, standing apart from
+	/// its own, explains nearly as well given the map's other pairs (within
+	/// this chi-square quantile, 2 dof: ambiguousPairs) is left out; 0 = off.
+	double ambiguity_margin_chi2_quantile = 0;
 	/// With IDs: a local feature whose same-ID global feature fails this
 	/// chi-square quantile (2 dof) is left out (misread ID); 1 = no gate.
 	/// 0.9999 as the local-map builder's gate (LandmarkEkf).
