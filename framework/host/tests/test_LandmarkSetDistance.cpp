@@ -144,6 +144,41 @@ TEST(Ospa, LargeMapsSplitIntoSmallProblems)
 	EXPECT_NEAR(m.ospa, 0.1, 1e-9);
 }
 
+TEST(Ospa, TheSplitProblemsGiveTheWholeAssignmentsOspa)
+{
+	// Random maps of 40 and 50 points in a 10 m square, c = 1.5 m, p = 2:
+	// the OSPA from the groups of linked points (found cell by cell) equals
+	// the definition, one assignment over the whole cost matrix of
+	// min(c, d)^p, with c^p for each point of the larger map left over.
+	std::mt19937 rng(7);
+	std::uniform_real_distribution<double> u(-5.0, 5.0);
+	for (int trial = 0; trial < 20; ++trial)
+	{
+		Points x(40), y(50);
+		for (auto& v : x) v = {u(rng), u(rng)};
+		for (auto& v : y) v = {u(rng), u(rng)};
+		const double c = 1.5;
+		Eigen::MatrixXd cost(40, 50);
+		for (Eigen::Index i = 0; i < 40; ++i)
+			for (Eigen::Index j = 0; j < 50; ++j) cost(i, j) = std::pow(std::min(c, (x[i] - y[j]).norm()), 2);
+		const double whole = std::sqrt((assignedCost(cost, minimumCostAssignment(cost)) + c * c * 10) / 50.0);
+		EXPECT_NEAR(matchPointSets(x, y, c).ospa, whole, 1e-12) << "trial " << trial;
+	}
+}
+
+TEST(Ospa, PairsAcrossCellBordersAndFarOutAreFound)
+{
+	// Pairs closer than c whose points fall in neighbouring cells of side c
+	// (either side of 0, of 1 and of 2), and a pair of a landmark gone
+	// 1e300 m out (finite, so scored), 0.5 m apart: its cell index would
+	// not fit an integer, and the outermost cell still holds both.
+	const SetMatch near = matchPointSets({{-0.01, 0}, {0.99, 2.0}}, {{0.01, 0}, {1.01, 1.99}}, 1.0);
+	EXPECT_EQ(near.pairs.size(), 2u);
+	const SetMatch far = matchPointSets({{1e300, 0}}, {{1e300, 0.5}}, 1.0);
+	ASSERT_EQ(far.pairs.size(), 1u);
+	EXPECT_NEAR(far.ospa, 0.5, 1e-12);
+}
+
 /// A step whose scan holds range-bearing measurements with the given ranges
 /// and noise.
 StepInput scanOf(const std::vector<double>& ranges, double sigma_range_m, double sigma_bearing_rad)

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -36,16 +37,57 @@ struct PointGroup
 	std::vector<std::size_t> xs, ys;
 };
 
+/// The points of `y` by square cells of side c: a point of x can be closer
+/// than c only to points in its own cell and the eight around it, so the
+/// pairs are found in O(|x| + |y| + pairs), not by comparing every pair
+/// (10^10 distances for two maps of 10^5 landmarks). Points that are not
+/// finite are left out: they are closer than c to nothing.
+class CellIndex
+{
+   public:
+	CellIndex(const std::vector<Eigen::Vector2d>& y, double c) : c_(c)
+	{
+		for (std::size_t j = 0; j < y.size(); ++j)
+			if (y[j].allFinite()) cells_[cellOf(y[j])].push_back(j);
+	}
+	/// Calls visit(j) for every indexed point in the 3 x 3 cells around `x`.
+	template <typename Visit>
+	void forNeighbours(const Eigen::Vector2d& x, Visit&& visit) const
+	{
+		if (!x.allFinite()) return;
+		const auto [cx, cy] = cellOf(x);
+		for (std::int64_t dx = -1; dx <= 1; ++dx)
+			for (std::int64_t dy = -1; dy <= 1; ++dy)
+				if (const auto it = cells_.find({cx + dx, cy + dy}); it != cells_.end())
+					for (const std::size_t j : it->second) visit(j);
+	}
+
+   private:
+	using Cell = std::pair<std::int64_t, std::int64_t>;
+	/// Coordinates beyond +-2^52 cells share the outermost cell: points
+	/// there are still compared by their distance, only less selectively.
+	std::int64_t coordinate(double v) const
+	{
+		constexpr double kLimit = 4503599627370496.0;  // 2^52
+		return static_cast<std::int64_t>(std::clamp(std::floor(v / c_), -kLimit, kLimit));
+	}
+	Cell cellOf(const Eigen::Vector2d& p) const { return {coordinate(p.x()), coordinate(p.y())}; }
+
+	double c_;
+	std::map<Cell, std::vector<std::size_t>> cells_;
+};
+
 /// Groups of points linked by pairs closer than c; groups with points on
 /// both sides only (a lone point can only be left unpaired).
 std::vector<PointGroup> linkedGroups(
 	const std::vector<Eigen::Vector2d>& x, const std::vector<Eigen::Vector2d>& y, double c)
 {
 	PointGroups groups(x.size() + y.size());
-	// A point that is not finite is closer than c to nothing (NaN < c is false).
+	const CellIndex y_cells(y, c);
 	for (std::size_t i = 0; i < x.size(); ++i)
-		for (std::size_t j = 0; j < y.size(); ++j)
+		y_cells.forNeighbours(x[i], [&](std::size_t j) {
 			if ((x[i] - y[j]).norm() < c) groups.join(i, x.size() + j);
+		});
 	std::map<std::size_t, PointGroup> by_root;
 	for (std::size_t i = 0; i < x.size(); ++i) by_root[groups.root(i)].xs.push_back(i);
 	for (std::size_t j = 0; j < y.size(); ++j) by_root[groups.root(x.size() + j)].ys.push_back(j);
