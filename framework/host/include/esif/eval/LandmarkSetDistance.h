@@ -20,6 +20,7 @@
 /// Only pairs closer than c can lower the cost, so the assignment is solved
 /// separately on each group of points linked by such pairs
 /// (OptimalAssignment.h): exact, and small problems however large the maps.
+/// The pairs are found in cells of side c, in time linear in the maps.
 
 #include <esif/core/Estimate.h>
 
