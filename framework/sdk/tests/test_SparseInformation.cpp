@@ -6,9 +6,11 @@
 #include <esif/sparse/BlockSparseMatrix.h>
 #include <esif/sparse/InformationForm.h>
 #include <esif/sparse/LowerCsc.h>
+#include "sparse/Cholmod.h"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <numeric>
 #include <random>
 
@@ -22,6 +24,25 @@ Eigen::MatrixXd denseLower(const LowerCsc& A)
 	Eigen::MatrixXd M = Eigen::MatrixXd::Zero(A.n, A.n);
 	for (int j = 0; j < A.n; ++j)
 		for (int t = A.col_ptr[j]; t < A.col_ptr[j + 1]; ++t) M(A.row_idx[t], j) = A.values[t];
+	return M;
+}
+
+/// `variables` blocks (3x3 where dim_3(k), else 2x2) and `updates` random
+/// blocks added at random places (symmetric on the diagonal).
+BlockSparseMatrix randomBlockMatrix(std::mt19937& rng, int variables, int updates, bool (*dim_3)(int))
+{
+	std::normal_distribution<double> n(0, 1);
+	BlockSparseMatrix M;
+	for (int k = 0; k < variables; ++k) M.addBlockVariable(dim_3(k) ? 3 : 2);
+	for (int k = 0; k < updates; ++k)
+	{
+		const int i = static_cast<int>(rng() % variables), j = static_cast<int>(rng() % variables);
+		Eigen::MatrixXd B(M.blockDim(i), M.blockDim(j));
+		for (int r = 0; r < B.rows(); ++r)
+			for (int c = 0; c < B.cols(); ++c) B(r, c) = n(rng);
+		if (i == j) B = (B + B.transpose()).eval();
+		M.addBlock(i, j, B);
+	}
 	return M;
 }
 
@@ -49,17 +70,7 @@ TEST(BlockSparseMatrix, MultiplyAndPermutedLowerMatchDense)
 {
 	std::mt19937 rng(3);
 	std::normal_distribution<double> n(0, 1);
-	BlockSparseMatrix M;
-	for (int k = 0; k < 6; ++k) M.addBlockVariable(k % 2 ? 3 : 2);
-	for (int k = 0; k < 12; ++k)
-	{
-		const int i = static_cast<int>(rng() % 6), j = static_cast<int>(rng() % 6);
-		Eigen::MatrixXd B(M.blockDim(i), M.blockDim(j));
-		for (int r = 0; r < B.rows(); ++r)
-			for (int c = 0; c < B.cols(); ++c) B(r, c) = n(rng);
-		if (i == j) B = (B + B.transpose()).eval();
-		M.addBlock(i, j, B);
-	}
+	const BlockSparseMatrix M = randomBlockMatrix(rng, 6, 12, [](int k) { return k % 2 == 1; });
 	const Eigen::MatrixXd D = M.toDense();
 	const int N = M.scalarDim();
 	Eigen::VectorXd x(N), y;
@@ -84,6 +95,30 @@ TEST(BlockSparseMatrix, MultiplyAndPermutedLowerMatchDense)
 		ASSERT_EQ(L.row_idx[L.col_ptr[j]], j) << "diagonal first";
 		for (int t = L.col_ptr[j] + 1; t < L.col_ptr[j + 1]; ++t) ASSERT_LT(L.row_idx[t - 1], L.row_idx[t]);
 	}
+}
+
+TEST(BlockSparseMatrix, NaturalLowerStraightIntoCholmodEqualsThePermutedLowerCopied)
+{
+	// The fresh factorisations' direct build: the same columns, rows and
+	// values as permutedLower in the natural order copied by toCholmod, with
+	// the padding, on a random pattern of 2x2 and 3x3 blocks.
+	std::mt19937 rng(5);
+	const BlockSparseMatrix M = randomBlockMatrix(rng, 9, 20, [](int k) { return k % 3 == 0; });
+	const int size = M.scalarDim() + 4;
+	std::vector<int> identity(size);
+	std::iota(identity.begin(), identity.end(), 0);
+	CholmodCommon common;
+	const auto expected = toCholmod(M.permutedLower(identity, size), common);
+	const auto direct = naturalLowerToCholmod(M, size, common);
+	ASSERT_EQ(direct->nrow, expected->nrow);
+	ASSERT_EQ(direct->stype, expected->stype);
+	const auto* ep = static_cast<const int*>(expected->p);
+	const auto* dp = static_cast<const int*>(direct->p);
+	ASSERT_TRUE(std::equal(ep, ep + size + 1, dp));
+	EXPECT_TRUE(std::equal(static_cast<const int*>(expected->i), static_cast<const int*>(expected->i) + ep[size],
+						   static_cast<const int*>(direct->i)));
+	EXPECT_TRUE(std::equal(static_cast<const double*>(expected->x), static_cast<const double*>(expected->x) + ep[size],
+						   static_cast<const double*>(direct->x)));
 }
 
 TEST(LowerCsc, SolvesAndSplicesTrailingColumns)

@@ -125,6 +125,51 @@ CholmodSparsePtr toCholmod(const LowerCsc& A, CholmodCommon& c)
 	return S;
 }
 
+CholmodSparsePtr naturalLowerToCholmod(const BlockSparseMatrix& M, int size, CholmodCommon& c)
+{
+	// Scalar column offset(j) + b holds, for each block (i, j) with i >= j in
+	// row order, the rows offset(i) + a, a from b on for the diagonal block:
+	// sorted by construction. Counted from the block pattern, then filled.
+	const int n = M.scalarDim();
+	std::vector<int> count(size, 1);  // padding columns: their diagonal 1
+	for (int j = 0; j < M.blockCount(); ++j)
+	{
+		int below = 0;
+		for (const auto& e : M.column(j))
+			if (e.row > j) below += M.blockDim(e.row);
+		for (int b = 0; b < M.blockDim(j); ++b) count[M.blockOffset(j) + b] = below + M.blockDim(j) - b;
+	}
+	std::size_t nnz = 0;
+	for (const int k : count) nnz += static_cast<std::size_t>(k);
+	auto S = ownSparse(cholmod_allocate_sparse(size, size, nnz, true, true, -1, CHOLMOD_REAL, c.get()), c);
+	if (!S) c.check("allocating a sparse CHOLMOD matrix");
+	auto* p = static_cast<int*>(S->p);
+	auto* ri = static_cast<int*>(S->i);
+	auto* x = static_cast<double*>(S->x);
+	p[0] = 0;
+	for (int q = 0; q < size; ++q) p[q + 1] = p[q] + count[q];
+	for (int j = 0; j < M.blockCount(); ++j)
+		for (int b = 0; b < M.blockDim(j); ++b)
+		{
+			int k = p[M.blockOffset(j) + b];
+			for (const auto& e : M.column(j))
+			{
+				if (e.row < j) continue;
+				for (int a = e.row == j ? b : 0; a < M.blockDim(e.row); ++a, ++k)
+				{
+					ri[k] = M.blockOffset(e.row) + a;
+					x[k] = e.value(a, b);
+				}
+			}
+		}
+	for (int g = n; g < size; ++g)
+	{
+		ri[p[g]] = g;
+		x[p[g]] = 1.0;
+	}
+	return S;
+}
+
 void cholmodSolve(int sys, cholmod_factor* L, cholmod_dense* B, CholmodDensePtr& X, CholmodSolveWorkspace& ws,
 				  CholmodCommon& c, const std::string& what)
 {

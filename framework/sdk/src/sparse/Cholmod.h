@@ -6,6 +6,7 @@
 /// raw pointer appears anywhere else. One CholmodCommon per sparse core: it
 /// must outlive every object made with it (declare it first in the owner).
 
+#include <esif/sparse/BlockSparseMatrix.h>
 #include <esif/sparse/LowerCsc.h>
 
 #include <cholmod.h>
@@ -70,6 +71,13 @@ CholmodDensePtr zeroDense(std::size_t rows, std::size_t cols, CholmodCommon& c);
 
 /// A symmetric CHOLMOD matrix (lower triangle stored) copied from `A`.
 CholmodSparsePtr toCholmod(const LowerCsc& A, CholmodCommon& c);
+
+/// The lower triangle of M in its natural scalar order, bordered up to
+/// `size` by identity padding rows, written straight into a symmetric CHOLMOD
+/// matrix with sorted columns: what M.permutedLower(identity, size) and
+/// toCholmod give, without the intermediate copy, the position lookups and
+/// the sort checks (a fresh factorisation's largest cost of its own).
+CholmodSparsePtr naturalLowerToCholmod(const BlockSparseMatrix& M, int size, CholmodCommon& c);
 
 /// Workspace reused by cholmodSolve between calls (cholmod_solve2's Y and E).
 struct CholmodSolveWorkspace

@@ -2,7 +2,6 @@
 #include "sparse/FreshCholesky.h"
 #include "sparse/PivotCheck.h"
 
-#include <numeric>
 
 namespace esif
 {
@@ -22,9 +21,7 @@ void FreshCholesky::refresh(const InformationForm& info, const Eigen::Vector2d&)
 	if (n == 0) throw NumericalError(kWhat + ": the information form has no variables");
 	if (L_ && !changed_ && n == factored_dim_) return;
 	L_.reset();
-	std::vector<int> identity(n);
-	std::iota(identity.begin(), identity.end(), 0);
-	auto A = toCholmod(info.matrix().permutedLower(identity, n), common_);
+	auto A = naturalLowerToCholmod(info.matrix(), n, common_);
 	common_.useFillReducingOrdering();
 	auto L = ownFactor(cholmod_analyze(A.get(), common_.get()), common_);
 	if (!L) common_.check(kWhat + ": analysis");

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 
 namespace esif
@@ -52,9 +51,7 @@ void IncrementalCholesky::factorAfresh(const InformationForm& info, const Eigen:
 
 	// A = I bordered by identity padding rows, in natural order; the
 	// ordering goes to CHOLMOD as given.
-	std::vector<int> identity(capacity_);
-	std::iota(identity.begin(), identity.end(), 0);
-	auto A = toCholmod(info.matrix().permutedLower(identity, capacity_), common_);
+	auto A = naturalLowerToCholmod(info.matrix(), capacity_, common_);
 	common_.useGivenOrderingForModification();
 	std::vector<int> perm = wanted.order;
 	L_ = ownFactor(cholmod_analyze_p(A.get(), perm.data(), nullptr, 0, common_.get()), common_);
