@@ -36,34 +36,12 @@ import statistics
 import subprocess
 import sys
 
-CLUSTER_M = 1.0
+# The dataset's row reader, angle wrap and cylinder clusters (closer than 1 m)
+# are the true-pose bench's, so both benches group the cylinders alike.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mrclam_true_pose_association import clusters_of as clusters, rows as data_rows, wrap  # noqa: E402
+
 FILTERS = ["ekf", "slsjf", "dslam_lmj", "dslam"]  # configs/mrclam/<filter>.ini and <filter>_jcbb.ini
-
-
-def data_rows(path):
-    with open(path) as f:
-        for line in f:
-            if line.strip() and not line.startswith("#"):
-                yield line.split()
-
-
-def wrap(a):
-    return (a + math.pi) % (2 * math.pi) - math.pi
-
-
-def clusters(cylinders):
-    """Cluster of each cylinder: the smallest ID of its single-linkage group."""
-    label = {i: i for i in cylinders}
-
-    def root(i):
-        while label[i] != i:
-            i = label[i]
-        return i
-    for a in sorted(cylinders):
-        for b in sorted(cylinders):
-            if a < b and math.dist(cylinders[a], cylinders[b]) < CLUSTER_M:
-                label[root(b)] = root(a)
-    return {i: root(i) for i in cylinders}
 
 
 def measurements(esif, rawlog, g2o):
