@@ -99,6 +99,20 @@ ConditionalPair conditionalPair(const PointSets& s, const StackedPairs& p, const
 	return out;
 }
 
+/// Squared distances of point i to every candidate given the pairs `p`.
+Eigen::VectorXd conditionalDistances2(const PointSets& s, const StackedPairs& p, const Eigen::LLT<Eigen::MatrixXd>& pairs,
+									  const Eigen::VectorXd& w, Eigen::Index i)
+{
+	Eigen::VectorXd d2(s.candidates.rows());
+	for (Eigen::Index c = 0; c < s.candidates.rows(); ++c)
+	{
+		const ConditionalPair pc = conditionalPair(s, p, pairs, w, i, c);
+		const Eigen::LLT<Eigen::Matrix2d> llt(pc.S);
+		d2(c) = llt.info() == Eigen::Success ? pc.nu.dot(llt.solve(pc.nu)) : std::numeric_limits<double>::infinity();
+	}
+	return d2;
+}
+
 /// For each observed point without a candidate, its smallest squared
 /// distance to a candidate conditioned on the accepted pairs (conditionalPair).
 std::vector<double> conditionalMinDistances2(const PointSets& s, const std::vector<int>& candidate_of,
@@ -117,13 +131,7 @@ std::vector<double> conditionalMinDistances2(const PointSets& s, const std::vect
 			out[i] = min_distance2[i];
 			continue;
 		}
-		for (Eigen::Index c = 0; c < s.candidates.rows(); ++c)
-		{
-			const ConditionalPair pc = conditionalPair(s, p, pairs, w, i, c);
-			const Eigen::LLT<Eigen::Matrix2d> llt(pc.S);
-			if (llt.info() != Eigen::Success) continue;
-			out[i] = std::min(out[i], pc.nu.dot(llt.solve(pc.nu)));
-		}
+		out[i] = conditionalDistances2(s, p, pairs, w, i).minCoeff();
 	}
 	return out;
 }
@@ -235,23 +243,6 @@ void improveByExchange(const PointSets& s, double gate, std::vector<int>& candid
 					assign(j, -1), assign(i, c), assign(j, cur), moved = true;	// two pairs swap
 			}
 	}
-}
-}  // namespace
-
-namespace
-{
-/// Squared distances of point i to every candidate given the pairs `p`.
-Eigen::VectorXd conditionalDistances2(const PointSets& s, const StackedPairs& p, const Eigen::LLT<Eigen::MatrixXd>& pairs,
-									  const Eigen::VectorXd& w, Eigen::Index i)
-{
-	Eigen::VectorXd d2(s.candidates.rows());
-	for (Eigen::Index c = 0; c < s.candidates.rows(); ++c)
-	{
-		const ConditionalPair pc = conditionalPair(s, p, pairs, w, i, c);
-		const Eigen::LLT<Eigen::Matrix2d> llt(pc.S);
-		d2(c) = llt.info() == Eigen::Success ? pc.nu.dot(llt.solve(pc.nu)) : std::numeric_limits<double>::infinity();
-	}
-	return d2;
 }
 }  // namespace
 

@@ -20,13 +20,14 @@ MapLevelDecisions decideMapFeatures(const PointSets& sets, const MapLevelAssocia
 																				  : result.min_distance2;
 	const std::vector<bool> ambiguous =
 		ambiguousPairs(sets, result.candidate_of, ambiguityMarginDistance2(params.ambiguity_margin_chi2_quantile));
-	for (std::size_t i = 0; i < ambiguous.size(); ++i)
-		if (ambiguous[i]) out.candidate_of[i] = -1;  // the pair is not taken
 	for (std::size_t i = 0; i < result.candidate_of.size(); ++i)
+	{
+		if (ambiguous[i]) out.candidate_of[i] = -1;  // the pair is not taken
 		out.outcome.push_back(ambiguous[i]					? MapFeatureOutcome::PoorlyObserved
 							  : result.candidate_of[i] >= 0 ? MapFeatureOutcome::Matched
 							  : distance2[i] > new_gate	  ? MapFeatureOutcome::New
 														  : MapFeatureOutcome::PoorlyObserved);
+	}
 	return out;
 }
 

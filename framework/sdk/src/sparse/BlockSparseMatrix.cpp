@@ -97,7 +97,8 @@ LowerCsc BlockSparseMatrix::permutedLower(const std::vector<int>& position, int 
 {
 	// Counting pass, then a filling pass, then each unsorted column sorted
 	// by row: O(nnz log(column length)) at worst, done only when a factor is
-	// built afresh.
+	// built afresh in a permuted order (the natural order goes straight to
+	// CHOLMOD: naturalLowerToCholmod).
 	LowerCsc out;
 	out.n = size;
 	std::vector<int> count(size, 0);
@@ -127,8 +128,8 @@ LowerCsc BlockSparseMatrix::permutedLower(const std::vector<int>& position, int 
 	std::vector<std::pair<int, double>> column;
 	for (int q = 0; q < size; ++q)
 	{
-		// In the natural order (what the incremental factor asks for) the
-		// columns come out sorted already: skip the copy and the sort.
+		// Columns that come out sorted (an ordering that keeps each block
+		// column's rows in order) skip the copy and the sort.
 		if (std::is_sorted(out.row_idx.begin() + out.col_ptr[q], out.row_idx.begin() + out.col_ptr[q + 1])) continue;
 		column.clear();
 		for (int k = out.col_ptr[q]; k < out.col_ptr[q + 1]; ++k) column.emplace_back(out.row_idx[k], out.values[k]);

@@ -2,7 +2,6 @@
 #include "sparse/FreshCholesky.h"
 #include "sparse/PivotCheck.h"
 
-
 namespace esif
 {
 namespace
