@@ -4,7 +4,7 @@ namespace esif::lmj
 {
 void DslamLmjParams::declare(ParamBinder& b)
 {
-	declareAssociation(b, "upper-level association of local features: equal IDs, or MRPT JCBB / NN in the frame of two "
+	declareAssociation(b, "upper-level association of local features: equal IDs, or JCBB / MRPT NN in the frame of two "
 						  "common features known from the local level (Sec. 4.4.2); auto = IDs when the input has them, "
 						  "else jcbb");
 	b.real("region_margin_m", region_margin_m, "margin of the region pruning around the reference feature [m]",

@@ -9,7 +9,7 @@
 /// independent), the global candidates are pruned to the region the local
 /// map can reach from f1 (its extent plus Delta from f1's global
 /// uncertainty), only their covariance columns are recovered (eq. 3.25), and
-/// MRPT JCBB or NN with the exact joint test associates them
+/// JCBB (or MRPT NN) with the exact joint test associates them
 /// (associatePointSets). An unmatched local feature is new beyond a gate,
 /// ambiguous (left out) within it.
 

@@ -9,7 +9,7 @@
 /// (eq. 3.25), move those features into the new map's frame with the full
 /// first-order covariance (which includes the start-pose/candidate
 /// correlation that eq. 5.13 leaves out), and associate them with the local
-/// features (PointSetAssociation: MRPT JCBB or NN, exact joint test). An
+/// features (PointSetAssociation: JCBB or MRPT NN, exact joint test). An
 /// unmatched local feature is new when it is far from every candidate, and
 /// left out as ambiguous otherwise (the authors' "poor observation").
 

@@ -4,7 +4,7 @@ namespace esif::slsjf
 {
 void SlsjfParams::declare(ParamBinder& b)
 {
-	declareAssociation(b, "global association of local features: equal IDs, or MRPT JCBB / NN on the overlapping maps' "
+	declareAssociation(b, "global association of local features: equal IDs, or JCBB / MRPT NN on the overlapping maps' "
 						  "features (Sec. 5.4.1); auto = IDs when the input has them, else jcbb");
 	b.real("overlap_margin_m", overlap_margin_m, "slack of the overlap test between local maps [m]",
 		   Bounds::nonNegative());

@@ -1,10 +1,10 @@
 /// \file test_BoundedAssociation.cpp
 /// JCBB's effort bound (SearchBounds): on clustered features the noise
-/// cannot separate (pairs 0.2 m apart), MRPT's JCBB branches on every
+/// cannot separate (pairs 0.2 m apart), JCBB branches on every
 /// candidate of every observation; the association measures that ambiguity
 /// before searching and falls back to nearest neighbour with the joint
 /// compatibility test beyond the bounds. Asserted on the effort counters
-/// (MRPT's node count, the hypothesis count), not on time.
+/// (JCBB's node count, the hypothesis count), not on time.
 
 #include <esif/association/Chi2.h>
 #include <esif/association/DataAssociation.h>
@@ -102,7 +102,7 @@ TEST(BoundedAssociation, ClusteredScanFallsBackWithoutSearching)
 
 TEST(BoundedAssociation, WithinTheBoundsJcbbRunsAndItsEffortIsBoundedByTheHypothesisCount)
 {
-	// Growing clusters below the bound: MRPT's JCBB runs, and its node count
+	// Growing clusters below the bound: JCBB runs, and its node count
 	// stays within (observations x hypotheses), the justification of
 	// measuring the effort by the hypothesis count before the search.
 	double previous_nodes = 0;

@@ -12,7 +12,7 @@
 namespace esif::jcbb
 {
 JointInnovation jointInnovation(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
-								const std::vector<int>& candidate_of)
+								const std::vector<int>& candidate_of, const Eigen::MatrixXd* Sz)
 {
 	JointInnovation out;
 	std::vector<Eigen::Index> cand;
@@ -24,15 +24,19 @@ JointInnovation jointInnovation(const Eigen::MatrixXd& z, const Eigen::MatrixXd&
 	for (Eigen::Index a = 0; a < k; ++a)
 	{
 		out.nu.segment<2>(2 * a) = (z.row(out.observations[a]) - y.row(cand[a])).transpose();
-		for (Eigen::Index b = 0; b < k; ++b) out.S.block<2, 2>(2 * a, 2 * b) = S.block<2, 2>(2 * cand[a], 2 * cand[b]);
+		for (Eigen::Index b = 0; b < k; ++b)
+		{
+			out.S.block<2, 2>(2 * a, 2 * b) = S.block<2, 2>(2 * cand[a], 2 * cand[b]);
+			if (Sz) out.S.block<2, 2>(2 * a, 2 * b) += Sz->block<2, 2>(2 * out.observations[a], 2 * out.observations[b]);
+		}
 	}
 	return out;
 }
 
 double jointDistance2(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
-					  const std::vector<int>& candidate_of)
+					  const std::vector<int>& candidate_of, const Eigen::MatrixXd* Sz)
 {
-	const JointInnovation j = jointInnovation(z, y, S, candidate_of);
+	const JointInnovation j = jointInnovation(z, y, S, candidate_of, Sz);
 	if (j.observations.empty()) return 0;
 	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (j.S + j.S.transpose()));
 	if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
@@ -113,7 +117,7 @@ class Search
 				if (used_[c]) continue;
 				current_[i] = c;
 				++nodes_;
-				if (jointDistance2(p_.z, p_.y, p_.S, current_) <= chi2Quantile(p_.quantile, 2 * (pairs + 1)))
+				if (jointDistance2(p_.z, p_.y, p_.S, current_, p_.Sz) <= chi2Quantile(p_.quantile, 2 * (pairs + 1)))
 				{
 					used_[c] = true;
 					branch(i + 1, pairs + 1);
@@ -132,7 +136,7 @@ class Search
 	void record(int pairs)
 	{
 		if (pairs == 0 || pairs < best_pairs_) return;
-		const double d2 = jointDistance2(p_.z, p_.y, p_.S, current_);
+		const double d2 = jointDistance2(p_.z, p_.y, p_.S, current_, p_.Sz);
 		if (pairs > best_pairs_ || d2 < best_d2_)
 		{
 			best_pairs_ = pairs;

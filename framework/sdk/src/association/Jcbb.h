@@ -11,9 +11,13 @@
 /// any other that can only tie is pruned, so the search returns the first
 /// maximal hypothesis in index order, not the closest. With one observation
 /// and two compatible landmarks it took the one at d^2 = 6.3 over the one at
-/// 0.9 (MRCLAM robot 4, step 10), which turned the robot by 0.7 rad. (The
-/// map-level association of point sets, PointSetAssociation.cpp, still calls
-/// MRPT's and repairs its pick by an exchange step.)
+/// 0.9 (MRCLAM robot 4, step 10), which turned the robot by 0.7 rad. MRPT's
+/// also takes no covariance of the observations: the points of a local map
+/// matched against the global map (PointSetAssociation.cpp) share their
+/// map's errors, and without those correlations a rotated but rigid local
+/// map fails a joint test it passes (MRCLAM robot 4, a local map of two
+/// features after a blind drive: both pairs at d^2 = 4.1 of 4 dof, where
+/// MRPT's kept one wrong pair). Problem::Sz carries them.
 
 #include <esif/association/Chi2.h>
 
@@ -30,6 +34,11 @@ struct Problem
 	const Eigen::MatrixXd& S;  ///< 2N x 2N joint innovation covariance
 	const Eigen::MatrixXd& d2;	///< M x N individual squared distances
 	double quantile;  ///< chi-square confidence of the individual and the joint tests
+	/// 2M x 2M covariance of the observations themselves, when they are
+	/// estimates with errors of their own (a local map's features); pair
+	/// (i, c) and (j, d) then covary by Sz(i, j) + S(c, d). nullptr: none
+	/// (measurement noise already in S).
+	const Eigen::MatrixXd* Sz = nullptr;
 };
 
 struct Hypothesis
@@ -49,12 +58,13 @@ struct JointInnovation
 	Eigen::MatrixXd S;
 	std::vector<Eigen::Index> observations;
 };
+/// `Sz`: as Problem::Sz.
 JointInnovation jointInnovation(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
-								const std::vector<int>& candidate_of);
+								const std::vector<int>& candidate_of, const Eigen::MatrixXd* Sz = nullptr);
 
 /// Exact joint squared Mahalanobis distance of the pairs (i, candidate_of[i] >= 0).
 double jointDistance2(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,
-					  const std::vector<int>& candidate_of);
+					  const std::vector<int>& candidate_of, const Eigen::MatrixXd* Sz = nullptr);
 
 /// The joint test of pairs stacked in `nu` (two rows each, joint
 /// covariance `S`) against `bound`, and when it fails the pair to drop: the

@@ -150,7 +150,7 @@ Eigen::MatrixXd mrptPredictionCovariance(const PointSets& s)
 	return 0.5 * (cov + cov.transpose());
 }
 
-/// Individual compatibility as MRPT's JCBB and NN judge it: the innovation
+/// Individual compatibility as MRPT's NN judges it: the innovation
 /// of pair (i, c) against candidate c's block of the prediction covariance
 /// handed to MRPT (which holds the observation noise, see above).
 std::vector<int> mrptCompatibleCounts(const PointSets& s, const Eigen::MatrixXd& prediction_cov, double gate)
@@ -169,28 +169,20 @@ std::vector<int> mrptCompatibleCounts(const PointSets& s, const Eigen::MatrixXd&
 	return counts;
 }
 
-/// MRPT's hypothesis; a candidate claimed twice (NN) goes to the closer point.
-/// Only the observations `pairable` (those with a compatible candidate) are
-/// handed to MRPT: the others can only stay unpaired, but MRPT's JCBB bound
-/// (pairs so far + observations left > best) counts them as possible pairs
-/// and so prunes nothing. On configs/sim/clusters.ini a local map of 145
-/// points, 94 of them with no candidate, took 1.5 million nodes and a second
-/// per call; without them the same hypothesis comes in a few hundred.
-std::vector<int> mrptHypothesis(const PointSets& s, const Eigen::MatrixXd& prediction_cov,
-								const std::vector<Eigen::Index>& pairable, AssociationMethod method,
-								double gate_quantile, std::size_t& nodes)
+/// MRPT's nearest-neighbour hypothesis; a candidate claimed twice goes to
+/// the closer point. Only the observations `pairable` (those with a
+/// compatible candidate) are handed to MRPT: the others can only stay unpaired.
+std::vector<int> mrptNearestNeighbour(const PointSets& s, const Eigen::MatrixXd& prediction_cov,
+									  const std::vector<Eigen::Index>& pairable, double gate_quantile)
 {
 	std::vector<int> candidate_of(s.observed.rows(), -1);
-	nodes = 0;
 	if (pairable.empty()) return candidate_of;
 	Eigen::MatrixXd observed(static_cast<Eigen::Index>(pairable.size()), 2);
 	for (std::size_t k = 0; k < pairable.size(); ++k) observed.row(static_cast<Eigen::Index>(k)) = s.observed.row(pairable[k]);
 	mrpt::slam::TDataAssociationResults results;
 	mrpt::slam::data_association_full_covariance(
-		toMrpt(observed), toMrpt(s.candidates), toMrpt(prediction_cov), results,
-		method == AssociationMethod::Jcbb ? mrpt::slam::assocJCBB : mrpt::slam::assocNN, mrpt::slam::metricMaha,
-		gate_quantile, /*use_kdtree=*/false);
-	nodes = results.nNodesExploredInJCBB;
+		toMrpt(observed), toMrpt(s.candidates), toMrpt(prediction_cov), results, mrpt::slam::assocNN,
+		mrpt::slam::metricMaha, gate_quantile, /*use_kdtree=*/false);
 	std::vector<int> owner(s.candidates.rows(), -1);
 	for (const auto& [obs, pred] : results.associations)
 	{
@@ -206,10 +198,11 @@ std::vector<int> mrptHypothesis(const PointSets& s, const Eigen::MatrixXd& predi
 	}
 	return candidate_of;
 }
-/// MRPT 2.5's JCBB does not rank hypotheses with the same number of pairs
-/// by distance (its bound omits the pair being tried), so a farther point
-/// can keep a candidate a closer one is compatible with; between clustered
-/// features (trees a metre apart) that is a wrong association. Moves that
+
+/// MRPT's nearest neighbour pairs each observation on its own, in order, so
+/// a farther point can keep a candidate a closer one is compatible with;
+/// between clustered features (trees a metre apart) that is a wrong
+/// association. Moves that
 /// keep the number of pairs and lower the summed exact individual distance
 /// are made until none is left: a pair takes a closer free candidate, a
 /// candidate goes to a closer unmatched point, or two pairs swap candidates.
@@ -284,17 +277,18 @@ PointAssociation associatePointSets(const PointSets& sets, AssociationMethod met
 	if (M == 0 || N == 0) return out;  // MRPT asserts both are non-empty
 
 	const double individual_gate = chi2Quantile(gate_quantile, 2);
+	Eigen::MatrixXd d2(M, N);
 	std::vector<int> compatible(M, 0);
 	for (Eigen::Index i = 0; i < M; ++i)
 		for (Eigen::Index c = 0; c < N; ++c)
 		{
-			const double d2 = pairDistance2(sets, i, c);
-			out.min_distance2[i] = std::min(out.min_distance2[i], d2);
-			compatible[i] += d2 <= individual_gate;
+			d2(i, c) = pairDistance2(sets, i, c);
+			out.min_distance2[i] = std::min(out.min_distance2[i], d2(i, c));
+			compatible[i] += d2(i, c) <= individual_gate;
 		}
-	// The search effort counts the candidates MRPT will see (its covariance
-	// is looser than the exact one for some pairs), or the exact count where
-	// that is larger.
+	// The search effort counts the exact compatible candidates, or those
+	// MRPT's nearest neighbour (the fallback) sees where that is more (its
+	// covariance is looser than the exact one for some pairs).
 	const Eigen::MatrixXd prediction_cov = mrptPredictionCovariance(sets);
 	const std::vector<int> mrpt_compatible = mrptCompatibleCounts(sets, prediction_cov, individual_gate);
 	std::vector<Eigen::Index> pairable;
@@ -306,10 +300,19 @@ PointAssociation associatePointSets(const PointSets& sets, AssociationMethod met
 	out.effort = searchEffort(compatible);
 	out.fell_back = method == AssociationMethod::Jcbb && !out.effort.within(bounds);
 
-	out.candidate_of = mrptHypothesis(sets, prediction_cov, pairable,
-									  out.fell_back ? AssociationMethod::NearestNeighbor : method, gate_quantile,
-									  out.jcbb_nodes);
-	improveByExchange(sets, individual_gate, out.candidate_of);
+	if (method == AssociationMethod::Jcbb && !out.fell_back)
+	{
+		// esif's JCBB (Jcbb.h), the observed points' own covariance in every joint test.
+		const jcbb::Hypothesis h =
+			jcbb::search({sets.observed, sets.candidates, sets.candidates_cov, d2, gate_quantile, &sets.observed_cov});
+		out.candidate_of = h.candidate_of;
+		out.jcbb_nodes = h.nodes;
+	}
+	else
+	{
+		out.candidate_of = mrptNearestNeighbour(sets, prediction_cov, pairable, gate_quantile);
+		improveByExchange(sets, individual_gate, out.candidate_of);
+	}
 	for (Eigen::Index i = 0; i < M; ++i)
 		if (out.candidate_of[i] >= 0 && pairDistance2(sets, i, out.candidate_of[i]) > individual_gate)
 			out.candidate_of[i] = -1, ++out.pairs_dropped;

@@ -8,21 +8,23 @@
 /// covariance Pz_ii + Py_cc, and of a joint hypothesis the sum of the two
 /// joint blocks.
 ///
-/// Hypotheses come from MRPT's data_association_full_covariance (JCBB or NN,
-/// Mahalanobis metric). MRPT takes one covariance per prediction and none
-/// per observation, so each prediction is given its joint covariance plus
-/// the covariance of its nearest observation: exact for the individual test
-/// of the natural pair, approximate across observations. Pairs are then
-/// exchanged while that lowers the summed exact individual distances at
-/// the same number of pairs (MRPT 2.5's JCBB does not rank equal-size
-/// hypotheses by distance). The hypothesis is finally checked with the
-/// exact joint covariance (joint compatibility,
-/// Neira & Tardos 2001); while it fails, the pair with the largest exact
-/// individual distance is dropped.
+/// JCBB (Neira & Tardos 2001) is esif's own (Jcbb.h), every joint test with
+/// the exact joint covariance, the observed points' own included: the
+/// points of one local map share its errors (its robot's heading after a
+/// blind drive turns them all), which MRPT's data_association_full_covariance
+/// cannot take (one covariance per prediction, none per observation), and
+/// without which a rigid but rotated map fails a joint test it passes.
+/// Nearest neighbour is MRPT's (Mahalanobis metric), each prediction given
+/// its covariance plus that of its nearest observation (exact for the
+/// individual test of the natural pair); its pairs are then exchanged while
+/// that lowers the summed exact individual distances at the same number of
+/// pairs. Either hypothesis is finally checked with the exact joint
+/// covariance; while it fails, the pair the joint test blames most is
+/// dropped.
 ///
 /// JCBB runs only while the problem is within SearchBounds (counted on the
-/// exact individual distances); beyond them MRPT's nearest neighbour gives
-/// the hypothesis, which the same exchange and joint test then refine.
+/// exact individual distances); beyond them nearest neighbour gives the
+/// hypothesis, which the same exchange and joint test then refine.
 
 #include <esif/association/DataAssociation.h>
 

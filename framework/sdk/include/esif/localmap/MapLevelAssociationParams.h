@@ -15,7 +15,7 @@ enum class MapAssociationMethod
 {
 	Auto,  ///< known_ids when the local features' IDs identify them, else jcbb
 	KnownIds,  ///< equal IDs are one feature (the authors' AssumeDataAssoc = 1)
-	Jcbb,  ///< MRPT JCBB with the exact joint test (esif::associatePointSets)
+	Jcbb,  ///< JCBB with the exact joint covariance (esif::associatePointSets)
 	NearestNeighbor	 ///< MRPT nearest neighbour on the same candidates
 };
 

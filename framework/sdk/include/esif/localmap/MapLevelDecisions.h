@@ -2,7 +2,7 @@
 /// \file MapLevelDecisions.h
 /// The three outcomes of a closed local map's features against the global
 /// map, shared by SLSJF (Sec. 5.4.1) and D-SLAM map joining (Sec. 4.4.2):
-/// the whole map is associated at once (MRPT JCBB or NN with the exact
+/// the whole map is associated at once (JCBB, or MRPT NN, with the exact
 /// joint test, associatePointSets), so a map of many features gives the
 /// joint test something to work with where a scan of one feature does not;
 /// then, as in the authors' I-SLSJF, a local feature is
