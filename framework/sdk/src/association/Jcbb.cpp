@@ -15,7 +15,7 @@ JointInnovation jointInnovation(const Eigen::MatrixXd& z, const Eigen::MatrixXd&
 								const std::vector<int>& candidate_of, const Eigen::MatrixXd* Sz)
 {
 	JointInnovation out;
-	std::vector<Eigen::Index> cand;
+	auto& cand = out.candidates;
 	for (std::size_t i = 0; i < candidate_of.size(); ++i)
 		if (candidate_of[i] >= 0) out.observations.push_back(static_cast<Eigen::Index>(i)), cand.push_back(candidate_of[i]);
 	const auto k = static_cast<Eigen::Index>(cand.size());

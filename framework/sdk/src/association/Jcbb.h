@@ -51,12 +51,12 @@ struct Hypothesis
 Hypothesis search(const Problem& problem);
 
 /// The pairs (i, candidate_of[i] >= 0) stacked: their innovations, joint
-/// covariance and observation indices.
+/// covariance, and the observation and candidate of each pair.
 struct JointInnovation
 {
 	Eigen::VectorXd nu;
 	Eigen::MatrixXd S;
-	std::vector<Eigen::Index> observations;
+	std::vector<Eigen::Index> observations, candidates;
 };
 /// `Sz`: as Problem::Sz.
 JointInnovation jointInnovation(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen::MatrixXd& S,

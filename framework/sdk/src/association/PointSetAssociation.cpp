@@ -36,28 +36,10 @@ double pairDistance2(const PointSets& s, Eigen::Index i, Eigen::Index c)
 
 /// The pairs (i, candidate_of[i] >= 0) stacked: innovations, joint
 /// covariance (both sets' joint blocks), observed points and candidates.
-struct StackedPairs
-{
-	Eigen::VectorXd nu;
-	Eigen::MatrixXd S;
-	std::vector<Eigen::Index> observations, cand;
-};
+using StackedPairs = jcbb::JointInnovation;
 StackedPairs stackedPairs(const PointSets& s, const std::vector<int>& candidate_of)
 {
-	StackedPairs p;
-	for (std::size_t i = 0; i < candidate_of.size(); ++i)
-		if (candidate_of[i] >= 0) p.observations.push_back(static_cast<Eigen::Index>(i)), p.cand.push_back(candidate_of[i]);
-	const Eigen::Index k = static_cast<Eigen::Index>(p.observations.size());
-	p.S.resize(2 * k, 2 * k);
-	p.nu.resize(2 * k);
-	for (Eigen::Index a = 0; a < k; ++a)
-	{
-		p.nu.segment<2>(2 * a) = (s.observed.row(p.observations[a]) - s.candidates.row(p.cand[a])).transpose();
-		for (Eigen::Index b = 0; b < k; ++b)
-			p.S.block<2, 2>(2 * a, 2 * b) = s.observed_cov.block<2, 2>(2 * p.observations[a], 2 * p.observations[b]) +
-				s.candidates_cov.block<2, 2>(2 * p.cand[a], 2 * p.cand[b]);
-	}
-	return p;
+	return jcbb::jointInnovation(s.observed, s.candidates, s.candidates_cov, candidate_of, &s.observed_cov);
 }
 
 /// Of the stacked pairs `p`, the observed point farthest from its
@@ -68,7 +50,7 @@ Eigen::Index farthestAlone(const PointSets& s, const StackedPairs& p)
 	Eigen::Index worst = 0;
 	double worst_d2 = -1;
 	for (std::size_t a = 0; a < p.observations.size(); ++a)
-		if (const double d2 = pairDistance2(s, p.observations[a], p.cand[a]); d2 > worst_d2)
+		if (const double d2 = pairDistance2(s, p.observations[a], p.candidates[a]); d2 > worst_d2)
 			worst_d2 = d2, worst = p.observations[a];
 	return worst;
 }
@@ -93,7 +75,7 @@ ConditionalPair conditionalPair(const PointSets& s, const StackedPairs& p, const
 	Eigen::MatrixXd C(2, 2 * k);
 	for (Eigen::Index a = 0; a < k; ++a)
 		C.middleCols<2>(2 * a) =
-			s.observed_cov.block<2, 2>(2 * i, 2 * p.observations[a]) + s.candidates_cov.block<2, 2>(2 * c, 2 * p.cand[a]);
+			s.observed_cov.block<2, 2>(2 * i, 2 * p.observations[a]) + s.candidates_cov.block<2, 2>(2 * c, 2 * p.candidates[a]);
 	out.nu -= C * w;
 	out.S -= C * pairs.solve(C.transpose());
 	return out;
@@ -206,12 +188,10 @@ std::vector<int> mrptNearestNeighbour(const PointSets& s, const Eigen::MatrixXd&
 /// keep the number of pairs and lower the summed exact individual distance
 /// are made until none is left: a pair takes a closer free candidate, a
 /// candidate goes to a closer unmatched point, or two pairs swap candidates.
-void improveByExchange(const PointSets& s, double gate, std::vector<int>& candidate_of)
+/// `d2`: the exact individual squared distances (M x N).
+void improveByExchange(const Eigen::MatrixXd& d2, double gate, std::vector<int>& candidate_of)
 {
-	const auto M = static_cast<Eigen::Index>(candidate_of.size()), N = s.candidates.rows();
-	Eigen::MatrixXd d2(M, N);
-	for (Eigen::Index i = 0; i < M; ++i)
-		for (Eigen::Index c = 0; c < N; ++c) d2(i, c) = pairDistance2(s, i, c);
+	const auto M = d2.rows(), N = d2.cols();
 	std::vector<int> owner(N, -1);
 	for (Eigen::Index i = 0; i < M; ++i)
 		if (candidate_of[i] >= 0) owner[candidate_of[i]] = static_cast<int>(i);
@@ -311,10 +291,10 @@ PointAssociation associatePointSets(const PointSets& sets, AssociationMethod met
 	else
 	{
 		out.candidate_of = mrptNearestNeighbour(sets, prediction_cov, pairable, gate_quantile);
-		improveByExchange(sets, individual_gate, out.candidate_of);
+		improveByExchange(d2, individual_gate, out.candidate_of);
 	}
 	for (Eigen::Index i = 0; i < M; ++i)
-		if (out.candidate_of[i] >= 0 && pairDistance2(sets, i, out.candidate_of[i]) > individual_gate)
+		if (out.candidate_of[i] >= 0 && d2(i, out.candidate_of[i]) > individual_gate)
 			out.candidate_of[i] = -1, ++out.pairs_dropped;
 
 	// Exact joint compatibility; repair by dropping the pair whose removal
