@@ -12,9 +12,10 @@
 #  - MRCLAM dataset 6, robots 1-5: every configs/mrclam/ config with the
 #    barcodes and without (*_jcbb), against the Vicon ground truth; each
 #    no-ID config again with its pair gate moved by about half a percent
-#    (how far the medians move for nothing); beside them, what each measurement's nearest cylinder would be from the
-#    true pose (bench/mrclam_true_pose_association.py), and each filter given
-#    oracle associations (bench/mrclam_association_oracles.py).
+#    (how far the medians move for nothing); beside them, what each
+#    measurement's nearest cylinder would be from the true pose
+#    (bench/mrclam_true_pose_association.py), and each filter given oracle
+#    associations (bench/mrclam_association_oracles.py).
 # The datasets are third-party (never committed): imported into out/data/ on
 # first use (VICPARK_TXT, MRCLAM_DIR). Writes out/bench/no_ids/; with
 # --update-docs, docs/results/no_ids.md. About 5 minutes.
