@@ -206,10 +206,13 @@ StepInput withInflatedNoise(StepInput s, bool sighting)
 }
 
 /// The kind of association a cylinder 0.8 m beside one seen 16 times from
-/// the same pose gets, 6 m ahead.
-Association::Kind neighbourBesideAWellMappedLandmark(bool sighting)
+/// the same pose gets, 6 m ahead; measurements nearer than `min_range_m`
+/// are left out (none is).
+Association::Kind neighbourBesideAWellMappedLandmark(bool sighting, double min_range_m = 0)
 {
-	LandmarkEkf ekf(distanceAssociation(false, 0));
+	EkfAssociationParams params = distanceAssociation(false, 0);
+	params.min_range_m = min_range_m;
+	LandmarkEkf ekf(params);
 	for (std::size_t k = 0; k < 16; ++k)
 		ekf.processStep(withInflatedNoise(step(k, k ? 0.0 : -1.0, 1e-3, 1e-4, {{6.0, 0.0}}), sighting));
 	const Eigen::Vector2d neighbour(std::hypot(6.0, 0.8), std::atan2(0.8, 6.0));
@@ -226,6 +229,14 @@ TEST(LandmarkEkfSightingNoise, ANeighbourBeyondOneSightingsNoiseIsNewNotMerged)
 	// d2 = 0.64 / (0.08^2 + 0.05^2) = 72, beyond the new-landmark gate (18.4).
 	EXPECT_EQ(neighbourBesideAWellMappedLandmark(false), Association::Kind::Matched);
 	EXPECT_EQ(neighbourBesideAWellMappedLandmark(true), Association::Kind::New);
+}
+
+TEST(LandmarkEkfSightingNoise, AMinimumRangeKeepsTheSightingNoise)
+{
+	// Leaving out measurements nearer than min_range_m (none here: all are
+	// 6 m away) must not change the noise the gates use: the usable part of
+	// the scan once lost its sighting noise, and the neighbour was merged.
+	EXPECT_EQ(neighbourBesideAWellMappedLandmark(true, 0.3), Association::Kind::New);
 }
 
 TEST(LandmarkEkfSightingNoise, FusionKeepsTheInflatedNoise)

@@ -84,8 +84,10 @@ double LandmarkEkf::innovationDistance2(
 StepReport LandmarkEkf::processUsableMeasurements(const StepInput& step)
 {
 	// The scan without the measurements closer than min_range_m, which are
-	// reported as rejected in their places.
-	Scan kept{step.scan->sensor_on_robot, step.scan->max_range_m, step.scan->fov_rad, {}};
+	// reported as rejected in their places; a copy, so that the rest of the
+	// scan (its sensor, field of view, sighting noise) stays as it was.
+	Scan kept = *step.scan;
+	kept.measurements.clear();
 	std::vector<bool> used;
 	for (const auto& m : step.scan->measurements)
 	{
