@@ -252,6 +252,7 @@ if bounds:
 refusal = os.path.join(runs_dir, "ekf_refusal")
 if os.path.exists(refusal):
     code, line = (open(refusal).read().split("\n", 1) + [""])[:2]
+    line = line.replace(os.getcwd() + "/", "")  # the rawlog as named from the repository root
     print(f"\nThe EKF on the largest city: exit {code.strip()}, `{line.strip()}`")
 
 # Figures: each back-end's sizes joined by lines, its interval slopes in the key.
