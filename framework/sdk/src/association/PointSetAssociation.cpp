@@ -292,10 +292,12 @@ PointAssociation associatePointSets(const PointSets& sets, AssociationMethod met
 	{
 		out.candidate_of = mrptNearestNeighbour(sets, prediction_cov, pairable, gate_quantile);
 		improveByExchange(d2, individual_gate, out.candidate_of);
+		// MRPT gated on its looser covariance: a pair beyond the exact
+		// individual gate is dropped (JCBB only pairs within it).
+		for (Eigen::Index i = 0; i < M; ++i)
+			if (out.candidate_of[i] >= 0 && d2(i, out.candidate_of[i]) > individual_gate)
+				out.candidate_of[i] = -1, ++out.pairs_dropped;
 	}
-	for (Eigen::Index i = 0; i < M; ++i)
-		if (out.candidate_of[i] >= 0 && d2(i, out.candidate_of[i]) > individual_gate)
-			out.candidate_of[i] = -1, ++out.pairs_dropped;
 
 	// Exact joint compatibility; repair by dropping the pair whose removal
 	// lowers the joint distance most (jcbb::jointVerdict), not the one
