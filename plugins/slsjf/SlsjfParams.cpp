@@ -36,8 +36,10 @@ void SlsjfParams::declare(ParamBinder& b)
 SparseRecoveryParams SlsjfParams::defaultRecovery()
 {
 	SparseRecoveryParams r;
-	r.reordering = Reordering::Camd;
-	r.n0 = 1000;
+	r.reordering = Reordering::Amd;
+	r.reorder_trigger = ReorderTrigger::FillGrowth;
+	r.max_fill_growth = 0.2;
+	r.n0 = 1000;  // the trailing part's bound if reorder_trigger = trailing_dimension
 	return r;
 }
 

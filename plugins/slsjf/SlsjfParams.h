@@ -50,10 +50,11 @@ struct SlsjfParams : MapLevelAssociationParams
 	double smoothing_tolerance = 1e-4;
 
 	LocalMapBuilderParams builder;	///< local maps built from a rawlog
-	/// Recovery, reordering, n0 (Sec. 5.4.2, 3.3.2). SLSJF's defaults are
-	/// CAMD and n0 = 1000, chosen by joining the 401 local maps of
-	/// grid1225_large with each ordering and n0 (docs/plugins/slsjf.md,
-	/// "Defaults", has the times, reorders and factor sizes).
+	/// Recovery, reordering and when to reorder (Sec. 5.4.2, 3.3.2).
+	/// SLSJF's defaults: unconstrained AMD, rebuilt when the factor has
+	/// filled in by 20%, chosen against the book's trigger (CAMD, n0 = 1000)
+	/// on grid1225_large's 401 maps and the city scenarios
+	/// (docs/plugins/slsjf.md, "Defaults", has the measurements).
 	SparseRecoveryParams recovery = defaultRecovery();
 
 	void declare(ParamBinder& b);

@@ -25,7 +25,7 @@ TEST(SparseRecoveryParams, DefaultsAreValidAndDescribed)
 	EXPECT_EQ(p.recovery, RecoveryMethod::IncrementalCholesky);
 	EXPECT_EQ(p.reordering, Reordering::Distance);
 	const auto infos = describeParams(SparseRecoveryParams{});
-	ASSERT_EQ(infos.size(), 8u);
+	ASSERT_EQ(infos.size(), 10u);
 	EXPECT_EQ(infos[0].key, "recovery");
 	EXPECT_EQ(infos[0].value, "incremental_cholesky");
 	EXPECT_EQ(infos[1].value, "distance");
@@ -42,13 +42,19 @@ TEST(SparseRecoveryParams, MethodsAreSetByName)
 	EXPECT_EQ(p.ic_drop_tolerance, 0.0);
 	EXPECT_STREQ(recoveryMethodName(RecoveryMethod::Pcg), "pcg");
 	EXPECT_STREQ(reorderingName(Reordering::Camd), "camd");
+	const auto f = load("reorder_trigger = fill_growth\nmax_fill_growth = 0.5");
+	EXPECT_EQ(f.reorder_trigger, ReorderTrigger::FillGrowth);
+	EXPECT_EQ(f.max_fill_growth, 0.5);
+	EXPECT_STREQ(reorderTriggerName(ReorderTrigger::TrailingDimension), "trailing_dimension");
 }
 
 TEST(SparseRecoveryParams, InvalidValuesAreNamed)
 {
 	EXPECT_NE(errorOf("recovery = cholesky").find("recovery"), std::string::npos);
-	EXPECT_NE(errorOf("reordering = amd").find("reordering"), std::string::npos);
+	EXPECT_NE(errorOf("reordering = metis").find("reordering"), std::string::npos);
 	EXPECT_NE(errorOf("n0 = 0").find("n0"), std::string::npos);
+	EXPECT_NE(errorOf("reorder_trigger = fill").find("reorder_trigger"), std::string::npos);
+	EXPECT_NE(errorOf("max_fill_growth = 0").find("max_fill_growth"), std::string::npos);
 	EXPECT_NE(errorOf("pcg_relative_tolerance = 1").find("pcg_relative_tolerance"), std::string::npos);
 	EXPECT_NE(errorOf("min_pivot_ratio = 0").find("min_pivot_ratio"), std::string::npos);
 	EXPECT_NE(errorOf("pcg_max_iterations = abc").find("pcg_max_iterations"), std::string::npos);

@@ -31,7 +31,19 @@ void IncrementalCholesky::noteUpdate(const InformationForm& info, const UpdateTe
 {
 	if (!L_) return;
 	if (info.scalarDim() > capacity_) updates_.overflow();  // out of padding rows: Case (ii)
-	updates_.record(info, term, ordering_.position, params_.n0);
+	updates_.record(info, term, ordering_.position, trailingLimit());
+}
+
+int IncrementalCholesky::trailingLimit() const
+{
+	return params_.reorder_trigger == ReorderTrigger::TrailingDimension ? params_.n0 : capacity_ + 1;
+}
+
+bool IncrementalCholesky::filledInTooMuch() const
+{
+	return params_.reorder_trigger == ReorderTrigger::FillGrowth &&
+		static_cast<double>(factorNonZeros()) >
+		(1.0 + params_.max_fill_growth) * fresh_nnz_per_scalar_ * static_cast<double>(factored_dim_);
 }
 
 void IncrementalCholesky::refresh(const InformationForm& info, const Eigen::Vector2d& reference)
@@ -64,6 +76,7 @@ void IncrementalCholesky::factorAfresh(const InformationForm& info, const Eigen:
 		throw std::logic_error(kCholeskyWhat + ": CHOLMOD did not keep the given ordering");
 	ordering_ = wanted;
 	factored_dim_ = n;
+	fresh_nnz_per_scalar_ = static_cast<double>(factorNonZeros()) / n;
 	try
 	{
 		checkFactor(info, 0, kCholeskyWhat);
@@ -95,6 +108,9 @@ void IncrementalCholesky::refactorTrailingPart(const InformationForm& info)
 	factored_dim_ = info.scalarDim();
 	updates_.restart(factored_dim_);
 	++counters_.partial_refactorisations;
+	// The factor is exact and serves this refresh's solves; the stale
+	// ordering is replaced at the next one.
+	if (filledInTooMuch()) updates_.overflow();
 }
 
 void IncrementalCholesky::applyPendingUpdates()

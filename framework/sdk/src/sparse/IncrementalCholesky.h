@@ -19,9 +19,10 @@
 ///  - The forward solution y = L^-1 P i is carried along by the _solve
 ///    variants of both calls (only its modified trailing entries change), so
 ///    the state costs one backward substitution, eq. (3.37).
-/// When the touched trailing part reaches n0 scalars or the padding rows run
-/// out, the variables are reordered (distance or CAMD) and factored afresh
-/// (Case ii).
+/// The variables are reordered and factored afresh (Case ii) when the
+/// padding rows run out, and by reorder_trigger: the book's, when the
+/// touched trailing part reaches n0 scalars, or when the factor has filled in
+/// by max_fill_growth beyond the fresh factor's non-zeros per scalar.
 
 #include "sparse/Cholmod.h"
 #include "sparse/RecoverySolver.h"
@@ -62,6 +63,12 @@ class IncrementalCholesky : public RecoverySolver
 	void addNewVariables(const InformationForm& info);
 	void forwardSolve(const InformationForm& info);
 	void checkFactor(const InformationForm& info, int first_position, const std::string& what);
+	/// The trailing dimension at which the update log gives up (n0 under the
+	/// book's trigger; never below the factor's capacity otherwise).
+	int trailingLimit() const;
+	/// fill_growth: nnz(L) beyond (1 + max_fill_growth) x the fresh factor's,
+	/// scaled by the scalars factored since.
+	bool filledInTooMuch() const;
 
 	const SparseRecoveryParams& params_;
 	SparseCounters& counters_;
@@ -74,6 +81,7 @@ class IncrementalCholesky : public RecoverySolver
 	ScalarOrdering ordering_;
 	int capacity_ = 0;
 	int factored_dim_ = 0;     ///< scalars of I included in the factor
+	double fresh_nnz_per_scalar_ = 0;  ///< nnz(L) / factored_dim_ right after the last fresh factorisation
 	TrailingUpdates updates_;  ///< since the last refresh
 };
 

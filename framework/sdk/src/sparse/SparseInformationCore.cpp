@@ -27,6 +27,9 @@ class ScopedTimer
 std::unique_ptr<RecoverySolver> makeSolver(const SparseRecoveryParams& params, SparseCounters& counters,
 										   CholmodCommon& common)
 {
+	if (params.reorder_trigger == ReorderTrigger::FillGrowth && params.recovery != RecoveryMethod::IncrementalCholesky)
+		throw ConfigError(std::string("reorder_trigger = fill_growth needs recovery = incremental_cholesky, not ") +
+						  recoveryMethodName(params.recovery));
 	switch (params.recovery)
 	{
 		case RecoveryMethod::Pcg:
@@ -178,6 +181,7 @@ InformationPattern SparseInformationCore::pattern()
 	const int n = info_.scalarDim();
 	const char* order = params_.recovery == RecoveryMethod::FreshCholesky ? "AMD ordering"
 		: params_.reordering == Reordering::Camd								? "CAMD reordering"
+		: params_.reordering == Reordering::Amd									? "AMD reordering"
 																				: "distance reordering";
 	if (cholmod_factor* L = solver_->method->choleskyFactor())
 	{

@@ -10,7 +10,10 @@ const std::vector<std::pair<std::string, RecoveryMethod>> kRecoveryNames = {
 	{"fresh_cholesky", RecoveryMethod::FreshCholesky}};
 
 const std::vector<std::pair<std::string, Reordering>> kReorderingNames = {{"distance", Reordering::Distance},
-																		  {"camd", Reordering::Camd}};
+																		  {"camd", Reordering::Camd},
+																		  {"amd", Reordering::Amd}};
+const std::vector<std::pair<std::string, ReorderTrigger>> kTriggerNames = {
+	{"trailing_dimension", ReorderTrigger::TrailingDimension}, {"fill_growth", ReorderTrigger::FillGrowth}};
 }  // namespace
 
 void SparseRecoveryParams::declare(ParamBinder& b)
@@ -21,12 +24,19 @@ void SparseRecoveryParams::declare(ParamBinder& b)
 		"incomplete-Cholesky preconditioner, or a fresh AMD factorisation at every change");
 	b.enumeration<Reordering>(
 		"reordering", reordering, kReorderingNames,
-		"reordering when the factor is rebuilt: by distance from the reference point (book), or CAMD with "
-		"the nearest variables constrained last");
+		"reordering when the factor is rebuilt: by distance from the reference point (book), CAMD with "
+		"the nearest variables constrained last, or AMD with no constraint (least fill; for fill_growth)");
 	b.integer("n0", n0, "trailing dimension of an update at which the state is reordered and factored afresh",
 			  Bounds::atLeast(1));
 	b.integer("camd_near_sets", camd_near_sets, "CAMD constraint sets of about n0/2 scalars for the nearest variables",
 			  Bounds::atLeast(1));
+	b.enumeration<ReorderTrigger>(
+		"reorder_trigger", reorder_trigger, kTriggerNames,
+		"when the incremental Cholesky factor is reordered and rebuilt: an update n0 scalars from the end of the "
+		"ordering (book), or fill-in beyond max_fill_growth (incremental_cholesky only)");
+	b.real("max_fill_growth", max_fill_growth,
+		   "fill_growth: rebuild when nnz(L) exceeds (1 + this) x the fresh factor's, scaled by the state's growth",
+		   Bounds::positive());
 	b.real("pcg_relative_tolerance", pcg_relative_tolerance, "PCG stops at |I x - b| <= this * |b|",
 		   Bounds::openUnit());
 	b.integer("pcg_max_iterations", pcg_max_iterations, "PCG iterations before giving up", Bounds::atLeast(1));
@@ -40,6 +50,13 @@ const char* recoveryMethodName(RecoveryMethod m)
 {
 	for (const auto& [name, value] : kRecoveryNames)
 		if (value == m) return name.c_str();
+	return "?";
+}
+
+const char* reorderTriggerName(ReorderTrigger t)
+{
+	for (const auto& [name, value] : kTriggerNames)
+		if (value == t) return name.c_str();
 	return "?";
 }
 

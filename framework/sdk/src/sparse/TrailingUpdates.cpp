@@ -21,16 +21,16 @@ void TrailingUpdates::overflow()
 }
 
 void TrailingUpdates::record(const InformationForm& info, const UpdateTerm& term, const std::vector<int>& position,
-							 int n0)
+							 int limit)
 {
 	if (overflowed_) return;
 	Term t{info.scalarIndices(term.vars), term.C, term.delta_i};
 	for (int g : t.scalars) start_ = std::min(start_, g < factored_dim_ ? position[g] : factored_dim_);
 	rank_ += static_cast<int>(t.C.cols());
 	// Dimension of H_R: from the first touched position to the end. Also
-	// give up when the logged rank exceeds 2 n0: a rank-k modification of
+	// give up when the logged rank exceeds 2 limit: a rank-k modification of
 	// the trailing part then costs more than factoring it afresh.
-	if (info.scalarDim() - start_ >= n0 || rank_ > 2 * n0)
+	if (info.scalarDim() - start_ >= limit || rank_ > 2 * limit)
 	{
 		overflow();
 		return;

@@ -30,9 +30,10 @@ class TrailingUpdates
 
 	/// Records `term`; `position[g]` is the position of the factored scalar
 	/// g (g < factored dim); newer scalars go after all of them. When
-	/// info.scalarDim() - start() reaches n0 (or the logged rank 2 n0),
+	/// info.scalarDim() - start() reaches `limit` (n0 under the book's
+	/// trigger) or the logged rank 2 `limit`,
 	/// forgets everything and overflowed() becomes true.
-	void record(const InformationForm& info, const UpdateTerm& term, const std::vector<int>& position, int n0);
+	void record(const InformationForm& info, const UpdateTerm& term, const std::vector<int>& position, int limit);
 
 	/// Forces Case (ii) (e.g. out of room for new variables).
 	void overflow();

@@ -91,9 +91,22 @@ std::vector<VarId> orderByCamd(const InformationForm& info, const Eigen::Vector2
 	return vars;
 }
 
+std::vector<VarId> orderByAmd(const InformationForm& info, CholmodCommon& c)
+{
+	const int n = info.variableCount();
+	if (n == 0) return {};
+	auto A = variableGraph(info, c);
+	std::vector<int> perm(n);
+	if (!cholmod_amd(A.get(), nullptr, 0, perm.data(), c.get())) c.check("AMD ordering");
+	std::vector<VarId> vars(n);
+	for (int k = 0; k < n; ++k) vars[k] = VarId{perm[k]};
+	return vars;
+}
+
 std::vector<VarId> reorderVariables(const InformationForm& info, const Eigen::Vector2d& reference,
 									const SparseRecoveryParams& params, CholmodCommon& c)
 {
+	if (params.reordering == Reordering::Amd) return orderByAmd(info, c);
 	if (params.reordering == Reordering::Camd)
 		return orderByCamd(info, reference, std::max(1, params.n0 / 2), params.camd_near_sets, c);
 	return orderByDistance(info, reference);

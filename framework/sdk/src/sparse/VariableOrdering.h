@@ -1,11 +1,12 @@
 #pragma once
 /// \file VariableOrdering.h
 /// Reorderings of the state vector for the factor rebuilt in Case (ii) of
-/// book Sec. 3.3.1.1 / 3.3.2.1. Both keep the variables near the reference
+/// book Sec. 3.3.1.1 / 3.3.2.1. The first two keep the variables near the reference
 /// point (the robot, or a reference feature) at the end of the ordering, so
 /// that the next updates, which touch what is near, touch only a short
 /// trailing part of the factor (Case i). Variables stay contiguous (block
-/// orderings), as CHOLMOD's supernodes would group them anyway.
+/// orderings), as CHOLMOD's supernodes would group them anyway. A third,
+/// unconstrained AMD, trades that for the least fill.
 
 #include "sparse/Cholmod.h"
 #include <esif/sparse/InformationForm.h>
@@ -37,6 +38,13 @@ std::vector<VarId> orderByDistance(const InformationForm& info, const Eigen::Vec
 /// first set.
 std::vector<VarId> orderByCamd(const InformationForm& info, const Eigen::Vector2d& reference, int set_dim,
 							   int near_sets, CholmodCommon& c);
+
+/// AMD (minimum degree) on the graph of variables with no constraint: the
+/// least fill, wherever the near variables end up. An update then touches
+/// the elimination-tree paths of its variables from wherever they sit, which
+/// cholmod_updown pays for path by path; so it pairs with the fill-growth
+/// trigger, not with the book's n0, which would rebuild at nearly every update.
+std::vector<VarId> orderByAmd(const InformationForm& info, CholmodCommon& c);
 
 /// The reordering chosen by `params` (n0/2 scalars per CAMD near set).
 std::vector<VarId> reorderVariables(const InformationForm& info, const Eigen::Vector2d& reference,

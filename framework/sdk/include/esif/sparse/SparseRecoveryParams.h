@@ -20,13 +20,21 @@ enum class RecoveryMethod
 enum class Reordering
 {
 	Distance,  ///< the book's: by distance from the reference point, farthest first
-	Camd       ///< SuiteSparse CAMD, fill-reducing within constraint sets, nearest set last
+	Camd,      ///< SuiteSparse CAMD, fill-reducing within constraint sets, nearest set last
+	Amd        ///< SuiteSparse AMD, fill-reducing with no constraint (pairs with ReorderTrigger::FillGrowth)
+};
+
+/// When the incremental Cholesky factor is rebuilt (Case ii).
+enum class ReorderTrigger
+{
+	TrailingDimension,  ///< the book's: an update reaches n0 scalars from the end of the ordering
+	FillGrowth          ///< the factor has filled in by max_fill_growth beyond its fresh non-zeros
 };
 
 struct SparseRecoveryParams
 {
 	RecoveryMethod recovery = RecoveryMethod::IncrementalCholesky;  ///< incremental_cholesky | pcg | fresh_cholesky
-	Reordering reordering = Reordering::Distance;                   ///< distance | camd
+	Reordering reordering = Reordering::Distance;                   ///< distance | camd | amd
 	/// n0 of Sec. 3.3.1.1 / 3.3.2.1: when the trailing part touched since the
 	/// last factorisation (dimension of H_R, in scalars) reaches n0, reorder
 	/// and factor afresh; below it, refactor the trailing part only. The book
@@ -37,6 +45,16 @@ struct SparseRecoveryParams
 	/// CAMD: the nearest variables fill this many constraint sets of about
 	/// n0/2 scalars each, nearest last; everything else is the first set.
 	int camd_near_sets = 2;
+	/// The book rebuilds the factor once an update reaches n0 scalars from
+	/// the end of the ordering. That position says little about the cost:
+	/// cholmod_updown touches only the elimination-tree paths of the updated
+	/// rows, wherever they start. What a stale ordering does cost is fill,
+	/// which every later update and solve pays for. fill_growth rebuilds when
+	/// nnz(L) exceeds (1 + max_fill_growth) times the non-zeros of the last
+	/// fresh factorisation, scaled by the growth of the state since
+	/// (incremental_cholesky only).
+	ReorderTrigger reorder_trigger = ReorderTrigger::TrailingDimension;  ///< trailing_dimension | fill_growth
+	double max_fill_growth = 0.2;
 	double pcg_relative_tolerance = 1e-10;  ///< PCG stops when |I x - b| <= this * |b|
 	int pcg_max_iterations = 200;           ///< PCG gives up (NumericalError) after this many iterations
 	/// Incomplete Cholesky drops L_ij when |L_ij| sqrt(A_jj) < this * |A(j:n, j)|_1
@@ -51,7 +69,8 @@ struct SparseRecoveryParams
 
 /// INI name of a recovery method ("incremental_cholesky", "pcg", "fresh_cholesky").
 const char* recoveryMethodName(RecoveryMethod m);
-/// INI name of a reordering ("distance", "camd").
+/// INI name of a reordering ("distance", "camd", "amd").
 const char* reorderingName(Reordering r);
+const char* reorderTriggerName(ReorderTrigger t);
 
 }  // namespace esif
