@@ -78,11 +78,13 @@ grid1225_part() {
 
 vicpark_part() {
   local log; log=$(vicpark_rawlog)
-  printf '[esif]\nplugin = Slsjf\nlabel = vicpark_slsjf_smoothed\n' >"$work/vp_smoothed.ini"
-  sed -n '/^\[slsjf\]/,$p' configs/vicpark/slsjf.ini >>"$work/vp_smoothed.ini"
-  echo "smoothing = final" >>"$work/vp_smoothed.ini"
-  # The same with maps of 10 steps: the local EKF's own linearisation is
-  # what keeps the relinearised 35-step maps from the optimum.
+  # The shipped config whole, [esif] included: its calibration file (named
+  # relative to the config, so made absolute here) sets the noise that the
+  # ID gates and the smoothing weigh with.
+  sed -e 's/^label *=.*/label = vicpark_slsjf_smoothed/' -e "s#^calibration = \.\./#calibration = $PWD/configs/#" \
+    -e '/^\[slsjf\]/a smoothing = final' configs/vicpark/slsjf.ini >"$work/vp_smoothed.ini"
+  # The same with maps of 10 steps: how much of the relinearised maps'
+  # distance from the optimum is the local EKF's own linearisation.
   sed -e 's/label = vicpark_slsjf_smoothed/label = vicpark_slsjf_smoothed_10/' -e 's/^local_map_steps = .*/local_map_steps = 10/' \
     "$work/vp_smoothed.ini" >"$work/vp_smoothed_10.ini"
   printf '### Victoria Park: SLSJF against the full-SLAM optimum (no ground truth)\n\n'
