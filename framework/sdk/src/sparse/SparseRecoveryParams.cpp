@@ -14,6 +14,15 @@ const std::vector<std::pair<std::string, Reordering>> kReorderingNames = {{"dist
 																		  {"amd", Reordering::Amd}};
 const std::vector<std::pair<std::string, ReorderTrigger>> kTriggerNames = {
 	{"trailing_dimension", ReorderTrigger::TrailingDimension}, {"fill_growth", ReorderTrigger::FillGrowth}};
+
+/// INI name of `value` in `table`, "?" if it has none.
+template <class E>
+const char* nameIn(const std::vector<std::pair<std::string, E>>& table, E value)
+{
+	for (const auto& [name, v] : table)
+		if (v == value) return name.c_str();
+	return "?";
+}
 }  // namespace
 
 void SparseRecoveryParams::declare(ParamBinder& b)
@@ -46,25 +55,10 @@ void SparseRecoveryParams::declare(ParamBinder& b)
 		   Bounds::openUnit());
 }
 
-const char* recoveryMethodName(RecoveryMethod m)
-{
-	for (const auto& [name, value] : kRecoveryNames)
-		if (value == m) return name.c_str();
-	return "?";
-}
+const char* recoveryMethodName(RecoveryMethod m) { return nameIn(kRecoveryNames, m); }
 
-const char* reorderTriggerName(ReorderTrigger t)
-{
-	for (const auto& [name, value] : kTriggerNames)
-		if (value == t) return name.c_str();
-	return "?";
-}
+const char* reorderTriggerName(ReorderTrigger t) { return nameIn(kTriggerNames, t); }
 
-const char* reorderingName(Reordering r)
-{
-	for (const auto& [name, value] : kReorderingNames)
-		if (value == r) return name.c_str();
-	return "?";
-}
+const char* reorderingName(Reordering r) { return nameIn(kReorderingNames, r); }
 
 }  // namespace esif

@@ -33,6 +33,14 @@ std::vector<VarId> byIncreasingDistance(const InformationForm& info, const Eigen
 }
 
 /// Lower-triangular pattern of the variable graph (one node per variable).
+/// A permutation of variable indices as the variables it orders.
+std::vector<VarId> asVariables(const std::vector<int>& perm)
+{
+	std::vector<VarId> vars(perm.size());
+	for (std::size_t k = 0; k < perm.size(); ++k) vars[k] = VarId{perm[k]};
+	return vars;
+}
+
 CholmodSparsePtr variableGraph(const InformationForm& info, CholmodCommon& c)
 {
 	const auto& I = info.matrix();
@@ -86,9 +94,7 @@ std::vector<VarId> orderByCamd(const InformationForm& info, const Eigen::Vector2
 	auto A = variableGraph(info, c);
 	std::vector<int> perm(n);
 	if (!cholmod_camd(A.get(), nullptr, 0, member.data(), perm.data(), c.get())) c.check("CAMD ordering");
-	std::vector<VarId> vars(n);
-	for (int k = 0; k < n; ++k) vars[k] = VarId{perm[k]};
-	return vars;
+	return asVariables(perm);
 }
 
 std::vector<VarId> orderByAmd(const InformationForm& info, CholmodCommon& c)
@@ -98,9 +104,7 @@ std::vector<VarId> orderByAmd(const InformationForm& info, CholmodCommon& c)
 	auto A = variableGraph(info, c);
 	std::vector<int> perm(n);
 	if (!cholmod_amd(A.get(), nullptr, 0, perm.data(), c.get())) c.check("AMD ordering");
-	std::vector<VarId> vars(n);
-	for (int k = 0; k < n; ++k) vars[k] = VarId{perm[k]};
-	return vars;
+	return asVariables(perm);
 }
 
 std::vector<VarId> reorderVariables(const InformationForm& info, const Eigen::Vector2d& reference,

@@ -71,6 +71,7 @@ struct SparseRecoveryParams
 const char* recoveryMethodName(RecoveryMethod m);
 /// INI name of a reordering ("distance", "camd", "amd").
 const char* reorderingName(Reordering r);
+/// INI name of a reorder trigger ("trailing_dimension", "fill_growth").
 const char* reorderTriggerName(ReorderTrigger t);
 
 }  // namespace esif
