@@ -27,9 +27,6 @@ class ScopedTimer
 std::unique_ptr<RecoverySolver> makeSolver(const SparseRecoveryParams& params, SparseCounters& counters,
 										   CholmodCommon& common)
 {
-	if (params.reorder_trigger == ReorderTrigger::FillGrowth && params.recovery != RecoveryMethod::IncrementalCholesky)
-		throw ConfigError(std::string("reorder_trigger = fill_growth needs recovery = incremental_cholesky, not ") +
-						  recoveryMethodName(params.recovery));
 	switch (params.recovery)
 	{
 		case RecoveryMethod::Pcg:

@@ -42,7 +42,7 @@ void SparseRecoveryParams::declare(ParamBinder& b)
 	b.enumeration<ReorderTrigger>(
 		"reorder_trigger", reorder_trigger, kTriggerNames,
 		"when the incremental Cholesky factor is reordered and rebuilt: an update n0 scalars from the end of the "
-		"ordering (book), or fill-in beyond max_fill_growth (incremental_cholesky only)");
+		"ordering (book), or fill-in beyond max_fill_growth (incremental_cholesky only; pcg keeps n0)");
 	b.real("max_fill_growth", max_fill_growth,
 		   "fill_growth: rebuild when nnz(L) exceeds (1 + this) x the fresh factor's, scaled by the state's growth",
 		   Bounds::positive());

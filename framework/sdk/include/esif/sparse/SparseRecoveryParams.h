@@ -51,8 +51,10 @@ struct SparseRecoveryParams
 	/// rows, wherever they start. What a stale ordering does cost is fill,
 	/// which every later update and solve pays for. fill_growth rebuilds when
 	/// nnz(L) exceeds (1 + max_fill_growth) times the non-zeros of the last
-	/// fresh factorisation, scaled by the growth of the state since
-	/// (incremental_cholesky only).
+	/// fresh factorisation, scaled by the growth of the state since. Like
+	/// the pcg_* keys for PCG, it concerns one method: the incremental
+	/// Cholesky. PCG's preconditioner keeps the book's n0, so a plugin whose
+	/// default is fill_growth still runs with `recovery = pcg`.
 	ReorderTrigger reorder_trigger = ReorderTrigger::TrailingDimension;  ///< trailing_dimension | fill_growth
 	double max_fill_growth = 0.2;
 	double pcg_relative_tolerance = 1e-10;  ///< PCG stops when |I x - b| <= this * |b|
