@@ -66,14 +66,17 @@ TEST(SparseCounters, ListsEveryCounterByName)
 	SparseCounters c;
 	c.factor_nnz = 42;
 	c.pcg_iterations_max = 2;
+	c.back_substitution_columns = 7;
 	c.recovery_time_s = 0.5;
 	const auto list = c.list();
-	ASSERT_EQ(list.size(), 10u);
+	ASSERT_EQ(list.size(), 11u);
 	EXPECT_EQ(list[1].first, "sparse_factor_nnz");
 	EXPECT_EQ(list[1].second, 42.0);
 	EXPECT_EQ(list[6].first, "sparse_pcg_iterations_max");
 	EXPECT_EQ(list[6].second, 2.0);
-	EXPECT_EQ(list[9].first, "sparse_recovery_time_s");
+	EXPECT_EQ(list[7].first, "sparse_back_substitution_columns");
+	EXPECT_EQ(list[7].second, 7.0);
+	EXPECT_EQ(list[10].first, "sparse_recovery_time_s");
 	EXPECT_EQ(c.list("dslam_")[0].first, "dslam_information_nnz");
 }
 

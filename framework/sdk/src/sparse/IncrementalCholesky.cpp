@@ -1,5 +1,6 @@
 #include <esif/core/Errors.h>
 #include "sparse/IncrementalCholesky.h"
+#include "sparse/EliminationTreeSolves.h"
 #include "sparse/PivotCheck.h"
 
 #include <algorithm>
@@ -87,6 +88,7 @@ void IncrementalCholesky::factorAfresh(const InformationForm& info, const Eigen:
 		throw;
 	}
 	forwardSolve(info);
+	partial_.invalidate();
 	delta_b_ = zeroDense(capacity_, 1, common_);
 	updates_.restart(n);
 	++counters_.full_reorders;
@@ -94,11 +96,15 @@ void IncrementalCholesky::factorAfresh(const InformationForm& info, const Eigen:
 
 void IncrementalCholesky::refactorTrailingPart(const InformationForm& info)
 {
+	partial_.invalidate();
 	try
 	{
+		const std::vector<int> touched = touchedPositions(info);
 		applyPendingUpdates();
 		addNewVariables(info);
-		checkFactor(info, updates_.start(), kCholeskyWhat);
+		// The modifications changed only the columns on the paths of the
+		// rows they touched: the other pivots passed their check before.
+		checkPivotsAt(*L_, pathsToRoots(*L_, touched), ordering_.order, params_.min_pivot_ratio, info, kCholeskyWhat);
 	}
 	catch (...)
 	{
@@ -111,6 +117,16 @@ void IncrementalCholesky::refactorTrailingPart(const InformationForm& info)
 	// The factor is exact and serves this refresh's solves; the stale
 	// ordering is replaced at the next one.
 	if (filledInTooMuch()) updates_.overflow();
+}
+
+std::vector<int> IncrementalCholesky::touchedPositions(const InformationForm& info) const
+{
+	std::vector<int> out;
+	for (const auto& term : updates_.terms())
+		for (const int g : term.scalars)
+			if (g < factored_dim_) out.push_back(position(g));
+	for (int g = factored_dim_; g < info.scalarDim(); ++g) out.push_back(position(g));
+	return out;
 }
 
 void IncrementalCholesky::applyPendingUpdates()
@@ -207,6 +223,7 @@ void IncrementalCholesky::solveState(const InformationForm& info, Eigen::VectorX
 	// Eq. (3.37): back substitution D L^T z = y, then x = P^T z.
 	cholmodSolve(CHOLMOD_DLt, L_.get(), y_.get(), z_, ws_, common_, kCholeskyWhat + ": back substitution");
 	cholmodSolve(CHOLMOD_Pt, L_.get(), z_.get(), x_, ws_, common_, kCholeskyWhat + ": permuting the state");
+	counters_.back_substitution_columns += static_cast<std::size_t>(factored_dim_);
 	x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(x_->x), info.scalarDim());
 }
 
@@ -226,37 +243,34 @@ Eigen::MatrixXd IncrementalCholesky::solveCovarianceBlock(const InformationForm&
 {
 	if (L_->is_super || L_->is_ll) return RecoverySolver::solveCovarianceBlock(info, scalars);
 	// P A P^T = L D L^T, so A^-1 = P^T L^-T D^-1 L^-1 P and the entry for
-	// positions a, b is sum_k y_a(k) y_b(k) / d_k with y_a = L^-1 e_a, whose
-	// non-zeros lie at positions >= a: a forward solve on the trailing part.
-	const int k = static_cast<int>(scalars.size());
-	const int n = static_cast<int>(L_->n);
-	std::vector<int> pos(k);
-	for (int a = 0; a < k; ++a) pos[a] = ordering_.position[scalars[a]];
-	const int first = *std::min_element(pos.begin(), pos.end());
-	const auto* p = static_cast<const int*>(L_->p);
-	const auto* nz = static_cast<const int*>(L_->nz);
-	const auto* li = static_cast<const int*>(L_->i);
-	const auto* lx = static_cast<const double*>(L_->x);
-
-	// Column j - first of Yt holds y_a(j) for every a: each column of L is
-	// read once for all k right-hand sides, which share most of their
-	// elimination-tree paths (up to the root).
-	Eigen::MatrixXd Yt = Eigen::MatrixXd::Zero(k, n - first);
-	for (int a = 0; a < k; ++a) Yt(a, pos[a] - first) = 1.0;
-	std::vector<int> reached;  // the positions with some y_a(j) != 0: the union of the paths
-	for (int j = first; j < n; ++j)
-	{
-		const auto yj = Yt.col(j - first);
-		if (yj.isZero(0.0)) continue;
-		reached.push_back(j);
-		for (int t = p[j] + 1; t < p[j] + nz[j]; ++t) Yt.col(li[t] - first) -= lx[t] * yj;  // t = p[j] is d_j
-	}
-	// P = sum over reached j of y(j) y(j)^T / d_j, on the reached columns only.
-	Eigen::MatrixXd Z(k, reached.size());
-	for (std::size_t c = 0; c < reached.size(); ++c)
-		Z.col(static_cast<Eigen::Index>(c)) = Yt.col(reached[c] - first) / std::sqrt(lx[p[reached[c]]]);
+	// positions a, b is sum_j y_a(j) y_b(j) / d_j with y_a = L^-1 e_a, which
+	// is non-zero only on a's elimination-tree path: the k right-hand sides
+	// are solved together over the union of their paths.
+	std::vector<int> pos(scalars.size());
+	for (std::size_t a = 0; a < scalars.size(); ++a) pos[a] = ordering_.position[scalars[a]];
+	const Eigen::MatrixXd Z = scaledForwardColumns(*L_, pos, pathsToRoots(*L_, pos));
 	const Eigen::MatrixXd P = Z * Z.transpose();
 	return 0.5 * (P + P.transpose());
+}
+
+bool IncrementalCholesky::solvesStatePartially() const
+{
+	return L_ && !L_->is_super && !L_->is_ll;
+}
+
+Eigen::VectorXd IncrementalCholesky::solveStateAt(const std::vector<int>& scalars)
+{
+	// x = P^T z: scalar g's value is z at its position.
+	std::vector<int> pos(scalars.size());
+	for (std::size_t a = 0; a < scalars.size(); ++a)
+	{
+		if (scalars[a] >= factored_dim_) throw std::logic_error(kCholeskyWhat + ": a scalar outside the factor was read");
+		pos[a] = ordering_.position[scalars[a]];
+	}
+	const long before = partial_.columnsSolved();
+	Eigen::VectorXd x = partial_.solveAt(*L_, static_cast<const double*>(y_->x), pos);
+	counters_.back_substitution_columns += static_cast<std::size_t>(partial_.columnsSolved() - before);
+	return x;
 }
 
 std::size_t IncrementalCholesky::factorNonZeros() const

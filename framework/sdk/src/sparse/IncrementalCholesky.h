@@ -18,13 +18,18 @@
 ///    row/column of I.
 ///  - The forward solution y = L^-1 P i is carried along by the _solve
 ///    variants of both calls (only its modified trailing entries change), so
-///    the state costs one backward substitution, eq. (3.37).
+///    the state costs one backward substitution, eq. (3.37), or, read on
+///    demand, the part of it on the elimination-tree paths of the variables
+///    read (solveStateAt, EliminationTreeSolves.h).
+///  - After a modification only the pivots on the paths of the touched rows
+///    changed, and only those are checked (PivotCheck.h).
 /// The variables are reordered and factored afresh (Case ii) when the
 /// padding rows run out, and by reorder_trigger: the book's, when the
 /// touched trailing part reaches n0 scalars, or when the factor has filled in
 /// by max_fill_growth beyond the fresh factor's non-zeros per scalar.
 
 #include "sparse/Cholmod.h"
+#include "sparse/EliminationTreeSolves.h"
 #include "sparse/RecoverySolver.h"
 #include <esif/sparse/SparseCounters.h>
 #include <esif/sparse/SparseRecoveryParams.h>
@@ -41,12 +46,13 @@ class IncrementalCholesky : public RecoverySolver
 
 	void noteUpdate(const InformationForm& info, const UpdateTerm& term) override;
 	void noteWithdrawal() override { updates_.overflow(); }
-	/// Only the trailing part of the factor from the first requested position
-	/// on: with the nearest variables ordered last (Case ii), the block of
-	/// the features in view costs O(nnz of that part), not O(nnz(L)).
+	/// Only the columns on the elimination-tree paths of the requested
+	/// positions (EliminationTreeSolves.h), not O(nnz(L)).
 	Eigen::MatrixXd solveCovarianceBlock(const InformationForm& info, const std::vector<int>& scalars) override;
 	void refresh(const InformationForm& info, const Eigen::Vector2d& reference) override;
 	void solveState(const InformationForm& info, Eigen::VectorXd& x) override;
+	bool solvesStatePartially() const override;
+	Eigen::VectorXd solveStateAt(const std::vector<int>& scalars) override;
 	Eigen::MatrixXd solveColumns(const InformationForm& info, const std::vector<int>& scalars) override;
 	cholmod_factor* choleskyFactor() override { return L_.get(); }
 	std::size_t factorNonZeros() const override;
@@ -59,6 +65,8 @@ class IncrementalCholesky : public RecoverySolver
    private:
 	void factorAfresh(const InformationForm& info, const Eigen::Vector2d& reference);
 	void refactorTrailingPart(const InformationForm& info);
+	/// Positions of the scalars the pending updates and new variables touch.
+	std::vector<int> touchedPositions(const InformationForm& info) const;
 	void applyPendingUpdates();
 	void addNewVariables(const InformationForm& info);
 	void forwardSolve(const InformationForm& info);
@@ -83,6 +91,7 @@ class IncrementalCholesky : public RecoverySolver
 	int factored_dim_ = 0;     ///< scalars of I included in the factor
 	double fresh_nnz_per_scalar_ = 0;  ///< nnz(L) / factored_dim_ right after the last fresh factorisation
 	TrailingUpdates updates_;  ///< since the last refresh
+	PartialBackSubstitution partial_;  ///< values of z = (D L^T)^-1 y read since the last refresh
 };
 
 }  // namespace esif

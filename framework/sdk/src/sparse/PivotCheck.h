@@ -7,6 +7,8 @@
 
 #include <esif/sparse/InformationForm.h>
 
+#include <cholmod.h>
+
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -21,5 +23,12 @@ namespace esif
 /// "<what>: ... at variable v (kind, component c) ...".
 void checkPivots(const std::vector<double>& pivots, int first_position, const std::vector<int>& order, double min_ratio,
 				 const InformationForm& info, const std::string& what);
+
+/// The same check at `positions` only, pivots read from the simplicial
+/// LDL^T factor L: after an update or row addition, the columns it changed
+/// (the elimination-tree paths of the rows it touched), so the check costs
+/// what the modification did, not O(n).
+void checkPivotsAt(const cholmod_factor& L, const std::vector<int>& positions, const std::vector<int>& order,
+				   double min_ratio, const InformationForm& info, const std::string& what);
 
 }  // namespace esif

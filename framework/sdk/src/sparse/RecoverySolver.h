@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <stdexcept>
 #include <vector>
 
 namespace esif
@@ -40,6 +41,17 @@ class RecoverySolver
 	/// x = I^-1 i, eq. (3.24). On input x is the previous estimate (a warm
 	/// start for iterative methods). Requires a refresh after the last update.
 	virtual void solveState(const InformationForm& info, Eigen::VectorXd& x) = 0;
+
+	/// Whether solveStateAt() can give part of x = I^-1 i for less than the
+	/// whole (a complete simplicial factor can).
+	virtual bool solvesStatePartially() const { return false; }
+	/// x = I^-1 i at the scalars `scalars` (all factored at the last
+	/// refresh), from the factor as of that refresh. Only where
+	/// solvesStatePartially().
+	virtual Eigen::VectorXd solveStateAt(const std::vector<int>& /*scalars*/)
+	{
+		throw std::logic_error("this recovery method solves the whole state only");
+	}
 
 	/// Columns `scalars` of I^-1, eq. (3.25): scalarDim() x scalars.size().
 	virtual Eigen::MatrixXd solveColumns(const InformationForm& info, const std::vector<int>& scalars) = 0;

@@ -15,6 +15,7 @@ std::vector<std::pair<std::string, double>> SparseCounters::list(const std::stri
 		{prefix + "pcg_solves", n(pcg_solves)},
 		{prefix + "pcg_iterations_total", n(pcg_iterations_total)},
 		{prefix + "pcg_iterations_max", n(pcg_iterations_max)},
+		{prefix + "back_substitution_columns", n(back_substitution_columns)},
 		{prefix + "update_time_s", update_time_s},
 		{prefix + "factor_time_s", factor_time_s},
 		{prefix + "recovery_time_s", recovery_time_s},

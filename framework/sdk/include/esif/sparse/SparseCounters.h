@@ -19,6 +19,7 @@ struct SparseCounters
 	std::size_t pcg_solves = 0;                ///< PCG solves (state and covariance columns)
 	std::size_t pcg_iterations_total = 0;      ///< PCG iterations over all solves
 	std::size_t pcg_iterations_max = 0;        ///< most PCG iterations of one solve
+	std::size_t back_substitution_columns = 0;  ///< factor columns solved for the state (eq. 3.37), whole or on demand
 	double update_time_s = 0;                  ///< adding variables and measurements [s]
 	double factor_time_s = 0;                  ///< reordering and (re)factorising [s]
 	double recovery_time_s = 0;                ///< solving for the state, covariances and marginals [s]
