@@ -112,7 +112,9 @@ void GlobalMap::fuse(const LocalMap& map, std::optional<VarId> start, StepReport
 	addMapTerm(*core_, fused, fusionPoint(), nullSpacePoint());
 	fused_.push_back(std::move(fused));
 	core_->setReferencePoint(pose(fused_.back().end).head<2>());
-	core_->recoverState();	// eq. (5.14)
+	// Eq. (5.14), solved where read: the next fusion reads its own
+	// features and the last end pose, a few paths of the factor.
+	core_->recoverStateOnDemand();
 }
 
 StateInformation GlobalMap::stateInformation() const
@@ -229,6 +231,7 @@ void accumulate(SparseCounters& total, const SparseCounters& part)
 	total.pcg_solves += part.pcg_solves;
 	total.pcg_iterations_total += part.pcg_iterations_total;
 	total.pcg_iterations_max = std::max(total.pcg_iterations_max, part.pcg_iterations_max);
+	total.back_substitution_columns += part.back_substitution_columns;
 	total.update_time_s += part.update_time_s;
 	total.factor_time_s += part.factor_time_s;
 	total.recovery_time_s += part.recovery_time_s;

@@ -290,6 +290,75 @@ TEST(SparseRecoveryFillTrigger, OtherMethodsKeepTheirOwnRule)
 	}
 }
 
+TEST(SparseRecoveryOnDemand, EveryReadEqualsTheWholeRecovery)
+{
+	// Core `whole` recovers x after every step; core `on_demand` defers the
+	// back substitution to the reads: the newest pose (what a filter reads
+	// next), an old point, and every 40 steps the whole state. Both see the
+	// same updates, and each update reads its linearisation point from the
+	// estimate (i += J^T R^-1 (innovation + J x^)), so a stale read would
+	// move on_demand's information vector and its solution away.
+	auto p = paramsFor(RecoveryMethod::IncrementalCholesky, Reordering::Amd);
+	p.reorder_trigger = ReorderTrigger::FillGrowth;
+	const SparseTestProblem problem(220, 7);
+	SparseInformationCore whole(p), on_demand(p);
+	for (std::size_t k = 0; k < problem.steps().size(); ++k)
+	{
+		SparseTestProblem::apply(problem.steps()[k], whole);
+		SparseTestProblem::apply(problem.steps()[k], on_demand);
+		whole.recoverState();
+		on_demand.recoverStateOnDemand();
+		for (const VarId v : {VarId{on_demand.variableCount() - 1}, VarId{1}})
+			EXPECT_LT(relativeDifference(on_demand.estimate(v), whole.estimate(v)), kTolerance) << "step " << k;
+		if (k % 40 == 39)
+		{
+			EXPECT_LT(relativeDifference(on_demand.state(), whole.state()), kTolerance) << "step " << k;
+		}
+	}
+	// The reads cost paths of the factor, not its every column.
+	EXPECT_LT(on_demand.counters().back_substitution_columns, whole.counters().back_substitution_columns / 2);
+}
+
+TEST(SparseRecoveryOnDemand, ARefreshMovesTheEstimateToTheNewestInformation)
+{
+	// Between recoveries, estimates are x = I^-1 i of the information as of
+	// the last refresh: a covariance() after an update refreshes, and the
+	// reads then agree with a whole recovery at that point.
+	auto p = paramsFor(RecoveryMethod::IncrementalCholesky, Reordering::Amd);
+	const SparseTestProblem problem(80, 3);
+	SparseInformationCore whole(p), on_demand(p);
+	for (std::size_t k = 0; k + 1 < problem.steps().size(); ++k)
+	{
+		SparseTestProblem::apply(problem.steps()[k], whole);
+		SparseTestProblem::apply(problem.steps()[k], on_demand);
+	}
+	whole.recoverState();
+	on_demand.recoverStateOnDemand();
+	const auto& last = problem.steps().back();
+	SparseTestProblem::apply(last, whole);
+	SparseTestProblem::apply(last, on_demand);
+	on_demand.covariance({VarId{0}});
+	const Eigen::VectorXd& x = whole.recoverState();
+	for (int v = 0; v < on_demand.variableCount(); ++v)
+	{
+		const auto s = on_demand.information().scalarIndices({VarId{v}});
+		EXPECT_LT(relativeDifference(on_demand.estimate(VarId{v}), x.segment(s.front(), s.size())), kTolerance) << v;
+	}
+}
+
+TEST(SparseRecoveryOnDemand, MethodsWithoutACompleteFactorRecoverEverything)
+{
+	for (RecoveryMethod m : {RecoveryMethod::Pcg, RecoveryMethod::FreshCholesky})
+	{
+		const SparseTestProblem problem(60, 5);
+		SparseInformationCore core(paramsFor(m, Reordering::Camd));
+		for (const auto& step : problem.steps()) SparseTestProblem::apply(step, core);
+		core.recoverStateOnDemand();
+		EXPECT_LT(relativeDifference(core.state(), denseReference(core.information()).x), kTolerance)
+			<< recoveryMethodName(m);
+	}
+}
+
 std::string paramName(const ::testing::TestParamInfo<SparseRecovery::ParamType>& info)
 {
 	return std::string(recoveryMethodName(std::get<0>(info.param))) + "_" + reorderingName(std::get<1>(info.param));

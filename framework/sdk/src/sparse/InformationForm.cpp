@@ -173,6 +173,13 @@ void InformationForm::setEstimate(const Eigen::VectorXd& x)
 	x_ = x;
 }
 
+void InformationForm::setEstimate(VarId v, const Eigen::VectorXd& x)
+{
+	if (v.value < 0 || v.value >= variableCount() || x.size() != dim(v))
+		throw std::invalid_argument("InformationForm::setEstimate: no such variable or wrong size");
+	x_.segment(offset(v), dim(v)) = x;
+}
+
 std::vector<int> InformationForm::scalarIndices(const std::vector<VarId>& vars) const
 {
 	std::vector<int> out;

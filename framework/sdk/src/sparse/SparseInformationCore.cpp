@@ -70,6 +70,7 @@ UpdateTerm SparseInformationCore::addMeasurement(const std::vector<VarId>& vars,
 												 const Eigen::MatrixXd& R, const Eigen::VectorXd& innovation)
 {
 	ScopedTimer t(counters_.update_time_s);
+	settleEstimates(vars);
 	UpdateTerm term = info_.addMeasurement(vars, J, R, innovation);
 	noteUpdate(term);
 	return term;
@@ -80,6 +81,7 @@ UpdateTerm SparseInformationCore::addInformationMeasurement(const std::vector<Va
 															const Eigen::VectorXd& innovation)
 {
 	ScopedTimer t(counters_.update_time_s);
+	settleEstimates(vars);
 	UpdateTerm term = info_.addInformationMeasurement(vars, J, information, innovation);
 	noteUpdate(term);
 	return term;
@@ -106,7 +108,16 @@ void SparseInformationCore::noteUpdate(const UpdateTerm& term)
 void SparseInformationCore::refresh()
 {
 	ScopedTimer t(counters_.factor_time_s);
-	solver_->method->refresh(info_, reference_);
+	try
+	{
+		solver_->method->refresh(info_, reference_);
+	}
+	catch (...)
+	{
+		on_demand_ = false;	 // no factor to read: the estimate stays the last one written
+		throw;
+	}
+	refreshed_dim_ = info_.scalarDim();
 }
 
 const Eigen::VectorXd& SparseInformationCore::recoverState()
@@ -117,12 +128,58 @@ const Eigen::VectorXd& SparseInformationCore::recoverState()
 	solver_->method->solveState(info_, x);
 	if (!x.allFinite()) throw NumericalError("sparse recovery: the recovered state is not finite");
 	info_.setEstimate(x);
+	on_demand_ = false;
 	return info_.estimate();
+}
+
+void SparseInformationCore::recoverStateOnDemand()
+{
+	refresh();
+	if (!solver_->method->solvesStatePartially())
+	{
+		recoverState();
+		return;
+	}
+	on_demand_ = true;
+}
+
+const Eigen::VectorXd& SparseInformationCore::state()
+{
+	if (!on_demand_) return info_.estimate();
+	// The whole back substitution of the factor as of the last refresh;
+	// variables added since keep their initial values.
+	ScopedTimer t(counters_.recovery_time_s);
+	Eigen::VectorXd solved = info_.estimate();
+	solver_->method->solveState(info_, solved);
+	Eigen::VectorXd x = info_.estimate();
+	x.head(refreshed_dim_) = solved.head(refreshed_dim_);
+	if (!x.allFinite()) throw NumericalError("sparse recovery: the recovered state is not finite");
+	info_.setEstimate(x);
+	on_demand_ = false;
+	return info_.estimate();
+}
+
+bool SparseInformationCore::readsFactor(VarId v) const
+{
+	return on_demand_ && info_.offset(v) + info_.dim(v) <= refreshed_dim_;
 }
 
 Eigen::VectorXd SparseInformationCore::estimate(VarId v) const
 {
-	return info_.estimate().segment(info_.offset(v), info_.dim(v));
+	if (!readsFactor(v)) return info_.estimate().segment(info_.offset(v), info_.dim(v));
+	// The solver keeps what it solved (PartialBackSubstitution): a cache, so
+	// reading stays a const operation.
+	const Eigen::VectorXd x = solver_->method->solveStateAt(info_.scalarIndices({v}));
+	if (!x.allFinite())
+		throw NumericalError("sparse recovery: the recovered estimate of " + info_.describeScalar(info_.offset(v)) +
+							 " is not finite");
+	return x;
+}
+
+void SparseInformationCore::settleEstimates(const std::vector<VarId>& vars)
+{
+	for (const VarId v : vars)
+		if (readsFactor(v)) info_.setEstimate(v, estimate(v));
 }
 
 Eigen::MatrixXd SparseInformationCore::covariance(const std::vector<VarId>& vars)
@@ -165,6 +222,9 @@ StateInformation SparseInformationCore::stateInformation(const std::function<Sta
 								   " described with the wrong dimension");
 	}
 	out.mean = info_.estimate();
+	if (on_demand_)
+		for (int v = 0; v < info_.variableCount(); ++v)
+			out.mean.segment(info_.offset(VarId{v}), info_.dim(VarId{v})) = estimate(VarId{v});
 	out.information = toEigenSparse(info_.matrix());
 	return out;
 }

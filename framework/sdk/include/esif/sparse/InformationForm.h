@@ -66,6 +66,8 @@ class InformationForm
 	const Eigen::VectorXd& estimate() const { return x_; }
 	/// Replaces the estimate after a recovery (size must be scalarDim()).
 	void setEstimate(const Eigen::VectorXd& x);
+	/// Replaces the estimate of one variable (size must be dim(v)).
+	void setEstimate(VarId v, const Eigen::VectorXd& x);
 
 	int variableCount() const { return I_.blockCount(); }
 	int scalarDim() const { return I_.scalarDim(); }

@@ -62,9 +62,19 @@ class SparseInformationCore
 	/// NumericalError (never returns NaN) if I is not numerically positive
 	/// definite, naming the variable where it failed.
 	const Eigen::VectorXd& recoverState();
+	/// The same recovery with the back substitution (eq. 3.37) left to the
+	/// reads: estimate(v) solves v and its elimination-tree ancestors when
+	/// first read and keeps them until the factor changes, so a filter that
+	/// reads a few variables before its next update (SLSJF: the next local
+	/// map's features) pays for their paths, not for all of L. Every read is
+	/// exact: until the next recoverState(), a variable's estimate is x = I^-1 i
+	/// of the information as of the last refresh (a covariance() after an
+	/// update refreshes), as a recoverState() there would give. Methods
+	/// without a complete simplicial factor recover the whole state here.
+	void recoverStateOnDemand();
 	/// Current estimate of all variables (last recovery; initial values for
-	/// variables added since).
-	const Eigen::VectorXd& state() const { return info_.estimate(); }
+	/// variables added since); completes an on-demand recovery first.
+	const Eigen::VectorXd& state();
 	/// Current estimate of one variable.
 	Eigen::VectorXd estimate(VarId v) const;
 
@@ -97,6 +107,11 @@ class SparseInformationCore
    private:
 	void noteUpdate(const UpdateTerm& term);
 	void refresh();
+	/// Under an on-demand recovery, whether v's estimate comes from the factor.
+	bool readsFactor(VarId v) const;
+	/// Writes the on-demand estimates of `vars` into the information form,
+	/// where an update reads its linearisation point.
+	void settleEstimates(const std::vector<VarId>& vars);
 
 	/// CHOLMOD's workspace and the recovery method (RecoverySolver.h),
 	/// private to the SDK: no plugin sees cholmod.h.
@@ -107,6 +122,8 @@ class SparseInformationCore
 	InformationForm info_;
 	std::unique_ptr<Solver> solver_;
 	Eigen::Vector2d reference_ = Eigen::Vector2d::Zero();
+	bool on_demand_ = false;  ///< recoverStateOnDemand() since the last whole recovery
+	int refreshed_dim_ = 0;   ///< scalars in the factor at the last refresh
 };
 
 }  // namespace esif
