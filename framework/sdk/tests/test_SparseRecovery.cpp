@@ -308,7 +308,8 @@ TEST(SparseRecoveryOnDemand, EveryReadEqualsTheWholeRecovery)
 		SparseTestProblem::apply(problem.steps()[k], on_demand);
 		whole.recoverState();
 		on_demand.recoverStateOnDemand();
-		for (const VarId v : {VarId{on_demand.variableCount() - 1}, VarId{1}})
+		const int newest = on_demand.variableCount() - 1;
+		for (const VarId v : {VarId{newest}, VarId{std::min(1, newest)}})
 			EXPECT_LT(relativeDifference(on_demand.estimate(v), whole.estimate(v)), kTolerance) << "step " << k;
 		if (k % 40 == 39)
 		{

@@ -101,7 +101,7 @@ void IncrementalCholesky::refactorTrailingPart(const InformationForm& info)
 	{
 		const std::vector<int> touched = touchedPositions(info);
 		applyPendingUpdates();
-		addNewVariables(info);
+		removePlaceholderDiagonals(info);
 		// The modifications changed only the columns on the paths of the
 		// rows they touched: the other pivots passed their check before.
 		checkPivotsAt(*L_, pathsToRoots(*L_, touched), ordering_.order, params_.min_pivot_ratio, info, kCholeskyWhat);
@@ -132,8 +132,10 @@ std::vector<int> IncrementalCholesky::touchedPositions(const InformationForm& in
 void IncrementalCholesky::applyPendingUpdates()
 {
 	// C of all pending updates side by side, rows permuted by L->Perm
-	// (cholmod_updown works on the rows of L, not of A), restricted to the
-	// variables already in the factor; new ones come in by rowadd.
+	// (cholmod_updown works on the rows of L, not of A). A new variable's
+	// rows go to its placeholder position (still an identity row): the
+	// update gives it 1 + its information there, and
+	// removePlaceholderDiagonals() takes the 1 back.
 	int columns = 0;
 	std::size_t nnz = 0;
 	for (const auto& p : updates_.terms())
@@ -154,11 +156,10 @@ void IncrementalCholesky::applyPendingUpdates()
 	{
 		rows.clear();
 		for (std::size_t r = 0; r < p.scalars.size(); ++r)
-			if (p.scalars[r] < factored_dim_)
-			{
-				rows.emplace_back(position(p.scalars[r]), static_cast<int>(r));
-				db[rows.back().first] += p.delta_i[r];
-			}
+		{
+			rows.emplace_back(position(p.scalars[r]), static_cast<int>(r));
+			db[rows.back().first] += p.delta_i[r];
+		}
 		std::sort(rows.begin(), rows.end());
 		for (int c = 0; c < p.C.cols(); ++c, ++col)
 		{
@@ -176,32 +177,29 @@ void IncrementalCholesky::applyPendingUpdates()
 	common_.check(kCholeskyWhat + ": update of the trailing factor");
 }
 
-void IncrementalCholesky::addNewVariables(const InformationForm& info)
+void IncrementalCholesky::removePlaceholderDiagonals(const InformationForm& info)
 {
-	// Placeholders were ordered last in natural order, so a new scalar g
-	// sits at position g. Its row/column of I enters with cholmod_rowadd,
-	// restricted to scalars already in the factor (natural index <= g); the
-	// later new scalars are still identity rows.
-	for (int g = factored_dim_; g < info.scalarDim(); ++g)
+	// A placeholder row was the identity row e_g (y_g = 0); after the update
+	// its diagonal holds 1 + I(g, g). A rank-one downdate per new scalar
+	// takes the 1 back, so the factor is exactly that of I. New scalars sit
+	// last, so their paths, and this downdate, are short; one cholmod_rowadd
+	// per new scalar instead solved a row over the paths of every variable
+	// it is linked to. A scalar that got no information is left with a zero
+	// pivot, which the pivot check reports.
+	const int added = info.scalarDim() - factored_dim_;
+	if (added <= 0) return;
+	auto E = ownSparse(cholmod_allocate_sparse(capacity_, added, added, true, true, 0, CHOLMOD_REAL, common_.get()),
+					   common_);
+	if (!E) common_.check(kCholeskyWhat + ": allocating the placeholder downdate");
+	for (int c = 0; c < added; ++c)
 	{
-		std::vector<std::pair<int, double>> column;
-		for (const auto& [r, v] : info.matrix().scalarColumn(g))
-			if (r <= g) column.emplace_back(position(r), v);
-		std::sort(column.begin(), column.end());
-		auto R = ownSparse(
-			cholmod_allocate_sparse(capacity_, 1, column.size(), true, true, 0, CHOLMOD_REAL, common_.get()), common_);
-		if (!R) common_.check(kCholeskyWhat + ": allocating a new row");
-		static_cast<int*>(R->p)[0] = 0;
-		static_cast<int*>(R->p)[1] = static_cast<int>(column.size());
-		for (std::size_t k = 0; k < column.size(); ++k)
-		{
-			static_cast<int*>(R->i)[k] = column[k].first;
-			static_cast<double*>(R->x)[k] = column[k].second;
-		}
-		double bk[2] = {info.vector()[g], 0.0};
-		cholmod_rowadd_solve(position(g), R.get(), bk, L_.get(), y_.get(), delta_b_.get(), common_.get());
-		common_.check(kCholeskyWhat + ": adding " + info.describeScalar(g));
+		static_cast<int*>(E->p)[c] = c;
+		static_cast<int*>(E->i)[c] = position(factored_dim_ + c);
+		static_cast<double*>(E->x)[c] = 1.0;
 	}
+	static_cast<int*>(E->p)[added] = added;
+	cholmod_updown_solve(false, E.get(), L_.get(), y_.get(), delta_b_.get(), common_.get());
+	common_.check(kCholeskyWhat + ": adding " + info.describeScalar(factored_dim_) + " and the other new variables");
 }
 
 void IncrementalCholesky::forwardSolve(const InformationForm& info)

@@ -13,9 +13,10 @@
 ///    the elimination-tree paths of C's rows), so the leading factor is kept
 ///    by construction and the trailing refactorisation costs O(k x fill of
 ///    the touched path), not a factorisation of the whole trailing block.
-///  - A new variable takes the next padding positions (still trailing):
-///    cholmod_rowadd replaces a padding row/column by the variable's
-///    row/column of I.
+///  - A new variable takes the next padding positions (still trailing): its
+///    rows join the update at its placeholder, an identity row, and a
+///    rank-one downdate per new scalar takes the placeholder's 1 back off
+///    the diagonal.
 ///  - The forward solution y = L^-1 P i is carried along by the _solve
 ///    variants of both calls (only its modified trailing entries change), so
 ///    the state costs one backward substitution, eq. (3.37), or, read on
@@ -68,7 +69,7 @@ class IncrementalCholesky : public RecoverySolver
 	/// Positions of the scalars the pending updates and new variables touch.
 	std::vector<int> touchedPositions(const InformationForm& info) const;
 	void applyPendingUpdates();
-	void addNewVariables(const InformationForm& info);
+	void removePlaceholderDiagonals(const InformationForm& info);
 	void forwardSolve(const InformationForm& info);
 	void checkFactor(const InformationForm& info, int first_position, const std::string& what);
 	/// The trailing dimension at which the update log gives up (n0 under the
@@ -83,7 +84,7 @@ class IncrementalCholesky : public RecoverySolver
 	CholmodCommon& common_;
 	CholmodFactorPtr L_;
 	CholmodDensePtr y_;        ///< L^-1 P [i; 0], positions
-	CholmodDensePtr delta_b_;  ///< zero between calls (updown/rowadd_solve workspace)
+	CholmodDensePtr delta_b_;  ///< zero between calls (updown_solve workspace)
 	CholmodDensePtr z_, x_;    ///< backward-solve results
 	CholmodSolveWorkspace ws_;
 	ScalarOrdering ordering_;

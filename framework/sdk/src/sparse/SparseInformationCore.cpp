@@ -7,6 +7,7 @@
 #include "sparse/SparseInverse.h"
 
 #include <chrono>
+#include <stdexcept>
 
 namespace esif
 {
@@ -166,6 +167,8 @@ bool SparseInformationCore::readsFactor(VarId v) const
 
 Eigen::VectorXd SparseInformationCore::estimate(VarId v) const
 {
+	if (v.value < 0 || v.value >= info_.variableCount())
+		throw std::out_of_range("SparseInformationCore::estimate: no variable " + std::to_string(v.value));
 	if (!readsFactor(v)) return info_.estimate().segment(info_.offset(v), info_.dim(v));
 	// The solver keeps what it solved (PartialBackSubstitution): a cache, so
 	// reading stays a const operation.
