@@ -184,8 +184,10 @@ void IncrementalCholesky::removePlaceholderDiagonals(const InformationForm& info
 	// takes the 1 back, so the factor is exactly that of I. New scalars sit
 	// last, so their paths, and this downdate, are short; one cholmod_rowadd
 	// per new scalar instead solved a row over the paths of every variable
-	// it is linked to. A scalar that got no information is left with a zero
-	// pivot, which the pivot check reports.
+	// it is linked to. The downdate cancels about log10(1 + 1 / I(g, g))
+	// digits: none that matter for information above 1e-2 (a feature 100 m
+	// off with 10 m noise). A scalar that got no information is left with a
+	// zero pivot, which the pivot check reports.
 	const int added = info.scalarDim() - factored_dim_;
 	if (added <= 0) return;
 	auto E = ownSparse(cholmod_allocate_sparse(capacity_, added, added, true, true, 0, CHOLMOD_REAL, common_.get()),
