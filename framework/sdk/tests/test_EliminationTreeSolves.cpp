@@ -1,6 +1,6 @@
 // Solves restricted to elimination-tree paths (EliminationTreeSolves.h)
 // against dense solves, on a CHOLMOD simplicial LDL^T factor of a matrix
-// with four independent blocks joined by a small separator: a path from one
+// with twelve independent blocks joined by a small separator: a path from one
 // block never enters another, so the restricted solves must read fewer
 // columns than the whole factor and still be exact.
 
@@ -16,9 +16,9 @@ namespace
 {
 using namespace esif;
 
-constexpr int kBlocks = 4, kBlockSize = 25, kSeparator = 6, kN = kBlocks * kBlockSize + kSeparator;
+constexpr int kBlocks = 12, kBlockSize = 25, kSeparator = kBlocks, kN = kBlocks * kBlockSize + kSeparator;
 
-/// Four random sparse SPD blocks, each linked to a shared separator (the
+/// Twelve random sparse SPD blocks, each linked to a shared separator (the
 /// last kSeparator scalars), diagonally dominant: cond(A) < 10, so dense and
 /// sparse solves agree to ~1e-14; 1e-12 is the tolerance below.
 Eigen::MatrixXd blocksWithSeparator(unsigned seed)
@@ -62,6 +62,16 @@ class EliminationTreeSolves : public ::testing::Test
 		ASSERT_FALSE(L_->is_ll);
 		perm_ = static_cast<const int*>(L_->Perm);
 	}
+	/// y = L^-1 P b, what the incremental factor carries along.
+	std::vector<double> forwardSolution(const Eigen::VectorXd& b)
+	{
+		auto B = zeroDense(kN, 1, c_);
+		std::copy(b.data(), b.data() + kN, static_cast<double*>(B->x));
+		auto PB = ownDense(cholmod_solve(CHOLMOD_P, L_.get(), B.get(), c_.get()), c_);
+		auto Y = ownDense(cholmod_solve(CHOLMOD_L, L_.get(), PB.get(), c_.get()), c_);
+		const auto* y = static_cast<const double*>(Y->x);
+		return std::vector<double>(y, y + kN);
+	}
 	/// Position of scalar g in the factor's ordering.
 	int positionOf(int g) const { return static_cast<int>(std::find(perm_, perm_ + kN, g) - perm_); }
 
@@ -78,7 +88,7 @@ TEST_F(EliminationTreeSolves, PathsAreClosedUnderTheFactorsRows)
 	ASSERT_TRUE(std::is_sorted(reach.begin(), reach.end()));
 	EXPECT_TRUE(std::binary_search(reach.begin(), reach.end(), start));
 	// Every row of a reached column is reached (the rows of column j are
-	// ancestors of j), and block 0 reaches no scalar of blocks 1-3.
+	// ancestors of j), and block 0 reaches no scalar of the other blocks.
 	const auto* p = static_cast<const int*>(L_->p);
 	const auto* nz = static_cast<const int*>(L_->nz);
 	const auto* li = static_cast<const int*>(L_->i);
@@ -110,12 +120,8 @@ TEST_F(EliminationTreeSolves, PartialBackSubstitutionIsExactAndReusesWhatItSolve
 	Eigen::VectorXd b(kN);
 	for (int i = 0; i < kN; ++i) b(i) = n(rng);
 	const Eigen::VectorXd x = A_.llt().solve(b);
-	// y = L^-1 P b, what the incremental factor carries along.
-	auto B = zeroDense(kN, 1, c_);
-	std::copy(b.data(), b.data() + kN, static_cast<double*>(B->x));
-	auto PB = ownDense(cholmod_solve(CHOLMOD_P, L_.get(), B.get(), c_.get()), c_);
-	auto Y = ownDense(cholmod_solve(CHOLMOD_L, L_.get(), PB.get(), c_.get()), c_);
-	const auto* y = static_cast<const double*>(Y->x);
+	const std::vector<double> y_values = forwardSolution(b);
+	const double* y = y_values.data();
 
 	PartialBackSubstitution partial;
 	const Eigen::VectorXd first = partial.solveAt(*L_, y, {positionOf(3), positionOf(4)});
@@ -137,6 +143,21 @@ TEST_F(EliminationTreeSolves, PartialBackSubstitutionIsExactAndReusesWhatItSolve
 	partial.invalidate();
 	EXPECT_NEAR(partial.solveAt(*L_, y, {positionOf(3)})(0), x(3), 1e-12);
 	EXPECT_GT(partial.columnsSolved(), solved);
+}
+
+TEST_F(EliminationTreeSolves, ReadingEverythingSolvesEachColumnOnce)
+{
+	// Read one scalar at a time, as a whole estimate does: every value
+	// exact, every column solved once.
+	std::mt19937 rng(4);
+	std::normal_distribution<double> n;
+	Eigen::VectorXd b(kN);
+	for (int i = 0; i < kN; ++i) b(i) = n(rng);
+	const Eigen::VectorXd x = A_.llt().solve(b);
+	const std::vector<double> y = forwardSolution(b);
+	PartialBackSubstitution partial;
+	for (int g = 0; g < kN; ++g) EXPECT_NEAR(partial.solveAt(*L_, y.data(), {positionOf(g)})(0), x(g), 1e-12) << g;
+	EXPECT_EQ(partial.columnsSolved(), kN);
 }
 
 TEST_F(EliminationTreeSolves, PositionsOutsideTheFactorAreRefused)

@@ -37,33 +37,25 @@ void checkPosition(int j, int n)
 	if (j < 0 || j >= n) throw std::out_of_range("elimination-tree solve: position outside the factor");
 }
 
-/// Walks up from each start until a position already claimed (whose
-/// ancestors are claimed too), claiming and collecting the rest.
-template <class Claimed, class Claim>
-std::vector<int> unclaimedPaths(const FactorArrays& f, const std::vector<int>& starts, Claimed claimed, Claim claim)
-{
-	std::vector<int> out;
-	for (int j : starts)
-	{
-		checkPosition(j, f.n);
-		for (; j >= 0 && !claimed(j); j = f.parent(j))
-		{
-			claim(j);
-			out.push_back(j);
-		}
-	}
-	return out;
-}
 }  // namespace
 
 std::vector<int> pathsToRoots(const cholmod_factor& L, const std::vector<int>& starts)
 {
 	const FactorArrays f(L);
-	std::vector<char> visited(static_cast<std::size_t>(f.n), 0);
-	std::vector<int> reach = unclaimedPaths(
-		f, starts, [&](int j) { return visited[j] != 0; }, [&](int j) { visited[j] = 1; });
-	std::sort(reach.begin(), reach.end());
-	return reach;
+	std::vector<char> reached(static_cast<std::size_t>(f.n), 0);
+	std::vector<int> out;
+	for (int j : starts)
+	{
+		checkPosition(j, f.n);
+		// A reached position's ancestors are reached too: stop there.
+		for (; j >= 0 && !reached[j]; j = f.parent(j))
+		{
+			reached[j] = 1;
+			out.push_back(j);
+		}
+	}
+	std::sort(out.begin(), out.end());
+	return out;
 }
 
 Eigen::MatrixXd scaledForwardColumns(const cholmod_factor& L, const std::vector<int>& positions,
@@ -96,21 +88,29 @@ Eigen::VectorXd PartialBackSubstitution::solveAt(const cholmod_factor& L, const 
 	{
 		z_.assign(static_cast<std::size_t>(f.n), 0.0);
 		stamp_.assign(static_cast<std::size_t>(f.n), 0);
-		++epoch_;
+		invalidate();
 	}
 	// A position is claimed when queued: its value is computed below, before
 	// any caller can read it, and its ancestors are queued or known.
-	std::vector<int> todo = unclaimedPaths(
-		f, positions, [this](int j) { return known(j); }, [this](int j) { stamp_[j] = epoch_; });
-	// Root first: z_j = y_j / d_j - sum_i L_ij z_i over j's ancestors i.
-	std::sort(todo.begin(), todo.end(), std::greater<>());
-	for (const int j : todo)
+	todo_.clear();
+	for (int j : positions)
+	{
+		checkPosition(j, f.n);
+		for (; j >= 0 && !known(j); j = f.parent(j))
+		{
+			stamp_[j] = epoch_;
+			todo_.push_back(j);
+		}
+	}
+	// The root first: z_j = y_j / d_j - sum_i L_ij z_i over j's ancestors i.
+	std::sort(todo_.begin(), todo_.end(), std::greater<>());
+	for (const int j : todo_)
 	{
 		double zj = y[j] / f.diagonal(j);
 		for (int t = f.begin(j); t < f.end(j); ++t) zj -= f.x[t] * z_[f.i[t]];
 		z_[j] = zj;
 	}
-	columns_solved_ += static_cast<long>(todo.size());
+	columns_solved_ += static_cast<long>(todo_.size());
 	Eigen::VectorXd out(static_cast<Eigen::Index>(positions.size()));
 	for (std::size_t a = 0; a < positions.size(); ++a) out(static_cast<Eigen::Index>(a)) = z_[positions[a]];
 	return out;

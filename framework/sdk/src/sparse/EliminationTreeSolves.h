@@ -32,8 +32,9 @@ Eigen::MatrixXd scaledForwardColumns(const cholmod_factor& L, const std::vector<
 
 /// z = (D L^T)^-1 y, eq. (3.37), at chosen positions only, each computed
 /// over its ancestors and kept until invalidate(): later requests reuse the
-/// shared top of the tree. The factor and y must not change between
-/// invalidations.
+/// shared top of the tree, so reading every position one at a time solves
+/// each column once, as one whole back substitution would. The factor and y
+/// must not change between invalidations.
 class PartialBackSubstitution
 {
    public:
@@ -49,6 +50,7 @@ class PartialBackSubstitution
 
 	std::vector<double> z_;
 	std::vector<unsigned> stamp_;  ///< epoch_ where z_ holds this epoch's value
+	std::vector<int> todo_;        ///< positions to solve in this request
 	unsigned epoch_ = 1;
 	long columns_solved_ = 0;
 };
