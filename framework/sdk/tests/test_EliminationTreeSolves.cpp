@@ -41,6 +41,15 @@ Eigen::MatrixXd blocksWithSeparator(unsigned seed)
 	return A;
 }
 
+Eigen::VectorXd randomVector(unsigned seed)
+{
+	std::mt19937 rng(seed);
+	std::normal_distribution<double> n;
+	Eigen::VectorXd b(kN);
+	for (int i = 0; i < kN; ++i) b(i) = n(rng);
+	return b;
+}
+
 class EliminationTreeSolves : public ::testing::Test
 {
    protected:
@@ -115,10 +124,7 @@ TEST_F(EliminationTreeSolves, ForwardColumnsGiveTheCovarianceBlock)
 
 TEST_F(EliminationTreeSolves, PartialBackSubstitutionIsExactAndReusesWhatItSolved)
 {
-	std::mt19937 rng(9);
-	std::normal_distribution<double> n;
-	Eigen::VectorXd b(kN);
-	for (int i = 0; i < kN; ++i) b(i) = n(rng);
+	const Eigen::VectorXd b = randomVector(9);
 	const Eigen::VectorXd x = A_.llt().solve(b);
 	const std::vector<double> y_values = forwardSolution(b);
 	const double* y = y_values.data();
@@ -149,10 +155,7 @@ TEST_F(EliminationTreeSolves, ReadingEverythingSolvesEachColumnOnce)
 {
 	// Read one scalar at a time, as a whole estimate does: every value
 	// exact, every column solved once.
-	std::mt19937 rng(4);
-	std::normal_distribution<double> n;
-	Eigen::VectorXd b(kN);
-	for (int i = 0; i < kN; ++i) b(i) = n(rng);
+	const Eigen::VectorXd b = randomVector(4);
 	const Eigen::VectorXd x = A_.llt().solve(b);
 	const std::vector<double> y = forwardSolution(b);
 	PartialBackSubstitution partial;
