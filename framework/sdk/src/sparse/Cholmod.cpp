@@ -21,12 +21,17 @@ void CholmodCommon::useGivenOrderingForModification()
 	common_.nmethods = 1;
 	common_.method[0].ordering = CHOLMOD_GIVEN;
 	common_.postorder = false;  // postordering could move the trailing variables forward
-	// Simplicial LDL^T straight away: updown and rowadd modify only that
-	// form, and on the filters' factors (a few thousand scalars, a few
-	// hundred thousand non-zeros) a supernodal factorisation converted to it
-	// afterwards cost more in the conversion and the resymbolic pass than
-	// its BLAS kernels saved (docs/plugins/slsjf.md, "Recovery").
-	common_.supernodal = CHOLMOD_SIMPLICIAL;
+	// updown modifies only a simplicial LDL^T. CHOLMOD factors
+	// supernodally (BLAS) where the analysis predicts at least
+	// supernodal_switch (40) flops per non-zero of L, and converts the result,
+	// dropping the relaxed supernodes' zeros (final_resymbol): the filters'
+	// small factors stay simplicial (a supernodal factorisation converted
+	// cost more there, docs/plugins/slsjf.md "Recovery"); on a 150,000-step
+	// prefix of the 100k city (60k landmarks) the fresh factorisations went
+	// 458 -> 340 s of a 568 s replay, same factor and estimate
+	// (docs/sparse-core.md, "At city scale").
+	common_.supernodal = CHOLMOD_AUTO;
+	common_.final_resymbol = true;
 	common_.final_asis = false;
 	common_.final_super = false;
 	common_.final_ll = false;
