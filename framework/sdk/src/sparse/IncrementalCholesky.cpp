@@ -13,7 +13,7 @@ namespace
 {
 const std::string kCholeskyWhat = "sparse recovery (incremental Cholesky)";
 
-/// Placeholders reserved beyond the current dimension at each fresh
+/// Padding rows reserved beyond the current dimension at each fresh
 /// factorisation: enough for many steps of new features, few enough that
 /// the identity rows cost nothing noticeable in the solves.
 int capacityFor(int n)
@@ -80,7 +80,7 @@ void IncrementalCholesky::factorAfresh(const InformationForm& info, const Eigen:
 	fresh_nnz_per_scalar_ = static_cast<double>(factorNonZeros()) / n;
 	try
 	{
-		checkFactor(info, 0, kCholeskyWhat);
+		checkFactor(info);
 	}
 	catch (...)
 	{
@@ -101,7 +101,7 @@ void IncrementalCholesky::refactorTrailingPart(const InformationForm& info)
 	{
 		const std::vector<int> touched = touchedPositions(info);
 		applyPendingUpdates();
-		removePlaceholderDiagonals(info);
+		removePaddingDiagonals(info);
 		// The modifications changed only the columns on the paths of the
 		// rows they touched: the other pivots passed their check before.
 		checkPivotsAt(*L_, pathsToRoots(*L_, touched), ordering_.order, params_.min_pivot_ratio, info, kCholeskyWhat);
@@ -123,8 +123,8 @@ std::vector<int> IncrementalCholesky::touchedPositions(const InformationForm& in
 {
 	std::vector<int> out;
 	for (const auto& term : updates_.terms())
-		for (const int g : term.scalars)
-			if (g < factored_dim_) out.push_back(position(g));
+		for (const int g : term.scalars) out.push_back(position(g));
+	// A new scalar no update touched still needs its (zero) pivot checked.
 	for (int g = factored_dim_; g < info.scalarDim(); ++g) out.push_back(position(g));
 	return out;
 }
@@ -133,9 +133,9 @@ void IncrementalCholesky::applyPendingUpdates()
 {
 	// C of all pending updates side by side, rows permuted by L->Perm
 	// (cholmod_updown works on the rows of L, not of A). A new variable's
-	// rows go to its placeholder position (still an identity row): the
-	// update gives it 1 + its information there, and
-	// removePlaceholderDiagonals() takes the 1 back.
+	// rows go to its padding position (still an identity row): the update
+	// gives it 1 + its information there, and removePaddingDiagonals()
+	// takes the 1 back.
 	int columns = 0;
 	std::size_t nnz = 0;
 	for (const auto& p : updates_.terms())
@@ -177,9 +177,9 @@ void IncrementalCholesky::applyPendingUpdates()
 	common_.check(kCholeskyWhat + ": update of the trailing factor");
 }
 
-void IncrementalCholesky::removePlaceholderDiagonals(const InformationForm& info)
+void IncrementalCholesky::removePaddingDiagonals(const InformationForm& info)
 {
-	// A placeholder row was the identity row e_g (y_g = 0); after the update
+	// A padding row was the identity row e_g (y_g = 0); after the update
 	// its diagonal holds 1 + I(g, g). A rank-one downdate per new scalar
 	// takes the 1 back, so the factor is exactly that of I. New scalars sit
 	// last, so their paths, and this downdate, are short; one cholmod_rowadd
@@ -192,7 +192,7 @@ void IncrementalCholesky::removePlaceholderDiagonals(const InformationForm& info
 	if (added <= 0) return;
 	auto E = ownSparse(cholmod_allocate_sparse(capacity_, added, added, true, true, 0, CHOLMOD_REAL, common_.get()),
 					   common_);
-	if (!E) common_.check(kCholeskyWhat + ": allocating the placeholder downdate");
+	if (!E) common_.check(kCholeskyWhat + ": allocating the padding downdate");
 	for (int c = 0; c < added; ++c)
 	{
 		static_cast<int*>(E->p)[c] = c;
@@ -213,9 +213,9 @@ void IncrementalCholesky::forwardSolve(const InformationForm& info)
 	cholmodSolve(CHOLMOD_L, L_.get(), pb.get(), y_, ws_, common_, kCholeskyWhat + ": forward substitution");
 }
 
-void IncrementalCholesky::checkFactor(const InformationForm& info, int first_position, const std::string& what)
+void IncrementalCholesky::checkFactor(const InformationForm& info)
 {
-	checkPivots(factorPivots(*L_), first_position, ordering_.order, params_.min_pivot_ratio, info, what);
+	checkPivots(factorPivots(*L_), 0, ordering_.order, params_.min_pivot_ratio, info, kCholeskyWhat);
 }
 
 void IncrementalCholesky::solveState(const InformationForm& info, Eigen::VectorXd& x)

@@ -14,9 +14,8 @@
 ///    by construction and the trailing refactorisation costs O(k x fill of
 ///    the touched path), not a factorisation of the whole trailing block.
 ///  - A new variable takes the next padding positions (still trailing): its
-///    rows join the update at its placeholder, an identity row, and a
-///    rank-one downdate per new scalar takes the placeholder's 1 back off
-///    the diagonal.
+///    rows join the update at those identity rows, and a rank-one downdate
+///    per new scalar takes the padding's 1 back off the diagonal.
 ///  - The forward solution y = L^-1 P i is carried along by the _solve
 ///    variants of both calls (only its modified trailing entries change), so
 ///    the state costs one backward substitution, eq. (3.37), or, read on
@@ -69,9 +68,10 @@ class IncrementalCholesky : public RecoverySolver
 	/// Positions of the scalars the pending updates and new variables touch.
 	std::vector<int> touchedPositions(const InformationForm& info) const;
 	void applyPendingUpdates();
-	void removePlaceholderDiagonals(const InformationForm& info);
+	void removePaddingDiagonals(const InformationForm& info);
 	void forwardSolve(const InformationForm& info);
-	void checkFactor(const InformationForm& info, int first_position, const std::string& what);
+	/// Checks every pivot of a fresh factor.
+	void checkFactor(const InformationForm& info);
 	/// The trailing dimension at which the update log gives up (n0 under the
 	/// book's trigger; never below the factor's capacity otherwise).
 	int trailingLimit() const;
