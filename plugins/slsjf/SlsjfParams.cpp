@@ -36,7 +36,7 @@ void SlsjfParams::declare(ParamBinder& b)
 SparseRecoveryParams SlsjfParams::defaultRecovery()
 {
 	SparseRecoveryParams r;
-	r.reordering = Reordering::Amd;
+	r.reordering = Reordering::NestedDissection;
 	r.reorder_trigger = ReorderTrigger::FillGrowth;
 	r.max_fill_growth = 0.2;
 	r.n0 = 1000;  // the trailing part's bound if reorder_trigger = trailing_dimension

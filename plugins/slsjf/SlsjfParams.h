@@ -51,10 +51,10 @@ struct SlsjfParams : MapLevelAssociationParams
 
 	LocalMapBuilderParams builder;	///< local maps built from a rawlog
 	/// Recovery, reordering and when to reorder (Sec. 5.4.2, 3.3.2).
-	/// SLSJF's defaults: unconstrained AMD, rebuilt when the factor has
-	/// filled in by 20%, chosen against the book's trigger (CAMD, n0 = 1000)
-	/// on grid1225_large's 401 maps and the city scenarios
-	/// (docs/plugins/slsjf.md, "Defaults", has the measurements).
+	/// SLSJF's defaults: unconstrained nested dissection, rebuilt when the
+	/// factor has filled in by 20%, chosen against the book's trigger (CAMD,
+	/// n0 = 1000) and against AMD on grid1225_large's 401 maps and the city
+	/// scenarios (docs/plugins/slsjf.md, "Defaults", has the measurements).
 	SparseRecoveryParams recovery = defaultRecovery();
 
 	void declare(ParamBinder& b);

@@ -242,6 +242,7 @@ InformationPattern SparseInformationCore::pattern()
 	const char* order = params_.recovery == RecoveryMethod::FreshCholesky ? "AMD ordering"
 		: params_.reordering == Reordering::Camd								? "CAMD reordering"
 		: params_.reordering == Reordering::Amd									? "AMD reordering"
+		: params_.reordering == Reordering::NestedDissection					? "nested-dissection reordering"
 																				: "distance reordering";
 	if (cholmod_factor* L = solver_->method->choleskyFactor())
 	{

@@ -11,7 +11,8 @@ const std::vector<std::pair<std::string, RecoveryMethod>> kRecoveryNames = {
 
 const std::vector<std::pair<std::string, Reordering>> kReorderingNames = {{"distance", Reordering::Distance},
 																		  {"camd", Reordering::Camd},
-																		  {"amd", Reordering::Amd}};
+																		  {"amd", Reordering::Amd},
+																		  {"nested_dissection", Reordering::NestedDissection}};
 const std::vector<std::pair<std::string, ReorderTrigger>> kTriggerNames = {
 	{"trailing_dimension", ReorderTrigger::TrailingDimension}, {"fill_growth", ReorderTrigger::FillGrowth}};
 
@@ -34,7 +35,8 @@ void SparseRecoveryParams::declare(ParamBinder& b)
 	b.enumeration<Reordering>(
 		"reordering", reordering, kReorderingNames,
 		"reordering when the factor is rebuilt: by distance from the reference point (book), CAMD with "
-		"the nearest variables constrained last, or AMD with no constraint (least fill; for fill_growth)");
+		"the nearest variables constrained last, or with no constraint (for fill_growth) AMD or nested "
+		"dissection (METIS separators: less fill than AMD on large two-dimensional maps)");
 	b.integer("n0", n0, "trailing dimension of an update at which the state is reordered and factored afresh",
 			  Bounds::atLeast(1));
 	b.integer("camd_near_sets", camd_near_sets, "CAMD constraint sets of about n0/2 scalars for the nearest variables",

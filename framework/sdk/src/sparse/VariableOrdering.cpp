@@ -107,10 +107,22 @@ std::vector<VarId> orderByAmd(const InformationForm& info, CholmodCommon& c)
 	return asVariables(perm);
 }
 
+std::vector<VarId> orderByNestedDissection(const InformationForm& info, CholmodCommon& c)
+{
+	const int n = info.variableCount();
+	if (n == 0) return {};
+	auto A = variableGraph(info, c);
+	std::vector<int> perm(n), parent(n), member(n);
+	if (cholmod_nested_dissection(A.get(), nullptr, 0, perm.data(), parent.data(), member.data(), c.get()) < 0)
+		c.check("nested-dissection ordering");
+	return asVariables(perm);
+}
+
 std::vector<VarId> reorderVariables(const InformationForm& info, const Eigen::Vector2d& reference,
 									const SparseRecoveryParams& params, CholmodCommon& c)
 {
 	if (params.reordering == Reordering::Amd) return orderByAmd(info, c);
+	if (params.reordering == Reordering::NestedDissection) return orderByNestedDissection(info, c);
 	if (params.reordering == Reordering::Camd)
 		return orderByCamd(info, reference, std::max(1, params.n0 / 2), params.camd_near_sets, c);
 	return orderByDistance(info, reference);

@@ -5,8 +5,8 @@
 /// point (the robot, or a reference feature) at the end of the ordering, so
 /// that the next updates, which touch what is near, touch only a short
 /// trailing part of the factor (Case i). Variables stay contiguous (block
-/// orderings), as CHOLMOD's supernodes would group them anyway. A third,
-/// unconstrained AMD, trades that for the least fill.
+/// orderings), as CHOLMOD's supernodes would group them anyway. The other
+/// two, unconstrained AMD and nested dissection, trade that for less fill.
 
 #include "sparse/Cholmod.h"
 #include <esif/sparse/InformationForm.h>
@@ -45,6 +45,14 @@ std::vector<VarId> orderByCamd(const InformationForm& info, const Eigen::Vector2
 /// cholmod_updown pays for path by path; so it pairs with the fill-growth
 /// trigger, not with the book's n0, which would rebuild at nearly every update.
 std::vector<VarId> orderByAmd(const InformationForm& info, CholmodCommon& c);
+
+/// CHOLMOD's nested dissection on the graph of variables with no
+/// constraint: METIS vertex separators, ordered last, and constrained
+/// minimum degree (CCOLAMD) within the parts. On a map that spreads in two
+/// dimensions the separators stay about sqrt(n) wide, so the factor fills in
+/// as n log n where a minimum-degree ordering, blind to geometry, fills
+/// faster once the map is large.
+std::vector<VarId> orderByNestedDissection(const InformationForm& info, CholmodCommon& c);
 
 /// The reordering chosen by `params` (n0/2 scalars per CAMD near set).
 std::vector<VarId> reorderVariables(const InformationForm& info, const Eigen::Vector2d& reference,

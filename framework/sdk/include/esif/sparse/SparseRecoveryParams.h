@@ -21,7 +21,8 @@ enum class Reordering
 {
 	Distance,  ///< the book's: by distance from the reference point, farthest first
 	Camd,      ///< SuiteSparse CAMD, fill-reducing within constraint sets, nearest set last
-	Amd        ///< SuiteSparse AMD, fill-reducing with no constraint (pairs with ReorderTrigger::FillGrowth)
+	Amd,       ///< SuiteSparse AMD, fill-reducing with no constraint (pairs with ReorderTrigger::FillGrowth)
+	NestedDissection  ///< CHOLMOD's nested dissection (METIS separators, CCOLAMD within), no constraint
 };
 
 /// When the incremental Cholesky factor is rebuilt (Case ii).
@@ -34,7 +35,7 @@ enum class ReorderTrigger
 struct SparseRecoveryParams
 {
 	RecoveryMethod recovery = RecoveryMethod::IncrementalCholesky;  ///< incremental_cholesky | pcg | fresh_cholesky
-	Reordering reordering = Reordering::Distance;                   ///< distance | camd | amd
+	Reordering reordering = Reordering::Distance;                   ///< distance | camd | amd | nested_dissection
 	/// n0 of Sec. 3.3.1.1 / 3.3.2.1: when the trailing part touched since the
 	/// last factorisation (dimension of H_R, in scalars) reaches n0, reorder
 	/// and factor afresh; below it, refactor the trailing part only. The book
@@ -71,7 +72,7 @@ struct SparseRecoveryParams
 
 /// INI name of a recovery method ("incremental_cholesky", "pcg", "fresh_cholesky").
 const char* recoveryMethodName(RecoveryMethod m);
-/// INI name of a reordering ("distance", "camd", "amd").
+/// INI name of a reordering ("distance", "camd", "amd", "nested_dissection").
 const char* reorderingName(Reordering r);
 /// INI name of a reorder trigger ("trailing_dimension", "fill_growth").
 const char* reorderTriggerName(ReorderTrigger t);
