@@ -20,6 +20,7 @@ int capacityFor(int n)
 {
 	return n + std::max(64, n / 4);
 }
+
 }  // namespace
 
 IncrementalCholesky::IncrementalCholesky(const SparseRecoveryParams& params, SparseCounters& counters,
@@ -132,25 +133,15 @@ std::vector<int> IncrementalCholesky::touchedPositions(const InformationForm& in
 void IncrementalCholesky::applyPendingUpdates()
 {
 	// C of all pending updates side by side, rows permuted by L->Perm
-	// (cholmod_updown works on the rows of L, not of A). A new variable's
-	// rows go to its padding position (still an identity row): the update
-	// gives it 1 + its information there, and removePaddingDiagonals()
-	// takes the 1 back.
-	int columns = 0;
-	std::size_t nnz = 0;
-	for (const auto& p : updates_.terms())
-	{
-		columns += static_cast<int>(p.C.cols());
-		nnz += p.C.size();
-	}
-	auto C = ownSparse(cholmod_allocate_sparse(capacity_, columns, nnz, true, true, 0, CHOLMOD_REAL, common_.get()),
-					   common_);
-	if (!C) common_.check(kCholeskyWhat + ": allocating the update");
-	auto* cp = static_cast<int*>(C->p);
-	auto* ci = static_cast<int*>(C->i);
-	auto* cx = static_cast<double*>(C->x);
+	// (cholmod_updown works on the rows of L, not of A), each in staircase
+	// form. A new variable's rows go to its padding position (still an
+	// identity row): the update gives it 1 + its information there, and
+	// removePaddingDiagonals() takes the 1 back.
 	auto* db = static_cast<double*>(delta_b_->x);
-	int col = 0, k = 0;
+	std::vector<std::vector<int>> positions;  // per term, ascending
+	std::vector<Eigen::MatrixXd> columns;     // per term, rows by position
+	int total_columns = 0;
+	std::size_t nnz = 0;
 	std::vector<std::pair<int, int>> rows;  // (position, row of p.C)
 	for (const auto& p : updates_.terms())
 	{
@@ -161,18 +152,37 @@ void IncrementalCholesky::applyPendingUpdates()
 			db[rows.back().first] += p.delta_i[r];
 		}
 		std::sort(rows.begin(), rows.end());
-		for (int c = 0; c < p.C.cols(); ++c, ++col)
+		Eigen::MatrixXd sorted(p.C.rows(), p.C.cols());
+		positions.emplace_back();
+		for (std::size_t r = 0; r < rows.size(); ++r)
+		{
+			sorted.row(static_cast<Eigen::Index>(r)) = p.C.row(rows[r].second);
+			positions.back().push_back(rows[r].first);
+		}
+		columns.push_back(staircase(sorted));
+		total_columns += static_cast<int>(columns.back().cols());
+		nnz += columns.back().size();
+	}
+	if (nnz == 0) return;
+	auto C = ownSparse(
+		cholmod_allocate_sparse(capacity_, total_columns, nnz, true, true, 0, CHOLMOD_REAL, common_.get()), common_);
+	if (!C) common_.check(kCholeskyWhat + ": allocating the update");
+	auto* cp = static_cast<int*>(C->p);
+	auto* ci = static_cast<int*>(C->i);
+	auto* cx = static_cast<double*>(C->x);
+	int col = 0, k = 0;
+	for (std::size_t t = 0; t < columns.size(); ++t)
+		for (Eigen::Index c = 0; c < columns[t].cols(); ++c, ++col)
 		{
 			cp[col] = k;
-			for (const auto& [pos, r] : rows)
-			{
-				ci[k] = pos;
-				cx[k++] = p.C(r, c);
-			}
+			for (Eigen::Index r = 0; r < columns[t].rows(); ++r)
+				if (columns[t](r, c) != 0.0)
+				{
+					ci[k] = positions[t][static_cast<std::size_t>(r)];
+					cx[k++] = columns[t](r, c);
+				}
 		}
-	}
-	cp[columns] = k;
-	if (k == 0) return;
+	cp[total_columns] = k;
 	cholmod_updown_solve(true, C.get(), L_.get(), y_.get(), delta_b_.get(), common_.get());
 	common_.check(kCholeskyWhat + ": update of the trailing factor");
 }
