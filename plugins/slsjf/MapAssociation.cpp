@@ -50,6 +50,13 @@ std::vector<VarId> overlapCandidates(
 	return out;
 }
 
+/// nu^T S^-1 nu <= gate; false when S is not positive definite.
+bool insideGate(const Eigen::Matrix2d& S, const Eigen::Vector2d& nu, double gate)
+{
+	const Eigen::LLT<Eigen::Matrix2d> llt(S);
+	return llt.info() == Eigen::Success && nu.dot(llt.solve(nu)) <= gate;
+}
+
 /// The candidates in the new map's frame, with their covariance from the
 /// joint covariance of [start pose; candidates] (start-pose correlation included).
 void candidatesInLocalFrame(
@@ -101,16 +108,33 @@ MapAssociationOutcome associateByIds(
 	const double gate = params.idGateDistance2();
 	if (!start || matched.empty() || std::isinf(gate)) return out;
 
-	// The matched global features in the local frame (one covariance recovery).
-	PointSets sets;
-	candidatesInLocalFrame(global, *start, vars, sets);
+	// The innovation's covariance S is the local feature's plus the global
+	// feature's (moved into the local frame), so S >= the local one and a
+	// feature inside the gate under its local covariance alone is inside it
+	// under S: the same decision without recovering a covariance from the
+	// global map, which under a large map's top separators costs far more
+	// than the test. Only the others need it (one recovery for them all).
+	const Pose2 s = global.pose(*start);
+	std::vector<std::size_t> undecided;
+	std::vector<VarId> undecided_vars;
 	for (std::size_t k = 0; k < matched.size(); ++k)
 	{
-		const Eigen::Index i = matched[k], c = static_cast<Eigen::Index>(k);
-		const Eigen::Matrix2d S = local_cov.block<2, 2>(3 + 2 * i, 3 + 2 * i) + sets.candidates_cov.block<2, 2>(2 * c, 2 * c);
+		const Eigen::Index i = matched[k];
+		const Eigen::Vector2d nu = map.features[i].position - pointInFrame(s, global.point(vars[k])).value;
+		if (insideGate(local_cov.block<2, 2>(3 + 2 * i, 3 + 2 * i), nu, gate)) continue;
+		undecided.push_back(k);
+		undecided_vars.push_back(vars[k]);
+	}
+	if (undecided.empty()) return out;
+	PointSets sets;
+	candidatesInLocalFrame(global, *start, undecided_vars, sets);
+	for (std::size_t u = 0; u < undecided.size(); ++u)
+	{
+		const Eigen::Index i = matched[undecided[u]], c = static_cast<Eigen::Index>(u);
 		const Eigen::Vector2d nu = map.features[i].position - sets.candidates.row(c).transpose();
-		const Eigen::LLT<Eigen::Matrix2d> llt(S);
-		if (llt.info() == Eigen::Success && nu.dot(llt.solve(nu)) <= gate) continue;
+		if (insideGate(local_cov.block<2, 2>(3 + 2 * i, 3 + 2 * i) + sets.candidates_cov.block<2, 2>(2 * c, 2 * c), nu,
+					   gate))
+			continue;
 		out.decisions.associations[i].kind = Association::Kind::Rejected;
 		++out.tally.id_gate_rejected;
 	}
