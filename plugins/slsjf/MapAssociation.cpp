@@ -78,6 +78,65 @@ void candidatesInLocalFrame(
 	}
 	sets.candidates_cov = J * P * J.transpose();
 }
+
+/// A local feature (index in the map) and the global feature of its ID.
+struct IdMatch
+{
+	Eigen::Index local;
+	VarId global;
+};
+
+Eigen::Matrix2d localBlock(const Eigen::MatrixXd& local_cov, Eigen::Index i)
+{
+	return local_cov.block<2, 2>(3 + 2 * i, 3 + 2 * i);
+}
+
+/// The ID gate's first test. The innovation's covariance S is the local
+/// feature's plus the global feature's (moved into the local frame), so
+/// S >= the local one and a match inside the gate under its local
+/// covariance alone is inside it under S: the same decision, up to rounding
+/// at the gate's edge, without recovering a covariance from the global map,
+/// which under a large map's top separators costs far more than the test.
+/// Returns the matches this test cannot accept. It reads the estimates after
+/// the start pose's link (refreshed first), as the covariance recovery of
+/// the second test does.
+std::vector<IdMatch> undecidedByLocalGate(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, VarId start, GlobalMap& global,
+	const std::vector<IdMatch>& matches, double gate)
+{
+	global.core().refresh();
+	const Pose2 s = global.pose(start);
+	std::vector<IdMatch> undecided;
+	for (const IdMatch& m : matches)
+	{
+		const Eigen::Vector2d nu = map.features[m.local].position - pointInFrame(s, global.point(m.global)).value;
+		if (!insideGate(localBlock(local_cov, m.local), nu, gate)) undecided.push_back(m);
+	}
+	return undecided;
+}
+
+/// The ID gate's second test, under both maps' covariances (one recovery
+/// of the joint covariance of the start pose and the global features):
+/// the local features that fail it.
+std::vector<Eigen::Index> failingJointGate(
+	const LocalMap& map, const Eigen::MatrixXd& local_cov, VarId start, GlobalMap& global,
+	const std::vector<IdMatch>& undecided, double gate)
+{
+	std::vector<Eigen::Index> failing;
+	if (undecided.empty()) return failing;
+	std::vector<VarId> vars;
+	for (const IdMatch& m : undecided) vars.push_back(m.global);
+	PointSets sets;
+	candidatesInLocalFrame(global, start, vars, sets);
+	for (std::size_t u = 0; u < undecided.size(); ++u)
+	{
+		const Eigen::Index i = undecided[u].local, c = static_cast<Eigen::Index>(u);
+		const Eigen::Vector2d nu = map.features[i].position - sets.candidates.row(c).transpose();
+		if (!insideGate(localBlock(local_cov, i) + sets.candidates_cov.block<2, 2>(2 * c, 2 * c), nu, gate))
+			failing.push_back(i);
+	}
+	return failing;
+}
 }  // namespace
 
 double mapRadius(const LocalMap& map, const Eigen::MatrixXd& local_cov, double sigmas)
@@ -96,45 +155,19 @@ MapAssociationOutcome associateByIds(
 	const SlsjfParams& params)
 {
 	MapAssociationOutcome out;
-	std::vector<Eigen::Index> matched;
-	std::vector<VarId> vars;
+	std::vector<IdMatch> matches;
 	for (std::size_t i = 0; i < map.features.size(); ++i)
 	{
 		const auto& f = map.features[i];
 		const auto var = global.featureVar(f.id);
 		out.decisions.associations.push_back({var ? Association::Kind::Matched : Association::Kind::New, f.id});
-		if (var) matched.push_back(static_cast<Eigen::Index>(i)), vars.push_back(*var);
+		if (var) matches.push_back({static_cast<Eigen::Index>(i), *var});
 	}
 	const double gate = params.idGateDistance2();
-	if (!start || matched.empty() || std::isinf(gate)) return out;
-
-	// The innovation's covariance S is the local feature's plus the global
-	// feature's (moved into the local frame), so S >= the local one and a
-	// feature inside the gate under its local covariance alone is inside it
-	// under S: the same decision without recovering a covariance from the
-	// global map, which under a large map's top separators costs far more
-	// than the test. Only the others need it (one recovery for them all).
-	const Pose2 s = global.pose(*start);
-	std::vector<std::size_t> undecided;
-	std::vector<VarId> undecided_vars;
-	for (std::size_t k = 0; k < matched.size(); ++k)
+	if (!start || matches.empty() || std::isinf(gate)) return out;
+	const std::vector<IdMatch> undecided = undecidedByLocalGate(map, local_cov, *start, global, matches, gate);
+	for (const Eigen::Index i : failingJointGate(map, local_cov, *start, global, undecided, gate))
 	{
-		const Eigen::Index i = matched[k];
-		const Eigen::Vector2d nu = map.features[i].position - pointInFrame(s, global.point(vars[k])).value;
-		if (insideGate(local_cov.block<2, 2>(3 + 2 * i, 3 + 2 * i), nu, gate)) continue;
-		undecided.push_back(k);
-		undecided_vars.push_back(vars[k]);
-	}
-	if (undecided.empty()) return out;
-	PointSets sets;
-	candidatesInLocalFrame(global, *start, undecided_vars, sets);
-	for (std::size_t u = 0; u < undecided.size(); ++u)
-	{
-		const Eigen::Index i = matched[undecided[u]], c = static_cast<Eigen::Index>(u);
-		const Eigen::Vector2d nu = map.features[i].position - sets.candidates.row(c).transpose();
-		if (insideGate(local_cov.block<2, 2>(3 + 2 * i, 3 + 2 * i) + sets.candidates_cov.block<2, 2>(2 * c, 2 * c), nu,
-					   gate))
-			continue;
 		out.decisions.associations[i].kind = Association::Kind::Rejected;
 		++out.tally.id_gate_rejected;
 	}

@@ -36,12 +36,14 @@ TEST(SparseRecoveryParams, MethodsAreSetByName)
 	EXPECT_EQ(load("recovery = pcg").recovery, RecoveryMethod::Pcg);
 	EXPECT_EQ(load("recovery = fresh_cholesky").recovery, RecoveryMethod::FreshCholesky);
 	EXPECT_EQ(load("reordering = camd").reordering, Reordering::Camd);
+	EXPECT_EQ(load("reordering = nested_dissection").reordering, Reordering::NestedDissection);
 	const auto p = load("n0 = 100\npcg_relative_tolerance = 1e-12\nic_drop_tolerance = 0");
 	EXPECT_EQ(p.n0, 100);
 	EXPECT_EQ(p.pcg_relative_tolerance, 1e-12);
 	EXPECT_EQ(p.ic_drop_tolerance, 0.0);
 	EXPECT_STREQ(recoveryMethodName(RecoveryMethod::Pcg), "pcg");
 	EXPECT_STREQ(reorderingName(Reordering::Camd), "camd");
+	EXPECT_STREQ(reorderingName(Reordering::NestedDissection), "nested_dissection");
 	const auto f = load("reorder_trigger = fill_growth\nmax_fill_growth = 0.5");
 	EXPECT_EQ(f.reorder_trigger, ReorderTrigger::FillGrowth);
 	EXPECT_EQ(f.max_fill_growth, 0.5);

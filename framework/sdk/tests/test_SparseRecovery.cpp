@@ -93,8 +93,9 @@ TEST_P(SparseRecovery, StateAndCovarianceBlocksMatchDense)
 	EXPECT_EQ(compared, 5);
 	const auto c = core.counters();
 	// Both cases of Sec. 3.3.1.1 / 3.3.2.1 must have run for this test to mean anything.
-	// Unconstrained AMD leaves the newest variables anywhere in the order, so
-	// n0 = 60 rebuilds the factor more often than under CAMD or distance.
+	// Unconstrained AMD and nested dissection leave the newest variables
+	// anywhere in the order, so n0 = 60 rebuilds the factor more often than
+	// under CAMD or distance.
 	if (std::get<0>(GetParam()) != RecoveryMethod::FreshCholesky)
 	{
 		const bool unconstrained = std::get<1>(GetParam()) == Reordering::Amd ||

@@ -1,4 +1,4 @@
-// The staircase form of an update (TrailingUpdates.h): the same C C^T, a
+// The staircase form of an update (StaircaseUpdate.h): the same C C^T, a
 // lower staircase over the touched positions, and a cholmod_updown that
 // walks less of the factor. The factor is that of twelve blocks of 25
 // scalars joined by a 12-scalar separator, in natural order (the blocks,
@@ -8,7 +8,7 @@
 
 #include "sparse/Cholmod.h"
 #include <esif/sparse/LowerCsc.h>
-#include "sparse/TrailingUpdates.h"
+#include "sparse/StaircaseUpdate.h"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -35,8 +35,9 @@ void expectStaircaseOf(const Eigen::MatrixXd& C)
 	const Eigen::MatrixXd S = staircase(C);
 	ASSERT_EQ(S.rows(), C.rows());
 	EXPECT_EQ(S.cols(), std::min(C.rows(), C.cols()));
-	// Orthogonal recombination: C C^T kept to rounding (entries of C are
-	// N(0, 1), so C C^T's are O(cols); 1e-12 relative is ~50 eps).
+	// Orthogonal recombination: C C^T kept to rounding. Householder QR errs
+	// by a modest multiple of eps |C|^2 (eps = 2.2e-16, dimensions below
+	// 20): 1e-12 relative leaves a margin of over 100.
 	const Eigen::MatrixXd CCt = C * C.transpose();
 	EXPECT_LT((S * S.transpose() - CCt).norm(), 1e-12 * CCt.norm());
 	for (Eigen::Index j = 0; j < S.cols(); ++j)
@@ -48,6 +49,10 @@ TEST(StaircaseUpdate, KeepsCCtWithAtMostOneColumnPerRow)
 	expectStaircaseOf(randomMatrix(12, 20, 1));  // more columns than rows: the excess goes
 	expectStaircaseOf(randomMatrix(20, 6, 2));   // fewer: as many columns, one step each
 	expectStaircaseOf(randomMatrix(9, 9, 3));
+	Eigen::MatrixXd deficient = randomMatrix(8, 10, 7);
+	deficient.col(3) = deficient.col(1);  // a repeated column and a zero row
+	deficient.row(5).setZero();           // (a scalar this update leaves alone): rank 7
+	expectStaircaseOf(deficient);
 	const Eigen::MatrixXd one_column = randomMatrix(5, 1, 4);
 	EXPECT_EQ(staircase(one_column), one_column);
 }
@@ -110,7 +115,7 @@ Updated updateAndSolve(const Eigen::MatrixXd& A, const std::vector<int>& rows, c
 	return out;
 }
 
-TEST(StaircaseUpdate, SameFactorFromFewerColumnsOfTheFactor)
+TEST(StaircaseUpdate, SameSolutionFromFewerFlopsOfUpdown)
 {
 	const Eigen::MatrixXd A = blocksWithSeparator();
 	// A dense 16 x 16 update of the first scalar of four blocks and the whole

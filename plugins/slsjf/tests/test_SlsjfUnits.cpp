@@ -133,6 +133,44 @@ struct NoiseFree
 // any size would show.
 constexpr double kExact = 2e-6;
 
+/// A local map in the frame of its start pose with features of the given
+/// IDs and positions, all known to 1 mm (information 1e6 per coordinate).
+LocalMap preciseMap(std::size_t index, const std::vector<std::pair<LandmarkId, Eigen::Vector2d>>& features)
+{
+	LocalMap map;
+	map.index = index;
+	map.end_pose = Pose2(1, 0, 0);
+	for (const auto& [id, xy] : features) map.features.push_back({id, xy, index > 1});
+	const auto d = static_cast<Eigen::Index>(3 + 2 * features.size());
+	map.information = 1e6 * Eigen::MatrixXd::Identity(d, d);
+	return map;
+}
+
+TEST(SlsjfUnits, TheIdGateTestsEachMatchUnderBothMapsCovariances)
+{
+	// Map 2 starts at map 1's end pose, (1, 0, 0), through an odometry link
+	// whose heading is uncertain to 0.1 rad: a feature 10 m away is then
+	// uncertain by about 1 m across, in map 2's frame, while each map knows
+	// its features to 1 mm. The 0.9999 gate (2 dof) is 4.3 sigma.
+	auto plugin = test::makePlugin("Slsjf", "association = known_ids\nid_gate_chi2_quantile = 0.9999\n");
+	joinerOf(*plugin).joinLocalMap(
+		preciseMap(1, {{10, Eigen::Vector2d(10, 0)}, {11, Eigen::Vector2d(1, 10)}, {12, Eigen::Vector2d(10, 10)}}));
+	// In map 2's frame: 10 at (9, 0), 11 at (0, 10), 12 at (9, 10).
+	LocalMap second = preciseMap(2, {{10, Eigen::Vector2d(9, 0.0005)},  // inside the gate of the local 1 mm alone
+									 {11, Eigen::Vector2d(0.5, 10)},     // 500 sigma of 1 mm, 0.5 sigma of the heading
+									 {12, Eigen::Vector2d(39, 10)}});     // 30 m off: outside under both
+	second.link = OdometryIncrement{Pose2::Zero(), Eigen::Vector3d(1e-6, 1e-6, 0.01).asDiagonal()};
+	joinerOf(*plugin).joinLocalMap(second);
+
+	const StepReport report = joinerOf(*plugin).mapReport(2);
+	ASSERT_EQ(report.associations.size(), 3u);
+	EXPECT_EQ(report.associations[0].kind, Association::Kind::Matched);
+	EXPECT_EQ(report.associations[0].id, 10);
+	EXPECT_EQ(report.associations[1].kind, Association::Kind::Matched);
+	EXPECT_EQ(report.associations[1].id, 11);
+	EXPECT_EQ(report.associations[2].kind, Association::Kind::Rejected);
+}
+
 TEST(SlsjfUnits, NoiseFreeMapsGiveTheTruth)
 {
 	NoiseFree free;

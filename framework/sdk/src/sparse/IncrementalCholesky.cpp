@@ -2,6 +2,7 @@
 #include "sparse/IncrementalCholesky.h"
 #include "sparse/EliminationTreeSolves.h"
 #include "sparse/PivotCheck.h"
+#include "sparse/StaircaseUpdate.h"
 
 #include <algorithm>
 #include <cmath>
@@ -137,54 +138,64 @@ void IncrementalCholesky::applyPendingUpdates()
 	// form. A new variable's rows go to its padding position (still an
 	// identity row): the update gives it 1 + its information there, and
 	// removePaddingDiagonals() takes the 1 back.
+	std::vector<PositionedColumns> updates;
+	for (const auto& term : updates_.terms()) updates.push_back(staircaseAtPositions(term));
+	auto C = packColumns(updates, capacity_, common_);
+	if (!C) return;
+	cholmod_updown_solve(true, C.get(), L_.get(), y_.get(), delta_b_.get(), common_.get());
+	common_.check(kCholeskyWhat + ": update of the trailing factor");
+}
+
+IncrementalCholesky::PositionedColumns IncrementalCholesky::staircaseAtPositions(const TrailingUpdates::Term& term)
+{
 	auto* db = static_cast<double*>(delta_b_->x);
-	std::vector<std::vector<int>> positions;  // per term, ascending
-	std::vector<Eigen::MatrixXd> columns;     // per term, rows by position
-	int total_columns = 0;
-	std::size_t nnz = 0;
-	std::vector<std::pair<int, int>> rows;  // (position, row of p.C)
-	for (const auto& p : updates_.terms())
+	std::vector<std::pair<int, int>> rows;  // (position, row of term.C)
+	for (std::size_t r = 0; r < term.scalars.size(); ++r)
 	{
-		rows.clear();
-		for (std::size_t r = 0; r < p.scalars.size(); ++r)
-		{
-			rows.emplace_back(position(p.scalars[r]), static_cast<int>(r));
-			db[rows.back().first] += p.delta_i[r];
-		}
-		std::sort(rows.begin(), rows.end());
-		Eigen::MatrixXd sorted(p.C.rows(), p.C.cols());
-		positions.emplace_back();
-		for (std::size_t r = 0; r < rows.size(); ++r)
-		{
-			sorted.row(static_cast<Eigen::Index>(r)) = p.C.row(rows[r].second);
-			positions.back().push_back(rows[r].first);
-		}
-		columns.push_back(staircase(sorted));
-		total_columns += static_cast<int>(columns.back().cols());
-		nnz += columns.back().size();
+		rows.emplace_back(position(term.scalars[r]), static_cast<int>(r));
+		db[rows.back().first] += term.delta_i[r];
 	}
-	if (nnz == 0) return;
-	auto C = ownSparse(
-		cholmod_allocate_sparse(capacity_, total_columns, nnz, true, true, 0, CHOLMOD_REAL, common_.get()), common_);
-	if (!C) common_.check(kCholeskyWhat + ": allocating the update");
+	std::sort(rows.begin(), rows.end());
+	PositionedColumns out;
+	Eigen::MatrixXd sorted(term.C.rows(), term.C.cols());
+	for (std::size_t r = 0; r < rows.size(); ++r)
+	{
+		sorted.row(static_cast<Eigen::Index>(r)) = term.C.row(rows[r].second);
+		out.positions.push_back(rows[r].first);
+	}
+	out.columns = staircase(sorted);
+	return out;
+}
+
+CholmodSparsePtr IncrementalCholesky::packColumns(const std::vector<PositionedColumns>& updates, int rows,
+												  CholmodCommon& c)
+{
+	// Column j of a staircase is stored from its row j down, zeros included:
+	// every touched position stays in C's pattern (column 0 holds them
+	// all), so cholmod_updown_solve applies its delta_b there.
+	int columns = 0;
+	std::size_t nnz = 0;
+	for (const auto& u : updates)
+		for (Eigen::Index j = 0; j < u.columns.cols(); ++j, ++columns) nnz += u.columns.rows() - j;
+	if (nnz == 0) return nullptr;
+	auto C = ownSparse(cholmod_allocate_sparse(rows, columns, nnz, true, true, 0, CHOLMOD_REAL, c.get()), c);
+	if (!C) c.check(kCholeskyWhat + ": allocating the update");
 	auto* cp = static_cast<int*>(C->p);
 	auto* ci = static_cast<int*>(C->i);
 	auto* cx = static_cast<double*>(C->x);
 	int col = 0, k = 0;
-	for (std::size_t t = 0; t < columns.size(); ++t)
-		for (Eigen::Index c = 0; c < columns[t].cols(); ++c, ++col)
+	for (const auto& u : updates)
+		for (Eigen::Index j = 0; j < u.columns.cols(); ++j, ++col)
 		{
 			cp[col] = k;
-			for (Eigen::Index r = 0; r < columns[t].rows(); ++r)
-				if (columns[t](r, c) != 0.0)
-				{
-					ci[k] = positions[t][static_cast<std::size_t>(r)];
-					cx[k++] = columns[t](r, c);
-				}
+			for (Eigen::Index r = j; r < u.columns.rows(); ++r)
+			{
+				ci[k] = u.positions[static_cast<std::size_t>(r)];
+				cx[k++] = u.columns(r, j);
+			}
 		}
-	cp[total_columns] = k;
-	cholmod_updown_solve(true, C.get(), L_.get(), y_.get(), delta_b_.get(), common_.get());
-	common_.check(kCholeskyWhat + ": update of the trailing factor");
+	cp[columns] = k;
+	return C;
 }
 
 void IncrementalCholesky::removePaddingDiagonals(const InformationForm& info)

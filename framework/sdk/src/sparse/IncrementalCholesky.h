@@ -67,7 +67,19 @@ class IncrementalCholesky : public RecoverySolver
 	void refactorTrailingPart(const InformationForm& info);
 	/// Positions of the scalars the pending updates and new variables touch.
 	std::vector<int> touchedPositions(const InformationForm& info) const;
+	/// One pending update's columns in staircase form (StaircaseUpdate.h),
+	/// row r at factor position positions[r] (ascending).
+	struct PositionedColumns
+	{
+		std::vector<int> positions;
+		Eigen::MatrixXd columns;
+	};
 	void applyPendingUpdates();
+	/// `term` at its positions in staircase form; adds its delta_i to delta_b.
+	PositionedColumns staircaseAtPositions(const TrailingUpdates::Term& term);
+	/// The updates side by side as one CHOLMOD matrix of `rows` rows (null
+	/// when they hold nothing).
+	static CholmodSparsePtr packColumns(const std::vector<PositionedColumns>& updates, int rows, CholmodCommon& c);
 	void removePaddingDiagonals(const InformationForm& info);
 	void forwardSolve(const InformationForm& info);
 	/// Checks every pivot of a fresh factor.

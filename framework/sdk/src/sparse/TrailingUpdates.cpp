@@ -1,6 +1,5 @@
 #include "sparse/TrailingUpdates.h"
 
-#include <Eigen/QR>
 #include <algorithm>
 
 namespace esif
@@ -37,14 +36,6 @@ void TrailingUpdates::record(const InformationForm& info, const UpdateTerm& term
 		return;
 	}
 	terms_.push_back(std::move(t));
-}
-
-Eigen::MatrixXd staircase(const Eigen::MatrixXd& C)
-{
-	if (C.rows() < 1 || C.cols() < 2) return C;
-	const Eigen::HouseholderQR<Eigen::MatrixXd> qr(C.transpose());
-	const Eigen::Index k = std::min(C.rows(), C.cols());
-	return qr.matrixQR().topRows(k).triangularView<Eigen::Upper>().transpose();
 }
 
 }  // namespace esif

@@ -32,7 +32,14 @@ std::vector<VarId> byIncreasingDistance(const InformationForm& info, const Eigen
 	return vars;
 }
 
-/// Lower-triangular pattern of the variable graph (one node per variable).
+/// A CHOLMOD ordering reported failure: its error, or a generic one if it
+/// left no status (its permutation is scratch then, never to be used).
+[[noreturn]] void failed(const std::string& what, CholmodCommon& c)
+{
+	c.check(what);
+	throw NumericalError(what + ": CHOLMOD failed");
+}
+
 /// A permutation of variable indices as the variables it orders.
 std::vector<VarId> asVariables(const std::vector<int>& perm)
 {
@@ -41,6 +48,7 @@ std::vector<VarId> asVariables(const std::vector<int>& perm)
 	return vars;
 }
 
+/// Lower-triangular pattern of the variable graph (one node per variable).
 CholmodSparsePtr variableGraph(const InformationForm& info, CholmodCommon& c)
 {
 	const auto& I = info.matrix();
@@ -48,7 +56,7 @@ CholmodSparsePtr variableGraph(const InformationForm& info, CholmodCommon& c)
 	std::size_t nnz = 0;
 	for (int j = 0; j < n; ++j) nnz += I.column(j).size();
 	auto A = ownSparse(cholmod_allocate_sparse(n, n, nnz, true, true, -1, CHOLMOD_PATTERN, c.get()), c);
-	if (!A) c.check("CAMD ordering: allocating the variable graph");
+	if (!A) c.check("reordering: allocating the variable graph");
 	auto* p = static_cast<int*>(A->p);
 	auto* i = static_cast<int*>(A->i);
 	int k = 0;
@@ -93,7 +101,7 @@ std::vector<VarId> orderByCamd(const InformationForm& info, const Eigen::Vector2
 	for (int& m : member) m = used[m] - 1;
 	auto A = variableGraph(info, c);
 	std::vector<int> perm(n);
-	if (!cholmod_camd(A.get(), nullptr, 0, member.data(), perm.data(), c.get())) c.check("CAMD ordering");
+	if (!cholmod_camd(A.get(), nullptr, 0, member.data(), perm.data(), c.get())) failed("CAMD ordering", c);
 	return asVariables(perm);
 }
 
@@ -103,7 +111,7 @@ std::vector<VarId> orderByAmd(const InformationForm& info, CholmodCommon& c)
 	if (n == 0) return {};
 	auto A = variableGraph(info, c);
 	std::vector<int> perm(n);
-	if (!cholmod_amd(A.get(), nullptr, 0, perm.data(), c.get())) c.check("AMD ordering");
+	if (!cholmod_amd(A.get(), nullptr, 0, perm.data(), c.get())) failed("AMD ordering", c);
 	return asVariables(perm);
 }
 
@@ -114,7 +122,7 @@ std::vector<VarId> orderByNestedDissection(const InformationForm& info, CholmodC
 	auto A = variableGraph(info, c);
 	std::vector<int> perm(n), parent(n), member(n);
 	if (cholmod_nested_dissection(A.get(), nullptr, 0, perm.data(), parent.data(), member.data(), c.get()) < 0)
-		c.check("nested-dissection ordering");
+		failed("nested-dissection ordering", c);
 	return asVariables(perm);
 }
 

@@ -48,7 +48,7 @@ std::vector<VarId> orderByAmd(const InformationForm& info, CholmodCommon& c);
 
 /// CHOLMOD's nested dissection on the graph of variables with no
 /// constraint: METIS vertex separators, ordered last, and constrained
-/// minimum degree (CCOLAMD) within the parts. On a map that spreads in two
+/// minimum degree (CAMD) within the parts. On a map that spreads in two
 /// dimensions the separators stay about sqrt(n) wide, so the factor fills in
 /// as n log n where a minimum-degree ordering, blind to geometry, fills
 /// faster once the map is large.

@@ -104,9 +104,14 @@ class SparseInformationCore
 	int variableCount() const { return info_.variableCount(); }
 	int stateDim() const { return info_.scalarDim(); }
 
+	/// Brings the factor up to date with the updates so far: under an
+	/// on-demand recovery, estimates read after it are x = I^-1 i of the
+	/// information as of now (recoverState(), covariance() and
+	/// marginalCovariances() refresh by themselves).
+	void refresh();
+
    private:
 	void noteUpdate(const UpdateTerm& term);
-	void refresh();
 	/// Under an on-demand recovery, whether v's estimate comes from the factor.
 	bool readsFactor(VarId v) const;
 	/// Writes the on-demand estimates of `vars` into the information form,

@@ -22,7 +22,7 @@ enum class Reordering
 	Distance,  ///< the book's: by distance from the reference point, farthest first
 	Camd,      ///< SuiteSparse CAMD, fill-reducing within constraint sets, nearest set last
 	Amd,       ///< SuiteSparse AMD, fill-reducing with no constraint (pairs with ReorderTrigger::FillGrowth)
-	NestedDissection  ///< CHOLMOD's nested dissection (METIS separators, CCOLAMD within), no constraint
+	NestedDissection  ///< CHOLMOD's nested dissection (METIS separators, CAMD within), no constraint
 };
 
 /// When the incremental Cholesky factor is rebuilt (Case ii).
