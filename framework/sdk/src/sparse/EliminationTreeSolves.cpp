@@ -37,6 +37,23 @@ void checkPosition(int j, int n)
 	if (j < 0 || j >= n) throw std::out_of_range("elimination-tree solve: position outside the factor");
 }
 
+/// Walks up from each start until a position already claimed (whose
+/// ancestors are claimed too), claiming the rest and appending them to `out`.
+template <class Claimed, class Claim>
+void appendUnclaimedPaths(const FactorArrays& f, const std::vector<int>& starts, Claimed claimed, Claim claim,
+						  std::vector<int>& out)
+{
+	for (int j : starts)
+	{
+		checkPosition(j, f.n);
+		for (; j >= 0 && !claimed(j); j = f.parent(j))
+		{
+			claim(j);
+			out.push_back(j);
+		}
+	}
+}
+
 }  // namespace
 
 std::vector<int> pathsToRoots(const cholmod_factor& L, const std::vector<int>& starts)
@@ -44,16 +61,8 @@ std::vector<int> pathsToRoots(const cholmod_factor& L, const std::vector<int>& s
 	const FactorArrays f(L);
 	std::vector<char> reached(static_cast<std::size_t>(f.n), 0);
 	std::vector<int> out;
-	for (int j : starts)
-	{
-		checkPosition(j, f.n);
-		// A reached position's ancestors are reached too: stop there.
-		for (; j >= 0 && !reached[j]; j = f.parent(j))
-		{
-			reached[j] = 1;
-			out.push_back(j);
-		}
-	}
+	appendUnclaimedPaths(
+		f, starts, [&](int j) { return reached[j] != 0; }, [&](int j) { reached[j] = 1; }, out);
 	std::sort(out.begin(), out.end());
 	return out;
 }
@@ -93,15 +102,8 @@ Eigen::VectorXd PartialBackSubstitution::solveAt(const cholmod_factor& L, const 
 	// A position is claimed when queued: its value is computed below, before
 	// any caller can read it, and its ancestors are queued or known.
 	todo_.clear();
-	for (int j : positions)
-	{
-		checkPosition(j, f.n);
-		for (; j >= 0 && !known(j); j = f.parent(j))
-		{
-			stamp_[j] = epoch_;
-			todo_.push_back(j);
-		}
-	}
+	appendUnclaimedPaths(
+		f, positions, [this](int j) { return known(j); }, [this](int j) { stamp_[j] = epoch_; }, todo_);
 	// The root first: z_j = y_j / d_j - sum_i L_ij z_i over j's ancestors i.
 	std::sort(todo_.begin(), todo_.end(), std::greater<>());
 	for (const int j : todo_)

@@ -21,7 +21,6 @@ int capacityFor(int n)
 {
 	return n + std::max(64, n / 4);
 }
-
 }  // namespace
 
 IncrementalCholesky::IncrementalCholesky(const SparseRecoveryParams& params, SparseCounters& counters,

@@ -69,6 +69,18 @@ CholmodSparsePtr variableGraph(const InformationForm& info, CholmodCommon& c)
 	p[n] = k;
 	return A;
 }
+/// The variables in the order a CHOLMOD ordering of the variable graph
+/// gives: `order(A, perm)` writes the permutation and returns false when
+/// CHOLMOD failed.
+template <class Order>
+std::vector<VarId> orderVariableGraph(const InformationForm& info, const std::string& what, CholmodCommon& c,
+									  Order order)
+{
+	auto A = variableGraph(info, c);
+	std::vector<int> perm(static_cast<std::size_t>(info.variableCount()));
+	if (!order(A.get(), perm.data())) failed(what, c);
+	return asVariables(perm);
+}
 }  // namespace
 
 std::vector<VarId> orderByDistance(const InformationForm& info, const Eigen::Vector2d& reference)
@@ -99,31 +111,28 @@ std::vector<VarId> orderByCamd(const InformationForm& info, const Eigen::Vector2
 	for (int m : member) used[m] = 1;
 	std::partial_sum(used.begin(), used.end(), used.begin());
 	for (int& m : member) m = used[m] - 1;
-	auto A = variableGraph(info, c);
-	std::vector<int> perm(n);
-	if (!cholmod_camd(A.get(), nullptr, 0, member.data(), perm.data(), c.get())) failed("CAMD ordering", c);
-	return asVariables(perm);
+	return orderVariableGraph(info, "CAMD ordering", c, [&](cholmod_sparse* A, int* perm) {
+		return cholmod_camd(A, nullptr, 0, member.data(), perm, c.get()) != 0;
+	});
 }
 
 std::vector<VarId> orderByAmd(const InformationForm& info, CholmodCommon& c)
 {
 	const int n = info.variableCount();
 	if (n == 0) return {};
-	auto A = variableGraph(info, c);
-	std::vector<int> perm(n);
-	if (!cholmod_amd(A.get(), nullptr, 0, perm.data(), c.get())) failed("AMD ordering", c);
-	return asVariables(perm);
+	return orderVariableGraph(info, "AMD ordering", c, [&](cholmod_sparse* A, int* perm) {
+		return cholmod_amd(A, nullptr, 0, perm, c.get()) != 0;
+	});
 }
 
 std::vector<VarId> orderByNestedDissection(const InformationForm& info, CholmodCommon& c)
 {
 	const int n = info.variableCount();
 	if (n == 0) return {};
-	auto A = variableGraph(info, c);
-	std::vector<int> perm(n), parent(n), member(n);
-	if (cholmod_nested_dissection(A.get(), nullptr, 0, perm.data(), parent.data(), member.data(), c.get()) < 0)
-		failed("nested-dissection ordering", c);
-	return asVariables(perm);
+	std::vector<int> parent(n), member(n);  // the separator tree, not needed here
+	return orderVariableGraph(info, "nested-dissection ordering", c, [&](cholmod_sparse* A, int* perm) {
+		return cholmod_nested_dissection(A, nullptr, 0, perm, parent.data(), member.data(), c.get()) >= 0;
+	});
 }
 
 std::vector<VarId> reorderVariables(const InformationForm& info, const Eigen::Vector2d& reference,
