@@ -1163,6 +1163,39 @@ TEST(DslamUnitsMap, SharedLinearisationPointsAddNoInformationOnTheUnobservedRota
 	EXPECT_LT(current, 0.9);
 }
 
+TEST(DslamUnitsMap, ANewFeatureIsLinearisedWithItsPairAfterTheMapMoved)
+{
+	// f1 = (0, 0) and f2 = (4, 0) anchored, then moved 30 m along x by a far
+	// tighter prior (a loop closure translating the map): their shared
+	// linearisation points stay where they were mapped. A noise-free scan
+	// sees them and a new f3 at (2, 3) from the pair: f3 must land at
+	// (32, 3) beside the moved pair. A translation lies in the null space of
+	// every relative term (eq. 3.13), so the linearised update is exact here
+	// up to the first anchor's pull on the pair (1e-8 of 30 m) and
+	// round-off; 1e-4 m leaves room for both. Placed from the pair's
+	// estimates but linearised against its old points, f3 was thrown tens of
+	// metres off (the 10k city's D-SLAM divergence).
+	FeatureMap map(SparseRecoveryParams{});
+	map.shareLinearisationPoints(true);
+	PointSet mapped;
+	mapped.xy = (Eigen::VectorXd(4) << 0, 0, 4, 0).finished();
+	mapped.cov = 1e-4 * Eigen::MatrixXd::Identity(4, 4);
+	map.updateAnchor({1, 2}, mapped);
+	mapped.xy += (Eigen::VectorXd(4) << 30, 0, 30, 0).finished();
+	mapped.cov = 1e-12 * Eigen::MatrixXd::Identity(4, 4);
+	map.updateAnchor({1, 2}, mapped);
+	map.recover(Eigen::Vector2d::Zero());
+	ASSERT_NEAR(map.position(1).x(), 30.0, 1e-6);
+
+	PointSet scan;
+	scan.xy = (Eigen::VectorXd(6) << 0, 0, 4, 0, 2, 3).finished();
+	scan.cov = 1e-4 * Eigen::MatrixXd::Identity(6, 6);
+	map.updateRelative({1, 2, 3}, scan);
+	map.recover(Eigen::Vector2d::Zero());
+	EXPECT_NEAR((map.position(3) - Eigen::Vector2d(32, 3)).norm(), 0.0, 1e-4);
+	EXPECT_NEAR((map.position(2) - Eigen::Vector2d(34, 0)).norm(), 0.0, 1e-4);
+}
+
 TEST(DslamUnitsMap, RelativeUpdateNeedsSupportedReferencePair)
 {
 	const MapCase c;

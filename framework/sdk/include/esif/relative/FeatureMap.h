@@ -132,7 +132,9 @@ class FeatureMap
 	const SparseInformationCore& core() const { return core_; }
 
    private:
-	VarId createFeature(LandmarkId id, const Eigen::Vector2d& position);
+	/// A new variable at `position`, linearised at `shared_point` while
+	/// points are shared.
+	VarId createFeature(LandmarkId id, const Eigen::Vector2d& position, const Eigen::Vector2d& shared_point);
 	std::vector<VarId> variables(const std::vector<LandmarkId>& ids) const;
 	void markSupported(const std::vector<LandmarkId>& ids);
 
