@@ -20,15 +20,17 @@
 # 100k city, where it must refuse before replaying.
 #
 # The runs are kept in out/bench/city_scale/ (replaced by the next bench
-# run); REPORT_ONLY=1 writes the tables and figures again from them without
-# running anything.
+# run), each with the commit it was measured at; REPORT_ONLY=1 writes the
+# tables and figures again from them without running anything, and
+# ONLY="dslam ..." measures only those back-ends again, keeping the others'
+# runs (the page names the commit of every back-end's runs).
 #
 # usage: bench/city_scale.sh [RUNS] [SIZES] [--update-docs]   (default 3, "1k 10k 30k 100k")
 # Environment: ESIF, ESIF_BENCH_OUT, ESIF_RESULTS_DIR (bench/common.sh);
 # MAX_SIZES, default "slsjf=100k dslam_lmj=10k dslam=10k ceres_full=10k ekf=1k";
 # RUN_TIMEOUT, seconds after which a run is stopped and reported as such
 # (default 600: the issue's 10-minute target for the 100k city; longer lets
-# a slower 100k run finish and be measured); REPORT_ONLY.
+# a slower 100k run finish and be measured); REPORT_ONLY; ONLY.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 runs=${1:-3}
@@ -38,7 +40,14 @@ run_timeout=${RUN_TIMEOUT:-600}
 cache=$bench_out; mkdir -p "$cache"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-runs_dir=$cache/city_scale  # the runs of the last bench, for REPORT_ONLY=1
+runs_dir=$cache/city_scale  # the runs of the last bench, for REPORT_ONLY=1 and ONLY
+all_backends="slsjf dslam_lmj dslam ceres_full ekf"
+backends=${ONLY:-$all_backends}
+for backend in $backends; do
+  case " $all_backends " in *" $backend "*) ;; *) echo "bench/city_scale.sh: ONLY: unknown back-end $backend (one of: $all_backends)" >&2; exit 2 ;; esac
+done
+commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
+measures() { case " $backends " in *" $1 "*) return 0 ;; *) return 1 ;; esac; }
 
 config_of_size() { [ "$1" = 100k ] && echo configs/sim/city.ini || echo "configs/sim/city_$1.ini"; }
 landmarks_of_size() { echo "${1%k}000"; }
@@ -67,15 +76,27 @@ run_once() {
   code=0
   /usr/bin/time -f "%e %M" -o "$work/time" timeout "$run_timeout" "$esif" run -q --no-figures --config "configs/$backend.ini" \
     --rawlog "$log" --ground-truth "${log%.rawlog}" --out "$out" >"$work/stdout" 2>"$work/stderr" || code=$?
-  echo "$backend $size $code $(tail -1 "$work/time") ${out#"$runs_dir"/}" >>"$runs_dir/runs.tsv"
+  echo "$backend $size $code $(tail -1 "$work/time") ${out#"$runs_dir"/} $commit" >>"$runs_dir/runs.tsv"
   if [ "$code" = 124 ]; then echo "bench/city_scale.sh: $backend on city_$size stopped after $run_timeout s" >&2
   elif [ "$code" != 0 ]; then echo "bench/city_scale.sh: $backend on city_$size exited $code: $(grep -v '^Command exited' "$work/stderr" | tail -1)" >&2; fi
 }
 
 if [ "${REPORT_ONLY:-0}" != 1 ]; then
-  rm -rf "$runs_dir"; mkdir -p "$runs_dir"
+  if [ -n "${ONLY:-}" ]; then
+    # Keep the other back-ends' runs; forget only the ones measured again.
+    [ -f "$runs_dir/runs.tsv" ] || { echo "bench/city_scale.sh: ONLY needs the runs of a whole bench in $runs_dir" >&2; exit 1; }
+    for backend in $backends; do
+      grep -v "^$backend " "$runs_dir/runs.tsv" >"$work/runs.tsv" || true
+      mv "$work/runs.tsv" "$runs_dir/runs.tsv"
+      rm -rf "$runs_dir/${backend}"_*
+      [ "$backend" = dslam ] && rm -rf "$runs_dir"/no_odometry_*
+      [ "$backend" = ekf ] && rm -f "$runs_dir/ekf_refusal"
+    done
+  else
+    rm -rf "$runs_dir"; mkdir -p "$runs_dir"
+  fi
   for size in $sizes; do
-    for backend in slsjf dslam_lmj dslam ceres_full ekf; do
+    for backend in $backends; do
       for i in $(seq 1 "$(runs_at "$backend" "$size")"); do run_once "$backend" "$size" "$i"; done
     done
   done
@@ -89,6 +110,7 @@ if [ "${REPORT_ONLY:-0}" != 1 ]; then
   sed -e "/^\[esif\]/a calibration = $work/no_odometry.ini" -e 's/^label *=.*/label = ceres_full_no_odometry/' \
     configs/ceres_full.ini >"$work/ceres_full_no_odometry.ini"
   for size in $sizes; do
+    measures dslam || continue
     [ "$(runs_at dslam "$size")" = 0 ] && continue
     log=$(city_rawlog "$size")
     "$esif" run -q --no-figures --config "$work/ceres_full_no_odometry.ini" --rawlog "$log" --ground-truth "${log%.rawlog}" \
@@ -99,7 +121,7 @@ if [ "${REPORT_ONLY:-0}" != 1 ]; then
   # need, exit 1, nothing replayed (at 32k it would still be refused; at 10k
   # its 3.2 GB fit, and the run would take hours).
   largest=${sizes##* }
-  if [ "$largest" = 100k ] && [ "$(runs_at ekf "$largest")" = 0 ]; then
+  if measures ekf && [ "$largest" = 100k ] && [ "$(runs_at ekf "$largest")" = 0 ]; then
     code=0
     "$esif" run -q --no-figures --config configs/ekf.ini --rawlog "$(city_rawlog "$largest")" --out "$work/ekf_refused" \
       >/dev/null 2>"$work/ekf_refused.err" || code=$?
@@ -113,8 +135,10 @@ import json, math, os, statistics, sys
 runs_dir, work = sys.argv[1:3]
 
 rows = {}
+commits = {}
 for line in open(os.path.join(runs_dir, "runs.tsv")):
-    backend, size, code, seconds, peak_kb, run_dir = line.split()
+    backend, size, code, seconds, peak_kb, run_dir = line.split()[:6]
+    commits.setdefault(backend, set()).add(line.split()[6] if len(line.split()) > 6 else "unrecorded")
     stats = {}
     if code == "0":
         stats = json.load(open(os.path.join(runs_dir, run_dir, "stats.json")))
@@ -157,6 +181,7 @@ table.sort(key=lambda t: (order[t["backend"]], int(t["size"][:-1])))
 def cell(fmt, v):
     return "-" if v is None else fmt % v
 
+print("Runs measured at: " + "; ".join(f"{b} `{', '.join(sorted(c))}`" for b, c in commits.items()) + ".\n")
 print("### Every run, medians\n")
 print("| back-end | city | runs | steps | landmarks | local maps | whole process s | replay s | per fusion / step ms | peak memory MB | landmark RMSE m |")
 print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
