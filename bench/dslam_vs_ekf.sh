@@ -64,7 +64,7 @@ tables() {
       stat "$work/g_$name" step_us_p50 >>"$work/g_$name.p50"
     done
     d="$work/g_$name"; n=$(stat "$d" landmarks); mean=$(median <"$d.mean")
-    printf '| %s | %s | %s | %.3f | %.0f | %.0f | %.0f | %s | %s | %s |\n' "$name" "$(stat "$d" steps)" "$n" \
+    printf '| %s | %s | %s | %.3f | %.0f | %.0f | %.0f | %s | %.0f | %.0f |\n' "$name" "$(stat "$d" steps)" "$n" \
       "$(median <"$d.replay")" "$mean" "$(median <"$d.p50")" "$(awk -v m="$mean" -v n="$n" 'BEGIN {print 1000 * m / n}')" \
       "$(stat "$d" info_nnz)" "$(stat "$d" plugin_sparse_factor_nnz)" "$(stat "$d" plugin_sparse_full_reorders)"
   done

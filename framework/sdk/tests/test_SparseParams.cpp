@@ -11,6 +11,9 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+#include <string>
+
 namespace
 {
 using namespace esif;
@@ -48,6 +51,19 @@ TEST(SparseRecoveryParams, MethodsAreSetByName)
 	EXPECT_EQ(f.reorder_trigger, ReorderTrigger::FillGrowth);
 	EXPECT_EQ(f.max_fill_growth, 0.5);
 	EXPECT_STREQ(reorderTriggerName(ReorderTrigger::TrailingDimension), "trailing_dimension");
+}
+
+TEST(SparseRecoveryParams, EveryReorderingHasItsOwnFigureTitle)
+{
+	std::set<std::string> titles;
+	for (Reordering r : {Reordering::Distance, Reordering::Camd, Reordering::Amd, Reordering::NestedDissection})
+	{
+		const std::string title = reorderingTitle(r);
+		EXPECT_NE(title.find("reordering"), std::string::npos) << title;
+		titles.insert(title);
+	}
+	EXPECT_EQ(titles.size(), 4u);
+	EXPECT_STREQ(reorderingTitle(Reordering::NestedDissection), "nested-dissection reordering");
 }
 
 TEST(SparseRecoveryParams, InvalidValuesAreNamed)

@@ -240,10 +240,7 @@ InformationPattern SparseInformationCore::pattern()
 	refresh();
 	const int n = info_.scalarDim();
 	const char* order = params_.recovery == RecoveryMethod::FreshCholesky ? "AMD ordering"
-		: params_.reordering == Reordering::Camd								? "CAMD reordering"
-		: params_.reordering == Reordering::Amd									? "AMD reordering"
-		: params_.reordering == Reordering::NestedDissection					? "nested-dissection reordering"
-																				: "distance reordering";
+																		  : reorderingTitle(params_.reordering);
 	if (cholmod_factor* L = solver_->method->choleskyFactor())
 	{
 		out.factor = toEigenSparse(*L, n, solver_->cholmod);

@@ -63,4 +63,16 @@ const char* reorderTriggerName(ReorderTrigger t) { return nameIn(kTriggerNames, 
 
 const char* reorderingName(Reordering r) { return nameIn(kReorderingNames, r); }
 
+const char* reorderingTitle(Reordering r)
+{
+	switch (r)
+	{
+		case Reordering::Distance: return "distance reordering";
+		case Reordering::Camd: return "CAMD reordering";
+		case Reordering::Amd: return "AMD reordering";
+		case Reordering::NestedDissection: return "nested-dissection reordering";
+	}
+	return "?";
+}
+
 }  // namespace esif

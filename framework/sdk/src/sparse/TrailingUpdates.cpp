@@ -26,7 +26,10 @@ void TrailingUpdates::record(const InformationForm& info, const UpdateTerm& term
 	if (overflowed_) return;
 	Term t{info.scalarIndices(term.vars), term.C, term.delta_i};
 	for (int g : t.scalars) start_ = std::min(start_, g < factored_dim_ ? position[g] : factored_dim_);
-	rank_ += static_cast<int>(t.C.cols());
+	// C C^T has rank at most min(rows, columns): an update with more
+	// measurement rows than scalars reaches cholmod_updown with one column
+	// per scalar (staircase form, StaircaseUpdate.h).
+	rank_ += static_cast<int>(std::min(t.C.rows(), t.C.cols()));
 	// Dimension of H_R: from the first touched position to the end. Also
 	// give up when the logged rank exceeds 2 limit: a rank-k modification of
 	// the trailing part then costs more than factoring it afresh.

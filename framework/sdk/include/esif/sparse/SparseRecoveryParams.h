@@ -74,6 +74,8 @@ struct SparseRecoveryParams
 const char* recoveryMethodName(RecoveryMethod m);
 /// INI name of a reordering ("distance", "camd", "amd", "nested_dissection").
 const char* reorderingName(Reordering r);
+/// The reordering as a figure names it ("CAMD reordering", ...).
+const char* reorderingTitle(Reordering r);
 /// INI name of a reorder trigger ("trailing_dimension", "fill_growth").
 const char* reorderTriggerName(ReorderTrigger t);
 
