@@ -88,7 +88,7 @@ if [ "${REPORT_ONLY:-0}" != 1 ]; then
     for backend in $backends; do
       grep -v "^$backend " "$runs_dir/runs.tsv" >"$work/runs.tsv" || true
       mv "$work/runs.tsv" "$runs_dir/runs.tsv"
-      rm -rf "$runs_dir/${backend}"_*
+      rm -rf "$runs_dir/${backend}"_[0-9]*k_*  # not dslam_lmj_* for dslam
       [ "$backend" = dslam ] && rm -rf "$runs_dir"/no_odometry_*
       [ "$backend" = ekf ] && rm -f "$runs_dir/ekf_refusal"
     done
