@@ -137,8 +137,9 @@ runs_dir, work = sys.argv[1:3]
 rows = {}
 commits = {}
 for line in open(os.path.join(runs_dir, "runs.tsv")):
-    backend, size, code, seconds, peak_kb, run_dir = line.split()[:6]
-    commits.setdefault(backend, set()).add(line.split()[6] if len(line.split()) > 6 else "unrecorded")
+    fields = line.split()
+    backend, size, code, seconds, peak_kb, run_dir = fields[:6]
+    commits.setdefault(backend, set()).add(fields[6] if len(fields) > 6 else "unrecorded")
     stats = {}
     if code == "0":
         stats = json.load(open(os.path.join(runs_dir, run_dir, "stats.json")))
