@@ -554,6 +554,7 @@ CostFigures Dslam::costFigures() const
 	add("relinearisations", static_cast<double>(tally_.relinearisations));
 	add("relinearised_terms", static_cast<double>(tally_.relinearised_terms));
 	add("corrections_relinearised", static_cast<double>(tally_.corrections_relinearised));
+	add("relinearisations_rejected", static_cast<double>(map_->rejectedPasses()));
 	add("relocalisations", static_cast<double>(tally_.relocalisations));
 	add("ci_omega_mean", tally_.ci_fusions ? tally_.omega_sum / static_cast<double>(tally_.ci_fusions) : 0.0);
 	if (association_)

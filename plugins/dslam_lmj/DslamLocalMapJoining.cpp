@@ -375,6 +375,7 @@ CostFigures DslamLocalMapJoining::costFigures() const
 	c.counters.emplace_back("local_maps_unjoinable", static_cast<double>(tally_.maps_unjoinable));
 	tally_.association.appendCounters(c.counters);
 	c.counters.emplace_back("relinearised_terms", static_cast<double>(global_->relinearisedTerms()));
+	c.counters.emplace_back("relinearisations_rejected", static_cast<double>(global_->rejectedRelinearisations()));
 	return c;
 }
 

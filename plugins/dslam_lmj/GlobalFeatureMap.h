@@ -101,6 +101,8 @@ class GlobalFeatureMap
 	/// Original maps fused (unjoinable ones not counted).
 	std::size_t mapsFused() const;
 	std::size_t relinearisedTerms() const { return relinearised_terms_; }
+	/// Relinearisation passes taken back because they raised the map's cost.
+	std::size_t rejectedRelinearisations() const { return map_.rejectedPasses(); }
 
    private:
 	/// A fusion's record before its update: what was fused and its IDs.

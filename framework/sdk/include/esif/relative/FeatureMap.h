@@ -16,6 +16,7 @@
 #include <esif/relative/RelativeGeometry.h>
 #include <esif/sparse/SparseInformationCore.h>
 
+#include <Eigen/Cholesky>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -27,7 +28,7 @@ struct MapUpdate
 {
 	UpdateTerm term;
 	std::vector<LandmarkId> new_features;  ///< features this update created
-	long relative_index = -1;			   ///< its entry among the kept relative terms, if kept
+	long kept_index = -1;				   ///< its entry among the kept terms, if kept
 };
 
 /// Where a feature map's relative updates are linearised.
@@ -88,9 +89,10 @@ class FeatureMap
 	/// reset it to 3.4 deg each time).
 	void shareLinearisationPoints(bool share) { share_points_ = share; }
 
-	/// Keep every relative update's measurement (ids and points), so that
-	/// relinearise() can evaluate it again. Off by default (the book's EIF
-	/// never revisits an update).
+	/// Keep every update's measurement (ids, z and its covariance), so that
+	/// relinearise() can evaluate the relative ones again and cost() can
+	/// weigh them all. Off by default (the book's EIF never revisits an
+	/// update).
 	void keepRelativeTerms(bool keep) { keep_terms_ = keep; }
 	/// Re-evaluates kept relative updates, eq. (3.15), at the current
 	/// estimate (with shared points, all features' points move to the
@@ -106,8 +108,21 @@ class FeatureMap
 	std::size_t relinearise(double threshold_m = 0);
 	/// Gauss-Newton on the static map: up to `passes` relinearise() calls,
 	/// each followed by recover(reference), stopping at the first that
-	/// relinearises nothing. Returns the number of terms relinearised.
+	/// relinearises nothing. A pass that raises cost() by more than 0.1%
+	/// is taken back (its terms and shared points restored, the map
+	/// recovered as before it) and ends the iteration: undamped Gauss-Newton can overshoot where the
+	/// relative geometry is far from linear (reference pairs 0.2 m apart on
+	/// MRCLAM: on robot 3 without IDs one pass took the cost from 271 to
+	/// 633, four more threw a feature 990 m away and D-SLAM stopped as
+	/// diverged). Returns the number of terms relinearised in the passes
+	/// kept.
 	std::size_t relineariseUntilSettled(double threshold_m, int passes, const Eigen::Vector2d& reference);
+	/// Relinearisation passes taken back so far.
+	std::size_t rejectedPasses() const { return rejected_passes_; }
+	/// The map's nonlinear least-squares cost at the current estimate: the
+	/// sum over kept updates in force of |z - h(x)|^2 weighed by R^-1
+	/// (relative updates, eq. 3.13, and anchors). 0 unless terms are kept.
+	double cost() const;
 
 	/// The features `ids`' positions, stacked [x1, y1, x2, y2, ...].
 	Eigen::VectorXd positions(const std::vector<LandmarkId>& ids) const;
@@ -138,19 +153,39 @@ class FeatureMap
 	std::vector<VarId> variables(const std::vector<LandmarkId>& ids) const;
 	void markSupported(const std::vector<LandmarkId>& ids);
 
-	/// A kept relative update: its measurement and the term now applied.
-	struct RelativeTerm
+	/// An update's measurement: z_map with R_map, eq. (3.8)-(3.9), or an
+	/// anchor's points with their covariance.
+	struct Measurement
+	{
+		Eigen::VectorXd z;
+		Eigen::MatrixXd R;
+		Eigen::LLT<Eigen::MatrixXd> R_factor;  ///< for cost(), computed once
+	};
+	static Measurement relativeMeasurement(const PointSet& points);
+	/// A kept update: its measurement and the term now applied.
+	struct KeptTerm
 	{
 		std::vector<LandmarkId> ids;
-		PointSet points;
+		Measurement measurement;
 		UpdateTerm term;
 		Eigen::VectorXd linearised_at;	///< where `term` was evaluated (the features' stacked points)
+		bool anchor = false;			///< linear (H = I): never relinearised
 		bool active = true;
 	};
 	/// Eq. (3.13)-(3.15) linearised at `x_lin` (the features' stacked
 	/// linearisation points), `x_now` their current estimate (positions()).
-	UpdateTerm relativeTerm(const std::vector<LandmarkId>& ids, const PointSet& points, const Eigen::VectorXd& x_lin,
+	UpdateTerm relativeTerm(const std::vector<LandmarkId>& ids, const Measurement& m, const Eigen::VectorXd& x_lin,
 							const Eigen::VectorXd& x_now);
+	/// A relinearisation pass as applied: the terms it changed with their
+	/// old linearisation points, and the shared points before it.
+	struct Pass
+	{
+		std::vector<std::pair<std::size_t, Eigen::VectorXd>> changed;
+		std::vector<Eigen::Vector2d> shared_before;
+	};
+	Pass relinearisePass(double threshold_m);
+	/// Restores the terms and shared points `pass` changed.
+	void undo(const Pass& pass);
 	/// relativeChangeSince() between two stacked position vectors.
 	static double relativeChange(const Eigen::VectorXd& now, const Eigen::VectorXd& then);
 	/// Where an update on `ids` is linearised: their shared points, or their
@@ -159,7 +194,8 @@ class FeatureMap
 
 	SparseInformationCore core_;
 	bool keep_terms_ = false;
-	std::vector<RelativeTerm> terms_;
+	std::vector<KeptTerm> terms_;
+	std::size_t rejected_passes_ = 0;
 	std::unordered_map<LandmarkId, VarId> var_of_;
 	std::vector<LandmarkId> ids_;  ///< in order of creation (= variable order)
 	std::unordered_set<LandmarkId> unsupported_;
