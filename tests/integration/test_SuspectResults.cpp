@@ -1,7 +1,8 @@
 // No silent empty or degenerate result (SuspectResult.h): a run that maps no
 // landmark, fuses no local map, never matches a re-observation, maps more
 // than three landmarks per true one, rejects more than a quarter of the
-// measurements it was given IDs for or more than half of all still exits 0
+// measurements it was given IDs for or more than half of all, or (with
+// ground truth) claims landmarks 7 times surer than they are, still exits 0
 // with every output, but says so in one warning line, in stats.json
 // (suspect, suspect_reason), as the status "suspect" of its row in esif
 // compare, and in a Monte Carlo summary.
@@ -133,6 +134,23 @@ TEST(SuspectResults, ThresholdsLeaveLegitimateRunsAlone)
 	EXPECT_FALSE(reasonOf({{"landmarks", 8}, {"da_new", 8}, {"da_matched", 0}, {"landmarks_true", 8}}));
 	// Without measurement truth "never matched" cannot be told from "never re-observed".
 	EXPECT_FALSE(reasonOf({{"landmarks", 80}, {"da_new", 80}, {"da_matched", 0}}));
+	// The most over-confident committed filter given IDs on MRCLAM (SLSJF,
+	// robot 5: mean landmark NEES 21.9), and the boundary.
+	EXPECT_FALSE(reasonOf({{"landmarks", 15}, {"landmarks_true", 15}, {"landmark_nees_mean", 21.9}}));
+	EXPECT_FALSE(reasonOf({{"landmarks", 15}, {"landmarks_true", 15}, {"landmark_nees_mean", 100}}));
+}
+
+/// A map far more certain than it is right: D-SLAM without IDs on MRCLAM
+/// robot 3 (session 16), 7.17 m off with a mean landmark NEES of 3572.6,
+/// and none of the other rules holding (19 landmarks for 15 cylinders, 638
+/// of 4,348 measurements rejected).
+TEST(SuspectResults, AMapFarMoreCertainThanRightIsSuspect)
+{
+	EXPECT_EQ(reasonOf({{"landmarks", 19}, {"da_new", 19}, {"da_matched", 3691}, {"da_rejected", 638},
+						{"landmarks_true", 15}, {"landmark_nees_mean", 3572.6}}),
+			  std::string("its landmarks stand 42.3 times further from the ground truth than their covariance says "
+						  "(mean landmark NEES 3573, 2 when consistent)"));
+	EXPECT_TRUE(reasonOf({{"landmarks", 15}, {"landmarks_true", 15}, {"landmark_nees_mean", 100.1}}));
 }
 
 /// End to end: an EKF whose gates fail every re-observation on small.ini's

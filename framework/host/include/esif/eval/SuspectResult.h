@@ -5,7 +5,8 @@
 /// landmark of each measurement known, it matched none of more measurements
 /// than there are true landmarks, or mapped more than three landmarks per
 /// true one; given landmark IDs, it rejected more than a quarter of those
-/// measurements; or it rejected more measurements than it used. Each rule
+/// measurements; it rejected more measurements than it used; or, with
+/// ground truth, its landmarks' mean NEES is above 100. Each rule
 /// is explained in SuspectResult.cpp. Such a run is not a failure (it exits
 /// 0 and writes every output), but it is never silent either: one warning
 /// line, `suspect` and `suspect_reason` in stats.json, a `suspect` status in
