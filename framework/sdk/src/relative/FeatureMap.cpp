@@ -186,11 +186,13 @@ constexpr double kCostRiseTolerance = 1e-3;
 std::size_t FeatureMap::relineariseUntilSettled(double threshold_m, int passes, const Eigen::Vector2d& reference)
 {
 	std::size_t total = 0;
-	double cost_before = cost();
+	double cost_before = 0;
 	for (int i = 0; i < passes; ++i)
 	{
 		const Pass pass = relinearisePass(threshold_m);
 		if (pass.changed.empty()) break;
+		// The cost reads the estimate only, which the pass has not moved yet.
+		if (i == 0) cost_before = cost();
 		recover(reference);
 		const double cost_after = cost();
 		// Passes that relinearise only the terms past threshold_m are not

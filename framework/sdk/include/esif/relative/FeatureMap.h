@@ -110,12 +110,12 @@ class FeatureMap
 	/// each followed by recover(reference), stopping at the first that
 	/// relinearises nothing. A pass that raises cost() by more than 0.1%
 	/// is taken back (its terms and shared points restored, the map
-	/// recovered as before it) and ends the iteration: undamped Gauss-Newton can overshoot where the
-	/// relative geometry is far from linear (reference pairs 0.2 m apart on
-	/// MRCLAM: on robot 3 without IDs one pass took the cost from 271 to
-	/// 633, four more threw a feature 990 m away and D-SLAM stopped as
-	/// diverged). Returns the number of terms relinearised in the passes
-	/// kept.
+	/// recovered as before it) and ends the iteration: undamped
+	/// Gauss-Newton can overshoot where the relative geometry is far from
+	/// linear (reference pairs 0.2 m apart on MRCLAM: on robot 3 without
+	/// IDs one pass took the cost from 271 to 633, four more threw a feature
+	/// 990 m away and D-SLAM stopped as diverged). Returns the number of
+	/// terms relinearised in the passes kept.
 	std::size_t relineariseUntilSettled(double threshold_m, int passes, const Eigen::Vector2d& reference);
 	/// Relinearisation passes taken back so far.
 	std::size_t rejectedPasses() const { return rejected_passes_; }
