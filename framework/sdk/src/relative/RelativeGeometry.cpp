@@ -67,33 +67,54 @@ PointSet pointsInRobotFrame(const Eigen::VectorXd& range_bearing, const Eigen::M
 	return out;
 }
 
-ValueJacobian relativeGeometry(const Eigen::VectorXd& xy)
+namespace
 {
-	// Eq. (3.8): d12, then (a_i12, d_1i) for i = 3..m, all relative to f1.
+/// Eq. (3.8): d12, then (a_i12, d_1i) for i = 3..m, all relative to f1;
+/// with the Jacobian when `jacobian` is given.
+Eigen::VectorXd relativeGeometryOf(const Eigen::VectorXd& xy, Eigen::MatrixXd* jacobian)
+{
 	const int m = static_cast<int>(xy.size() / 2);
-	ValueJacobian out;
-	out.value.resize(2 * m - 3);
-	out.jacobian = Eigen::MatrixXd::Zero(2 * m - 3, 2 * m);
+	Eigen::VectorXd value(2 * m - 3);
+	if (jacobian) *jacobian = Eigen::MatrixXd::Zero(2 * m - 3, 2 * m);
 	const Eigen::Vector2d f1 = xy.head<2>();
 	Eigen::RowVector2d g_base, g;
 	const double base = angleOf(xy.segment<2>(2) - f1, g_base);
-	out.value(0) = lengthOf(xy.segment<2>(2) - f1, g);
-	out.jacobian.block<1, 2>(0, 0) = -g;
-	out.jacobian.block<1, 2>(0, 2) = g;
+	value(0) = lengthOf(xy.segment<2>(2) - f1, g);
+	if (jacobian)
+	{
+		jacobian->block<1, 2>(0, 0) = -g;
+		jacobian->block<1, 2>(0, 2) = g;
+	}
 	for (int i = 2; i < m; ++i)
 	{
 		const int row = 2 * i - 3;	// a_i12, then d_1i
 		const Eigen::Vector2d v = xy.segment<2>(2 * i) - f1;
-		out.value(row) = wrapAngle(angleOf(v, g) - base);
-		out.jacobian.block<1, 2>(row, 2 * i) = g;
-		out.jacobian.block<1, 2>(row, 0) = -g + g_base;
-		out.jacobian.block<1, 2>(row, 2) = -g_base;
-		out.value(row + 1) = lengthOf(v, g);
-		out.jacobian.block<1, 2>(row + 1, 2 * i) = g;
-		out.jacobian.block<1, 2>(row + 1, 0) = -g;
+		value(row) = wrapAngle(angleOf(v, g) - base);
+		if (jacobian)
+		{
+			jacobian->block<1, 2>(row, 2 * i) = g;
+			jacobian->block<1, 2>(row, 0) = -g + g_base;
+			jacobian->block<1, 2>(row, 2) = -g_base;
+		}
+		value(row + 1) = lengthOf(v, g);
+		if (jacobian)
+		{
+			jacobian->block<1, 2>(row + 1, 2 * i) = g;
+			jacobian->block<1, 2>(row + 1, 0) = -g;
+		}
 	}
+	return value;
+}
+}  // namespace
+
+ValueJacobian relativeGeometry(const Eigen::VectorXd& xy)
+{
+	ValueJacobian out;
+	out.value = relativeGeometryOf(xy, &out.jacobian);
 	return out;
 }
+
+Eigen::VectorXd relativeGeometryValue(const Eigen::VectorXd& xy) { return relativeGeometryOf(xy, nullptr); }
 
 bool isAngleEntry(int index) { return index % 2 == 1; }
 

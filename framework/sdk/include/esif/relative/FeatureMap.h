@@ -122,7 +122,7 @@ class FeatureMap
 	/// The map's nonlinear least-squares cost at the current estimate: the
 	/// sum over kept updates in force of |z - h(x)|^2 weighed by R^-1
 	/// (relative updates, eq. 3.13, and anchors). 0 unless terms are kept.
-	double cost() const;
+	double cost();
 
 	/// The features `ids`' positions, stacked [x1, y1, x2, y2, ...].
 	Eigen::VectorXd positions(const std::vector<LandmarkId>& ids) const;
@@ -161,11 +161,13 @@ class FeatureMap
 		Eigen::MatrixXd R;
 		Eigen::LLT<Eigen::MatrixXd> R_factor;  ///< for cost(), computed once
 	};
+	static Measurement measurement(Eigen::VectorXd z, const Eigen::MatrixXd& R);
 	static Measurement relativeMeasurement(const PointSet& points);
 	/// A kept update: its measurement and the term now applied.
 	struct KeptTerm
 	{
 		std::vector<LandmarkId> ids;
+		std::vector<VarId> vars;  ///< of `ids`
 		Measurement measurement;
 		UpdateTerm term;
 		Eigen::VectorXd linearised_at;	///< where `term` was evaluated (the features' stacked points)

@@ -60,6 +60,8 @@ struct ValueJacobian
 /// T2 / H_map / G, eq. (3.8), (3.13), (3.40): z_map of the points, with the
 /// Jacobian with respect to all of them ((2m - 3) x 2m). Angles wrapped.
 ValueJacobian relativeGeometry(const Eigen::VectorXd& xy);
+/// The same z_map without its Jacobian (a cost evaluation needs no more).
+Eigen::VectorXd relativeGeometryValue(const Eigen::VectorXd& xy);
 
 /// Indices of the angle entries of a z_map of m points (1, 3, 5, ...).
 bool isAngleEntry(int index);
