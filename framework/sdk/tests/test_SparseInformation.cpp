@@ -200,18 +200,24 @@ TEST(InformationForm, MeasurementUpdateIsEquation315)
 	EXPECT_EQ(s.info.matrix().nonZeros(), 4u + 9u + 4u + 2 * 6u);
 }
 
+/// A measurement of a point and a pose of Small: R badly scaled on purpose,
+/// like the authors' Victoria Park maps (sigmas from millimetres to metres).
+struct BadlyScaledMeasurement
+{
+	Eigen::MatrixXd J = (Eigen::MatrixXd(3, 5) << 1, 0, -1, 0, 0.2, 0, 1, 0, -1, 0.1, 0.5, 0.5, 0, 0, 1).finished();
+	Eigen::Matrix3d R = (Eigen::Matrix3d() << 4e-6, 1e-7, 0, 1e-7, 0.05, 0.002, 0, 0.002, 2.0).finished();
+	Eigen::Vector3d innovation{0.1, -0.2, 0.05};
+};
+
 TEST(InformationForm, InformationMeasurementEqualsTheCovarianceForm)
 {
 	// Eq. (5.9) given Lambda = R^-1 (a local map's information matrix) must
-	// be the update of eq. (3.15) with R, to round-off; Lambda is badly
-	// scaled on purpose, like the authors' Victoria Park maps (sigmas from
-	// millimetres to metres).
+	// be the update of eq. (3.15) with R, to round-off.
 	Small a, b;
-	Eigen::MatrixXd J(3, 5);
-	J << 1, 0, -1, 0, 0.2, 0, 1, 0, -1, 0.1, 0.5, 0.5, 0, 0, 1;
-	Eigen::Matrix3d R;
-	R << 4e-6, 1e-7, 0, 1e-7, 0.05, 0.002, 0, 0.002, 2.0;
-	const Eigen::Vector3d innovation(0.1, -0.2, 0.05);
+	const BadlyScaledMeasurement m;
+	const Eigen::MatrixXd& J = m.J;
+	const Eigen::Matrix3d& R = m.R;
+	const Eigen::Vector3d& innovation = m.innovation;
 	const Eigen::Matrix3d Lambda = R.inverse();  // 3x3, for the reference only
 	a.info.addMeasurement({a.p2, a.pose}, J, R, innovation);
 	const UpdateTerm term = b.info.addInformationMeasurement({b.p2, b.pose}, J, Lambda, innovation);
@@ -220,6 +226,24 @@ TEST(InformationForm, InformationMeasurementEqualsTheCovarianceForm)
 	EXPECT_LT((a.info.vector() - b.info.vector()).norm(), 1e-9 * a.info.vector().norm());
 	EXPECT_LT((term.C * term.C.transpose() - J.transpose() * Lambda * J).norm(), 1e-9 * Ia.norm());
 	EXPECT_THROW(b.info.addInformationMeasurement({b.p2, b.pose}, J, -Lambda, innovation), NumericalError);
+}
+
+TEST(InformationForm, FactoredCovarianceGivesTheSameUpdate)
+{
+	// A kept measurement is applied again at every relinearisation with R
+	// factored once: the update must be the covariance form's, bit for bit
+	// (the same factor, the same solves), and a failed factor is refused.
+	Small a, b;
+	const BadlyScaledMeasurement m;
+	const Eigen::MatrixXd R = m.R;
+	const UpdateTerm ta = a.info.addMeasurement({a.p2, a.pose}, m.J, R, m.innovation);
+	const UpdateTerm tb = b.info.addMeasurement({b.p2, b.pose}, m.J, Eigen::LLT<Eigen::MatrixXd>(R), m.innovation);
+	EXPECT_EQ(a.info.matrix().toDense(), b.info.matrix().toDense());
+	EXPECT_EQ(a.info.vector(), b.info.vector());
+	EXPECT_EQ(ta.C, tb.C);
+	EXPECT_THROW(b.info.addMeasurement({b.p2, b.pose}, m.J, Eigen::LLT<Eigen::MatrixXd>(-R), m.innovation),
+				 NumericalError);
+	EXPECT_EQ(a.info.vector(), b.info.vector());  // nothing applied by the refused call
 }
 
 TEST(InformationForm, PriorAddsInformationAndMean)

@@ -6,6 +6,9 @@ namespace esif
 {
 double wrapAngle(double a)
 {
+	// Most angles are in range already: remainder() returns them unchanged,
+	// at many times the cost of the test.
+	if (a > -M_PI && a <= M_PI) return a;
 	// remainder() maps to [-pi, pi]; fold -pi onto pi for a half-open range.
 	double r = std::remainder(a, 2.0 * M_PI);
 	return r <= -M_PI ? r + 2.0 * M_PI : r;

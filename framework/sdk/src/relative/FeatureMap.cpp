@@ -81,11 +81,12 @@ MapUpdate FeatureMap::updateRelative(const std::vector<LandmarkId>& ids, const P
 			update.new_features.push_back(ids[i]);
 		}
 	const Eigen::VectorXd x_lin = linearisationPoints(ids);
-	update.term = relativeTerm(ids, m, x_lin, positions(ids));
+	std::vector<VarId> vars = variables(ids);
+	update.term = relativeTerm(vars, m, x_lin, positions(ids));
 	if (keep_terms_)
 	{
 		update.kept_index = static_cast<long>(terms_.size());
-		terms_.push_back({ids, variables(ids), std::move(m), update.term, x_lin});
+		terms_.push_back({ids, std::move(vars), std::move(m), update.term, x_lin});
 	}
 	markSupported(ids);
 	return update;
@@ -101,10 +102,17 @@ FeatureMap::Measurement FeatureMap::relativeMeasurement(const PointSet& points)
 
 FeatureMap::Measurement FeatureMap::measurement(Eigen::VectorXd z, const Eigen::MatrixXd& R)
 {
-	return {std::move(z), R, Eigen::LLT<Eigen::MatrixXd>(R)};
+	return {std::move(z), Eigen::LLT<Eigen::MatrixXd>(R)};
 }
 
-UpdateTerm FeatureMap::relativeTerm(const std::vector<LandmarkId>& ids, const Measurement& m,
+void FeatureMap::termPoints(const KeptTerm& t, const Eigen::VectorXd& state, Eigen::VectorXd& out) const
+{
+	const InformationForm& form = core_.information();
+	out.resize(2 * static_cast<Eigen::Index>(t.vars.size()));
+	for (std::size_t i = 0; i < t.vars.size(); ++i) out.segment<2>(2 * i) = state.segment<2>(form.offset(t.vars[i]));
+}
+
+UpdateTerm FeatureMap::relativeTerm(const std::vector<VarId>& vars, const Measurement& m,
 									const Eigen::VectorXd& x_lin, const Eigen::VectorXd& x_now)
 {
 	// Eq. (3.13): H_map and its Jacobian at x_lin. The core adds
@@ -114,7 +122,7 @@ UpdateTerm FeatureMap::relativeTerm(const std::vector<LandmarkId>& ids, const Me
 	// the old term (undo()).
 	const ValueJacobian h = relativeGeometry(x_lin);
 	const Eigen::VectorXd nu = relativeDifference(m.z, h.value) + h.jacobian * (x_lin - x_now);
-	return core_.addMeasurement(variables(ids), h.jacobian, m.R, nu);
+	return core_.addMeasurement(vars, h.jacobian, m.R_factor, nu);
 }
 
 double FeatureMap::relativeChangeSince(const std::vector<LandmarkId>& ids, const Eigen::VectorXd& then) const
@@ -136,21 +144,26 @@ std::size_t FeatureMap::relinearise(double threshold_m) { return relinearisePass
 FeatureMap::Pass FeatureMap::relinearisePass(double threshold_m)
 {
 	Pass pass;
+	const Eigen::VectorXd& state = core_.state();
 	if (share_points_)
 	{
+		// Features are the core's variables in order of creation.
 		pass.shared_before = shared_point_;
-		for (std::size_t i = 0; i < ids_.size(); ++i) shared_point_[i] = position(ids_[i]);
+		const InformationForm& form = core_.information();
+		for (std::size_t i = 0; i < ids_.size(); ++i)
+			shared_point_[i] = state.segment<2>(form.offset(VarId{static_cast<int>(i)}));
 	}
+	Eigen::VectorXd now;
 	for (std::size_t k = 0; k < terms_.size(); ++k)
 	{
 		KeptTerm& t = terms_[k];
 		if (!t.active || t.anchor) continue;
-		Eigen::VectorXd now = positions(t.ids);
+		termPoints(t, state, now);
 		if (threshold_m > 0 && relativeChange(now, t.linearised_at) <= threshold_m) continue;
 		core_.withdraw(t.term);
-		t.term = relativeTerm(t.ids, t.measurement, now, now);
+		t.term = relativeTerm(t.vars, t.measurement, now, now);
 		pass.changed.emplace_back(k, std::move(t.linearised_at));
-		t.linearised_at = std::move(now);
+		t.linearised_at = now;
 	}
 	return pass;
 }
@@ -158,11 +171,14 @@ FeatureMap::Pass FeatureMap::relinearisePass(double threshold_m)
 void FeatureMap::undo(const Pass& pass)
 {
 	if (share_points_) shared_point_ = pass.shared_before;
+	const Eigen::VectorXd& state = core_.state();
+	Eigen::VectorXd now;
 	for (const auto& [k, old_lin] : pass.changed)
 	{
 		KeptTerm& t = terms_[k];
+		termPoints(t, state, now);
 		core_.withdraw(t.term);
-		t.term = relativeTerm(t.ids, t.measurement, old_lin, positions(t.ids));
+		t.term = relativeTerm(t.vars, t.measurement, old_lin, now);
 		t.linearised_at = old_lin;
 	}
 }
@@ -172,14 +188,12 @@ double FeatureMap::cost()
 	// Read from the whole state once: evaluated on every kept update after
 	// each relinearisation pass, per-feature reads cost as much as the rest.
 	const Eigen::VectorXd& state = core_.state();
-	const InformationForm& form = core_.information();
 	double total = 0;
 	Eigen::VectorXd x, r;
 	for (const KeptTerm& t : terms_)
 	{
 		if (!t.active) continue;
-		x.resize(2 * static_cast<Eigen::Index>(t.vars.size()));
-		for (std::size_t i = 0; i < t.vars.size(); ++i) x.segment<2>(2 * i) = state.segment<2>(form.offset(t.vars[i]));
+		termPoints(t, state, x);
 		r = t.anchor ? Eigen::VectorXd(t.measurement.z - x)
 					 : relativeDifference(t.measurement.z, relativeGeometryValue(x));
 		t.measurement.R_factor.matrixL().solveInPlace(r);  // |L^-1 r|^2 = r^T R^-1 r
@@ -234,13 +248,13 @@ MapUpdate FeatureMap::updateAnchor(const std::vector<LandmarkId>& ids, const Poi
 			update.new_features.push_back(ids[i]);
 		}
 	const auto n = static_cast<Eigen::Index>(points.xy.size());
-	update.term = core_.addMeasurement(variables(ids), Eigen::MatrixXd::Identity(n, n), points.cov,
-									   points.xy - positions(ids));
+	Measurement m = measurement(points.xy, points.cov);
+	std::vector<VarId> vars = variables(ids);
+	update.term = core_.addMeasurement(vars, Eigen::MatrixXd::Identity(n, n), m.R_factor, points.xy - positions(ids));
 	if (keep_terms_)
 	{
 		update.kept_index = static_cast<long>(terms_.size());
-		Measurement m = measurement(points.xy, points.cov);
-		terms_.push_back({ids, variables(ids), std::move(m), update.term, points.xy, true});
+		terms_.push_back({ids, std::move(vars), std::move(m), update.term, points.xy, true});
 	}
 	markSupported(ids);
 	return update;

@@ -65,14 +65,21 @@ UpdateTerm InformationForm::addMeasurement(const std::vector<VarId>& vars, const
 										   const Eigen::MatrixXd& R, const Eigen::VectorXd& innovation)
 {
 	checkMeasurement(vars, J, R, innovation);
-	const Eigen::LLT<Eigen::MatrixXd> llt(R);
-	if (llt.info() != Eigen::Success) throw NumericalError("measurement update: covariance R is not positive definite");
+	return addMeasurement(vars, J, Eigen::LLT<Eigen::MatrixXd>(R), innovation);
+}
+
+UpdateTerm InformationForm::addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+										   const Eigen::LLT<Eigen::MatrixXd>& R_factor, const Eigen::VectorXd& innovation)
+{
+	checkMeasurement(vars, J, R_factor.matrixLLT(), innovation);
+	if (R_factor.info() != Eigen::Success)
+		throw NumericalError("measurement update: covariance R is not positive definite");
 
 	// With R = L L^T: J^T R^-1 J = C C^T for C = (L^-1 J)^T, and
 	// J^T R^-1 (z - h + J x^) = C L^-1 (z - h + J x^)   (eq. 3.15).
 	const Eigen::VectorXd x_lin = linearisationPoint(vars, J.cols());
-	const Eigen::MatrixXd W = llt.matrixL().solve(J);
-	const Eigen::VectorXd w = llt.matrixL().solve(innovation + J * x_lin);
+	const Eigen::MatrixXd W = R_factor.matrixL().solve(J);
+	const Eigen::VectorXd w = R_factor.matrixL().solve(innovation + J * x_lin);
 	return applyWhitened(vars, W.transpose(), w);
 }
 

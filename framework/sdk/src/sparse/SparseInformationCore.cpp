@@ -70,20 +70,28 @@ VarId SparseInformationCore::addPose(const Eigen::Vector3d& initial)
 UpdateTerm SparseInformationCore::addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
 												 const Eigen::MatrixXd& R, const Eigen::VectorXd& innovation)
 {
-	ScopedTimer t(counters_.update_time_s);
-	settleEstimates(vars);
-	UpdateTerm term = info_.addMeasurement(vars, J, R, innovation);
-	noteUpdate(term);
-	return term;
+	return timedUpdate(vars, [&] { return info_.addMeasurement(vars, J, R, innovation); });
+}
+
+UpdateTerm SparseInformationCore::addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+												 const Eigen::LLT<Eigen::MatrixXd>& R_factor,
+												 const Eigen::VectorXd& innovation)
+{
+	return timedUpdate(vars, [&] { return info_.addMeasurement(vars, J, R_factor, innovation); });
 }
 
 UpdateTerm SparseInformationCore::addInformationMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
 															const Eigen::MatrixXd& information,
 															const Eigen::VectorXd& innovation)
 {
+	return timedUpdate(vars, [&] { return info_.addInformationMeasurement(vars, J, information, innovation); });
+}
+
+UpdateTerm SparseInformationCore::timedUpdate(const std::vector<VarId>& vars, const std::function<UpdateTerm()>& apply)
+{
 	ScopedTimer t(counters_.update_time_s);
 	settleEstimates(vars);
-	UpdateTerm term = info_.addInformationMeasurement(vars, J, information, innovation);
+	UpdateTerm term = apply();
 	noteUpdate(term);
 	return term;
 }

@@ -154,12 +154,12 @@ class FeatureMap
 	void markSupported(const std::vector<LandmarkId>& ids);
 
 	/// An update's measurement: z_map with R_map, eq. (3.8)-(3.9), or an
-	/// anchor's points with their covariance.
+	/// anchor's points with their covariance, held as its Cholesky factor:
+	/// factored once, for every relinearisation and cost() after.
 	struct Measurement
 	{
 		Eigen::VectorXd z;
-		Eigen::MatrixXd R;
-		Eigen::LLT<Eigen::MatrixXd> R_factor;  ///< for cost(), computed once
+		Eigen::LLT<Eigen::MatrixXd> R_factor;
 	};
 	static Measurement measurement(Eigen::VectorXd z, const Eigen::MatrixXd& R);
 	static Measurement relativeMeasurement(const PointSet& points);
@@ -174,10 +174,14 @@ class FeatureMap
 		bool anchor = false;			///< linear (H = I): never relinearised
 		bool active = true;
 	};
-	/// Eq. (3.13)-(3.15) linearised at `x_lin` (the features' stacked
-	/// linearisation points), `x_now` their current estimate (positions()).
-	UpdateTerm relativeTerm(const std::vector<LandmarkId>& ids, const Measurement& m, const Eigen::VectorXd& x_lin,
+	/// Eq. (3.13)-(3.15) on the features `vars`, linearised at `x_lin` (their
+	/// stacked linearisation points), `x_now` their current estimate.
+	UpdateTerm relativeTerm(const std::vector<VarId>& vars, const Measurement& m, const Eigen::VectorXd& x_lin,
 							const Eigen::VectorXd& x_now);
+	/// The current positions of a kept term's features, stacked as
+	/// positions() stacks them, read from `state` (the core's recovered
+	/// state) into `out`: what cost(), relinearisation and undo() read.
+	void termPoints(const KeptTerm& t, const Eigen::VectorXd& state, Eigen::VectorXd& out) const;
 	/// A relinearisation pass as applied: the terms it changed with their
 	/// old linearisation points, and the shared points before it.
 	struct Pass

@@ -10,6 +10,7 @@
 #include <esif/sparse/BlockSparseMatrix.h>
 #include <esif/sparse/SparseTypes.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -40,6 +41,12 @@ class InformationForm
 	/// R is not positive definite or an input is not finite.
 	UpdateTerm addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R,
 							  const Eigen::VectorXd& innovation);
+	/// The same update with R given by its Cholesky factor (R = L L^T),
+	/// for a measurement applied again and again (a relinearised update):
+	/// R is factored once by its owner. Throws NumericalError if the factor
+	/// failed or an input is not finite.
+	UpdateTerm addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+							  const Eigen::LLT<Eigen::MatrixXd>& R_factor, const Eigen::VectorXd& innovation);
 
 	/// The same update with the measurement's information matrix Lambda =
 	/// R^-1 given instead of R (eq. 5.9 with a local map's information

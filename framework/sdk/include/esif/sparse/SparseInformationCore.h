@@ -43,6 +43,9 @@ class SparseInformationCore
 	/// Returns the update as applied, for a later withdraw().
 	UpdateTerm addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R,
 							  const Eigen::VectorXd& innovation);
+	/// The same with R given by its Cholesky factor (InformationForm.h).
+	UpdateTerm addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+							  const Eigen::LLT<Eigen::MatrixXd>& R_factor, const Eigen::VectorXd& innovation);
 	/// EIF update with the measurement's information matrix instead of its
 	/// covariance (eq. 5.9 with a local map's information, never inverted).
 	UpdateTerm addInformationMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
@@ -111,6 +114,9 @@ class SparseInformationCore
 	void refresh();
 
    private:
+	/// An update of the information form (`apply`) on `vars`: their on-demand
+	/// estimates settled first, its time counted, the solver told.
+	UpdateTerm timedUpdate(const std::vector<VarId>& vars, const std::function<UpdateTerm()>& apply);
 	void noteUpdate(const UpdateTerm& term);
 	/// Under an on-demand recovery, whether v's estimate comes from the factor.
 	bool readsFactor(VarId v) const;
