@@ -86,7 +86,7 @@ MapUpdate FeatureMap::updateRelative(const std::vector<LandmarkId>& ids, const P
 	if (keep_terms_)
 	{
 		update.kept_index = static_cast<long>(terms_.size());
-		terms_.push_back({ids, std::move(vars), std::move(m), update.term, x_lin});
+		terms_.push_back({std::move(vars), std::move(m), update.term, x_lin});
 	}
 	markSupported(ids);
 	return update;
@@ -105,11 +105,15 @@ FeatureMap::Measurement FeatureMap::measurement(Eigen::VectorXd z, const Eigen::
 	return {std::move(z), Eigen::LLT<Eigen::MatrixXd>(R)};
 }
 
+Eigen::Vector2d FeatureMap::pointIn(const Eigen::VectorXd& state, VarId v) const
+{
+	return state.segment<2>(core_.information().offset(v));
+}
+
 void FeatureMap::termPoints(const KeptTerm& t, const Eigen::VectorXd& state, Eigen::VectorXd& out) const
 {
-	const InformationForm& form = core_.information();
 	out.resize(2 * static_cast<Eigen::Index>(t.vars.size()));
-	for (std::size_t i = 0; i < t.vars.size(); ++i) out.segment<2>(2 * i) = state.segment<2>(form.offset(t.vars[i]));
+	for (std::size_t i = 0; i < t.vars.size(); ++i) out.segment<2>(2 * i) = pointIn(state, t.vars[i]);
 }
 
 UpdateTerm FeatureMap::relativeTerm(const std::vector<VarId>& vars, const Measurement& m,
@@ -149,9 +153,7 @@ FeatureMap::Pass FeatureMap::relinearisePass(double threshold_m)
 	{
 		// Features are the core's variables in order of creation.
 		pass.shared_before = shared_point_;
-		const InformationForm& form = core_.information();
-		for (std::size_t i = 0; i < ids_.size(); ++i)
-			shared_point_[i] = state.segment<2>(form.offset(VarId{static_cast<int>(i)}));
+		for (std::size_t i = 0; i < ids_.size(); ++i) shared_point_[i] = pointIn(state, VarId{static_cast<int>(i)});
 	}
 	Eigen::VectorXd now;
 	for (std::size_t k = 0; k < terms_.size(); ++k)
@@ -254,7 +256,7 @@ MapUpdate FeatureMap::updateAnchor(const std::vector<LandmarkId>& ids, const Poi
 	if (keep_terms_)
 	{
 		update.kept_index = static_cast<long>(terms_.size());
-		terms_.push_back({ids, std::move(vars), std::move(m), update.term, points.xy, true});
+		terms_.push_back({std::move(vars), std::move(m), update.term, points.xy, true});
 	}
 	markSupported(ids);
 	return update;

@@ -166,8 +166,7 @@ class FeatureMap
 	/// A kept update: its measurement and the term now applied.
 	struct KeptTerm
 	{
-		std::vector<LandmarkId> ids;
-		std::vector<VarId> vars;  ///< of `ids`
+		std::vector<VarId> vars;  ///< the update's features, in its order
 		Measurement measurement;
 		UpdateTerm term;
 		Eigen::VectorXd linearised_at;	///< where `term` was evaluated (the features' stacked points)
@@ -182,6 +181,8 @@ class FeatureMap
 	/// positions() stacks them, read from `state` (the core's recovered
 	/// state) into `out`: what cost(), relinearisation and undo() read.
 	void termPoints(const KeptTerm& t, const Eigen::VectorXd& state, Eigen::VectorXd& out) const;
+	/// Feature `v`'s position in `state` (the core's recovered state).
+	Eigen::Vector2d pointIn(const Eigen::VectorXd& state, VarId v) const;
 	/// A relinearisation pass as applied: the terms it changed with their
 	/// old linearisation points, and the shared points before it.
 	struct Pass
