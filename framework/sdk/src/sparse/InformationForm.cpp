@@ -65,13 +65,19 @@ UpdateTerm InformationForm::addMeasurement(const std::vector<VarId>& vars, const
 										   const Eigen::MatrixXd& R, const Eigen::VectorXd& innovation)
 {
 	checkMeasurement(vars, J, R, innovation);
-	return addMeasurement(vars, J, Eigen::LLT<Eigen::MatrixXd>(R), innovation);
+	return applyFactored(vars, J, Eigen::LLT<Eigen::MatrixXd>(R), innovation);
 }
 
 UpdateTerm InformationForm::addMeasurement(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
 										   const Eigen::LLT<Eigen::MatrixXd>& R_factor, const Eigen::VectorXd& innovation)
 {
 	checkMeasurement(vars, J, R_factor.matrixLLT(), innovation);
+	return applyFactored(vars, J, R_factor, innovation);
+}
+
+UpdateTerm InformationForm::applyFactored(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+										  const Eigen::LLT<Eigen::MatrixXd>& R_factor, const Eigen::VectorXd& innovation)
+{
 	if (R_factor.info() != Eigen::Success)
 		throw NumericalError("measurement update: covariance R is not positive definite");
 

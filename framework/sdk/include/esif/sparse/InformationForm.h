@@ -98,6 +98,9 @@ class InformationForm
 	/// Offset of each of `vars` in a stacked vector over them.
 	std::vector<int> starts(const std::vector<VarId>& vars) const;
 	void addToVector(const std::vector<VarId>& vars, const std::vector<int>& start, const Eigen::VectorXd& delta_i);
+	/// Eq. (3.15) with R's factor, the inputs already checked by the caller.
+	UpdateTerm applyFactored(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
+							 const Eigen::LLT<Eigen::MatrixXd>& R_factor, const Eigen::VectorXd& innovation);
 	UpdateTerm applyWhitened(const std::vector<VarId>& vars, Eigen::MatrixXd C, const Eigen::VectorXd& rhs);
 
 	BlockSparseMatrix I_;
