@@ -77,7 +77,10 @@ run_once() {
   /usr/bin/time -f "%e %M" -o "$work/time" timeout "$run_timeout" "$esif" run -q --no-figures --config "configs/$backend.ini" \
     --rawlog "$log" --ground-truth "${log%.rawlog}" --out "$out" >"$work/stdout" 2>"$work/stderr" || code=$?
   echo "$backend $size $code $(tail -1 "$work/time") ${out#"$runs_dir"/} $commit" >>"$runs_dir/runs.tsv"
-  if [ "$code" = 124 ]; then echo "bench/city_scale.sh: $backend on city_$size stopped after $run_timeout s" >&2
+  if [ "$code" = 124 ]; then
+    # esif's own line on the signal: how many steps the replay had reached.
+    grep -o 'after [0-9]* of [0-9]* [a-z ]*s' "$work/stderr" | tail -1 >"$out.stopped" || true
+    echo "bench/city_scale.sh: $backend on city_$size stopped after $run_timeout s ($(cat "$out.stopped"))" >&2
   elif [ "$code" != 0 ]; then echo "bench/city_scale.sh: $backend on city_$size exited $code: $(grep -v '^Command exited' "$work/stderr" | tail -1)" >&2; fi
 }
 
@@ -143,7 +146,7 @@ for line in open(os.path.join(runs_dir, "runs.tsv")):
     stats = {}
     if code == "0":
         stats = json.load(open(os.path.join(runs_dir, run_dir, "stats.json")))
-    rows.setdefault((backend, size), []).append(dict(code=int(code), seconds=float(seconds),
+    rows.setdefault((backend, size), []).append(dict(code=int(code), seconds=float(seconds), run_dir=run_dir,
                                                         peak_mb=float(peak_kb) / 1024, stats=stats))
 
 def med(values):
@@ -162,6 +165,9 @@ for (backend, size), runs in rows.items():
     if not ok:
         code = runs[0]["code"]
         failed = f"stopped after {runs[0]['seconds']:.0f} s" if code == 124 else f"exit {code}"
+        reached = os.path.join(runs_dir, runs[0]["run_dir"] + ".stopped")
+        if code == 124 and os.path.exists(reached) and open(reached).read().strip():
+            failed += " (" + open(reached).read().strip().replace("after", "replayed", 1) + ")"
         table.append(dict(backend=backend, size=size, failed=failed, runs=len(runs), peak_mb=runs[0]["peak_mb"]))
         continue
     s = ok[0]["stats"]

@@ -13,6 +13,7 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sys/file.h>
 #include <sys/prctl.h>
 #include <thread>
@@ -255,6 +256,28 @@ TEST(RunFolder, SigtermDuringAReRunKeepsThePreviousFolderAndLeavesNothing)
 	const auto [code, text] = finish(child);
 	EXPECT_EQ(code, 128 + SIGTERM) << text;
 	EXPECT_EQ(readText(out + "/stats.json"), stats);
+	EXPECT_TRUE(leftovers(dir.path()).empty());
+}
+
+TEST(RunFolder, SigtermDuringTheReplaySaysHowFarItGot)
+{
+	// A run stopped by a time limit (bench/city_scale.sh's timeout) or by
+	// the user says which step it had reached, in one line on stderr.
+	TempDir dir;
+	const std::string out = dir.file("out");
+	const auto child = spawnEsif(runArgs("ekf.ini", longRawlog(dir), out));
+	ASSERT_FALSE(waitForPartial(dir.path(), ".out.partial-").empty());
+	// Well into the replay, which takes about 20 s: reading the rawlog and
+	// starting the plugin take 0.1-0.5 s here, more on a loaded machine.
+	std::this_thread::sleep_for(std::chrono::seconds(2));
+	::kill(child.pid, SIGTERM);
+	const auto [code, text] = finish(child);
+	EXPECT_EQ(code, 128 + SIGTERM) << text;
+	std::smatch m;
+	ASSERT_TRUE(std::regex_search(
+		text, m, std::regex("esif: esif::EkfSlam stopped by signal 15 after ([0-9]+) of ([0-9]+) steps, [0-9.]+ s into the replay\n")))
+		<< text;
+	EXPECT_LT(std::stoul(m[1]), std::stoul(m[2])) << text;
 	EXPECT_TRUE(leftovers(dir.path()).empty());
 }
 

@@ -27,6 +27,7 @@ struct Registry
 	std::vector<std::string> paths;
 	std::vector<pid_t> children;
 	std::vector<std::pair<pid_t, int>> servers;	 ///< pid and socket
+	std::function<std::string(int)> stop_note;
 };
 
 Registry& registry()
@@ -97,6 +98,30 @@ void removeRegistered(const std::vector<std::string>& paths)
 	}
 }
 
+/// One write(2): the main thread may be inside a stream write holding its
+/// lock.
+void writeStopNote(const std::function<std::string(int)>& note, int sig)
+{
+	if (!note) return;
+	std::string line;
+	try
+	{
+		// Below a progress bar, not appended to it.
+		line = (::isatty(STDERR_FILENO) ? "\n" : "") + note(sig) + "\n";
+	}
+	catch (...)
+	{
+		return;
+	}
+	for (std::size_t done = 0; done < line.size();)
+	{
+		const ssize_t n = ::write(STDERR_FILENO, line.data() + done, line.size() - done);
+		if (n < 0 && errno == EINTR) continue;
+		if (n <= 0) return;
+		done += static_cast<std::size_t>(n);
+	}
+}
+
 [[noreturn]] void watch()
 {
 	const sigset_t set = terminationSignals();
@@ -109,6 +134,7 @@ void removeRegistered(const std::vector<std::string>& paths)
 	stopChildren(r.children, sig);
 	stopServers(r.servers);
 	removeRegistered(r.paths);
+	writeStopNote(r.stop_note, sig);
 	// _exit, not exit: other threads may be inside library code that static
 	// destructors would pull from under them.
 	::_exit(128 + sig);
@@ -159,6 +185,7 @@ void restartInForkedChild()
 	r.paths.clear();
 	r.children.clear();
 	r.servers.clear();
+	r.stop_note = nullptr;
 	launchWatcher();
 }
 
@@ -175,6 +202,14 @@ void removePath(const std::string& path)
 	const auto it = std::find(paths.rbegin(), paths.rend(), path);
 	if (it != paths.rend()) paths.erase(std::next(it).base());
 }
+
+void setStopNote(std::function<std::string(int)> note)
+{
+	std::lock_guard<std::mutex> lock(registry().mutex);
+	registry().stop_note = std::move(note);
+}
+
+void clearStopNote() { setStopNote(nullptr); }
 
 void addChild(pid_t pid)
 {

@@ -8,6 +8,7 @@
 /// thread could not safely remove folders; a watcher thread can, and a
 /// mutex keeps it from doing so halfway through a folder swap.
 
+#include <functional>
 #include <mutex>
 #include <string>
 #include <sys/types.h>
@@ -38,6 +39,15 @@ void restartInForkedChild();
 void addPath(const std::string& path);
 /// Unregisters `path` (it was moved into place or removed already).
 void removePath(const std::string& path);
+
+/// A line saying where the work stood, written to stderr when a signal ends
+/// the process (after the cleanup): "esif: stopped by signal 15 at step 123
+/// of 500000 ...", so that a run stopped by a time limit or by the user
+/// still tells how far it got. `note` is called from the watcher thread: it
+/// must read only what is safe to read concurrently (atomics). Replaces any
+/// earlier note; clearStopNote() before what it reads goes away.
+void setStopNote(std::function<std::string(int signal)> note);
+void clearStopNote();
 
 /// A child process to forward a signal to and wait for; several may run
 /// at once (esif montecarlo --jobs). It may also be a run the run server
