@@ -376,6 +376,7 @@ CostFigures DslamLocalMapJoining::costFigures() const
 	tally_.association.appendCounters(c.counters);
 	c.counters.emplace_back("relinearised_terms", static_cast<double>(global_->relinearisedTerms()));
 	c.counters.emplace_back("relinearisations_rejected", static_cast<double>(global_->rejectedRelinearisations()));
+	appendLocalMapCounters(c.counters);
 	return c;
 }
 

@@ -21,6 +21,7 @@ CostFigures EkfSlam::costFigures() const
 	c.counters.emplace_back("iterated_updates", static_cast<double>(filter_.iteratedUpdates()));
 	c.counters.emplace_back("relinearisations", static_cast<double>(filter_.relinearisations()));
 	c.counters.emplace_back("iterations_stopped_uphill", static_cast<double>(filter_.iterationsStoppedUphill()));
+	filter_.rejections().appendCounters(c.counters, "");
 	return c;
 }
 

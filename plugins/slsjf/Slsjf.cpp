@@ -221,6 +221,7 @@ CostFigures Slsjf::costFigures() const
 	c.counters.emplace_back("smoothing_runs", static_cast<double>(tally_.smoothing_runs));
 	c.counters.emplace_back("smoothing_iterations", static_cast<double>(tally_.smoothing_iterations));
 	c.counters.emplace_back("smoothing_s", tally_.smoothing_s);
+	appendLocalMapCounters(c.counters);
 	return c;
 }
 

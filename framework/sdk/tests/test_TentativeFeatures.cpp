@@ -7,9 +7,11 @@
 #include <esif/association/Chi2.h>
 #include <esif/association/TentativeFeatures.h>
 #include <esif/ekf/LandmarkEkf.h>
+#include <esif/localmap/LocalMapBuilder.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace
@@ -193,6 +195,50 @@ TEST(LandmarkEkfAmbiguity, TwinsCloserThanTheSensorResolvesAreMatchedNotWaitedOn
 	EXPECT_NE(r.associations[0].kind, Association::Kind::New);
 	EXPECT_EQ(ekf.core().landmarkCount(), 1u);
 	EXPECT_EQ(ekf.ambiguousWaits(), 0u);
+}
+
+std::size_t rejectedIn(const StepReport& r)
+{
+	return static_cast<std::size_t>(std::count_if(r.associations.begin(), r.associations.end(),
+		[](const Association& a) { return a.kind == Association::Kind::Rejected; }));
+}
+
+TEST(LandmarkEkfRejections, EverySightingLeftOutIsCountedByItsCause)
+{
+	// Held: the first sighting of a landmark waits for a second.
+	LandmarkEkf held(distanceAssociation(true, 0));
+	std::size_t rejected = rejectedIn(held.processStep(step(0, -1, 0, 0, {{5.0, 0.0}})));
+	EXPECT_EQ(rejected, 1u);
+	EXPECT_EQ(held.rejections().unconfirmed, 1u);
+
+	// Poorly observed: 0.51 m beyond a landmark mapped from one sighting at
+	// 5 m (range variance 0.01 + 0.01): d2 = 13, outside the 0.99 gate
+	// (9.21), inside the 0.9999 new-landmark gate (18.4).
+	LandmarkEkf poor(distanceAssociation(false, 0));
+	poor.processStep(step(0, -1, 0, 0, {{5.0, 0.0}}));
+	rejected = rejectedIn(poor.processStep(step(1, 0.0, 1e-4, 1e-5, {{5.51, 0.0}})));
+	EXPECT_EQ(rejected, 1u);
+	EXPECT_EQ(poor.rejections().poorly_observed, 1u);
+	EXPECT_EQ(poor.core().landmarkCount(), 1u);
+
+	// Each cause only where it applies.
+	EXPECT_EQ(held.rejections().poorly_observed + held.rejections().ambiguous_waits, 0u);
+	EXPECT_EQ(poor.rejections().unconfirmed + poor.rejections().ambiguous_waits, 0u);
+}
+
+TEST(LocalMapBuilderRejections, TheLocalMapsCountsAreSummedOverEveryMap)
+{
+	// Maps of two steps; each starts with a first sighting held for a second.
+	LocalMapBuilderParams params;
+	params.local_map_steps = 2;
+	params.association = distanceAssociation(true, 0);
+	LocalMapBuilder builder(params);
+	std::size_t rejected = 0;
+	for (std::size_t k = 0; k < 6; ++k)
+		rejected += rejectedIn(builder.processStep(step(k, k ? 0.1 : -1.0, 1e-3, 1e-4, {{5.0 - 0.1 * k, 0.0}})));
+	EXPECT_EQ(builder.openMapIndex(), 4u);  // three closed maps, one open
+	EXPECT_EQ(builder.rejections().unconfirmed, rejected);
+	EXPECT_GE(rejected, 3u);
 }
 
 /// `s` with every measurement's fused noise inflated to 0.5 m, 3 deg (errors

@@ -234,7 +234,7 @@ StepReport LandmarkEkf::associateByDistance(const Scan& scan, std::vector<EkfSla
 		const int c = result.candidate_of[i];
 		if (c >= 0 && !taken[c] && lone_pair && isAmbiguous(scan, ms[i], candidates, static_cast<std::size_t>(c)))
 		{
-			++ambiguous_waits_;
+			++rejections_.ambiguous_waits;
 			report.associations.push_back({Association::Kind::Rejected, -1});
 		}
 		else if (c >= 0 && !taken[c])
@@ -247,7 +247,10 @@ StepReport LandmarkEkf::associateByDistance(const Scan& scan, std::vector<EkfSla
 		else if (c < 0 && result.min_distance2[i] > gate_distance2_new_)
 			report.associations.push_back({Association::Kind::New, -1});
 		else
+		{
+			rejections_.poorly_observed += c < 0;
 			report.associations.push_back({Association::Kind::Rejected, -1});
+		}
 	}
 	return report;
 }
@@ -291,7 +294,7 @@ void LandmarkEkf::addNewLandmarks(const Scan& scan, std::size_t step, StepReport
 		if (a.id < 0 && params_.confirm_new_landmarks && !confirmedSighting(scan, m, step))
 		{
 			a.kind = Association::Kind::Rejected;
-			++unconfirmed_sightings_;
+			++rejections_.unconfirmed;
 			continue;
 		}
 		if (a.id < 0)

@@ -202,8 +202,16 @@ LocalMap LocalMapBuilder::closeOpenMap()
 	return map;
 }
 
+SightingRejections LocalMapBuilder::rejections() const
+{
+	SightingRejections all = rejections_in_closed_maps_;
+	all += ekf_.rejections();
+	return all;
+}
+
 void LocalMapBuilder::startNextMap()
 {
+	rejections_in_closed_maps_ += ekf_.rejections();
 	++index_;
 	ekf_ = LandmarkEkf(params_.association, next_own_id_, params_.jacobians);
 	steps_ = measurements_ = 0;

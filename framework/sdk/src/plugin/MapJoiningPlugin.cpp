@@ -29,6 +29,11 @@ const LocalMapBuilder& MapJoiningPlugin::builder() const
 	return *builder_;
 }
 
+void MapJoiningPlugin::appendLocalMapCounters(std::vector<std::pair<std::string, double>>& counters) const
+{
+	if (builder_) builder_->rejections().appendCounters(counters, "local_");
+}
+
 StepReport MapJoiningPlugin::processStep(const StepInput& step)
 {
 	requireBuilder();

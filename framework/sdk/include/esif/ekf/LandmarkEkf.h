@@ -39,6 +39,7 @@
 #include <esif/core/Estimate.h>
 #include <esif/ekf/EkfAssociationParams.h>
 #include <esif/ekf/EkfSlamCore.h>
+#include <esif/ekf/SightingRejections.h>
 
 #include <optional>
 #include <unordered_map>
@@ -79,14 +80,16 @@ class LandmarkEkf
 	/// before any had confirmed them (the measurement is counted here, not
 	/// in idGateRejections()).
 	std::size_t idGateDrops() const { return id_gate_drops_; }
+	/// Sightings associated by distance and left out, by cause.
+	const SightingRejections& rejections() const { return rejections_; }
 	/// Matches left out because another candidate was nearly as likely
 	/// (EkfAssociationParams::ambiguity_margin_chi2_quantile).
-	std::size_t ambiguousWaits() const { return ambiguous_waits_; }
+	std::size_t ambiguousWaits() const { return rejections_.ambiguous_waits; }
 	/// First sightings held as tentative landmarks, waiting for their second
 	/// (EkfAssociationParams::confirm_new_landmarks).
 	std::size_t tentativeCount() const { return tentative_.tentativeCount(); }
 	/// Sightings held (and not fused) because no earlier one confirmed them.
-	std::size_t unconfirmedSightings() const { return unconfirmed_sightings_; }
+	std::size_t unconfirmedSightings() const { return rejections_.unconfirmed; }
 	/// Updates that were iterated (EkfAssociationParams::relinearise_above_d2).
 	std::size_t iteratedUpdates() const { return iterated_updates_; }
 	/// Their linearisations beyond the first.
@@ -136,9 +139,8 @@ class LandmarkEkf
 	std::size_t jcbb_fallbacks_ = 0;
 	std::size_t id_gate_rejections_ = 0;
 	std::size_t id_gate_drops_ = 0;
-	std::size_t ambiguous_waits_ = 0;
+	SightingRejections rejections_;
 	TentativeFeatures tentative_;
-	std::size_t unconfirmed_sightings_ = 0;
 	std::size_t iterated_updates_ = 0;
 	std::size_t relinearisations_ = 0;
 	std::size_t stopped_uphill_ = 0;

@@ -45,6 +45,9 @@ class LocalMapBuilder
 
 	/// The open map's filter: robot pose and features in the open map's frame.
 	const LandmarkEkf& openMap() const { return ekf_; }
+	/// Sightings the local maps' filters left out, by cause: every map so
+	/// far, the open one included.
+	SightingRejections rejections() const;
 	/// Index k of the open map.
 	std::size_t openMapIndex() const { return index_; }
 	/// Steps the open map has taken in.
@@ -80,6 +83,7 @@ class LocalMapBuilder
 
 	LocalMapBuilderParams params_;
 	LandmarkEkf ekf_;
+	SightingRejections rejections_in_closed_maps_;
 	std::size_t index_ = 1;
 	std::size_t steps_ = 0, measurements_ = 0, first_step_ = 0, last_step_ = 0;
 	double travelled_m_ = 0;

@@ -54,6 +54,10 @@ class MapJoiningPlugin : public FilterPlugin, public LocalMapJoiner
 	/// (PluginWithParams::configure calls it).
 	void startBuilder(const LocalMapBuilderParams& params);
 	const LocalMapBuilder& builder() const;
+	/// Appends the local maps' sighting rejections (local_ambiguous_waits,
+	/// local_poorly_observed_sightings, local_unconfirmed_sightings) when
+	/// this run builds its local maps; nothing when it joins given ones.
+	void appendLocalMapCounters(std::vector<std::pair<std::string, double>>& counters) const;
 	/// Whether any step so far had a measurement without a landmark ID.
 	bool sawMeasurementWithoutId() const { return saw_measurement_without_id_; }
 	/// Every step's robot pose in its local map's frame (the end pose for the
