@@ -166,8 +166,9 @@ for (backend, size), runs in rows.items():
         code = runs[0]["code"]
         failed = f"stopped after {runs[0]['seconds']:.0f} s" if code == 124 else f"exit {code}"
         reached = os.path.join(runs_dir, runs[0]["run_dir"] + ".stopped")
-        if code == 124 and os.path.exists(reached) and open(reached).read().strip():
-            failed += " (" + open(reached).read().strip().replace("after", "replayed", 1) + ")"
+        reached = open(reached).read().strip() if code == 124 and os.path.exists(reached) else ""
+        if reached:
+            failed += " (" + reached.replace("after", "replayed", 1) + ")"
         table.append(dict(backend=backend, size=size, failed=failed, runs=len(runs), peak_mb=runs[0]["peak_mb"]))
         continue
     s = ok[0]["stats"]

@@ -41,8 +41,8 @@ void addPath(const std::string& path);
 void removePath(const std::string& path);
 
 /// A line saying where the work stood, written to stderr when a signal ends
-/// the process (after the cleanup): "esif: stopped by signal 15 at step 123
-/// of 500000 ...", so that a run stopped by a time limit or by the user
+/// the process (after the cleanup): "esif: esif::Slsjf stopped by signal 15
+/// after 123 of 500000 steps, ...", so that a run stopped by a time limit or by the user
 /// still tells how far it got. `note` is called from the watcher thread: it
 /// must read only what is safe to read concurrently (atomics). Replaces any
 /// earlier note; clearStopNote() before what it reads goes away.
