@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # City scale (book Sec. 1.4, 3.7, 4.5, 5.7): every back-end on the same
-# simulated city cut at about 1,000, 10,000, 32,000 and 100,000 landmarks
-# (configs/sim/city_1k.ini, city_10k.ini, city_30k.ini, city.ini; the rawlogs
-# are simulated into out/bench on first use and never committed). Whole `esif
-# run` processes with their IDs, medians over RUNS (the 100k runs once):
+# simulated city cut at about 1,000, 10,000, 32,000, 60,000 and 100,000
+# landmarks (configs/sim/city_1k.ini, city_10k.ini, city_30k.ini,
+# city_60k.ini, city.ini; the rawlogs are simulated into out/bench on first
+# use and never committed). Whole `esif run` processes with their IDs,
+# medians over RUNS (the 60k and 100k runs once):
 # whole-process seconds and peak memory (/usr/bin/time), the replay's time
 # per fusion (map joining) or per step, and the landmark RMSE against the
 # ground truth; then log-log slopes between consecutive sizes, a projection of the
-# 1,000,000-landmark run from them, and the figures
+# 1,000,000-landmark run from them, what SLSJF's fusions cost its factor
+# (the sparse core's work counters), and the figures
 # docs/results/city_scale_time.svg and city_scale_memory.svg.
 #
 # D-SLAM's map is also measured against what its measurements hold: the
@@ -22,10 +24,11 @@
 # The runs are kept in out/bench/city_scale/ (replaced by the next bench
 # run), each with the commit it was measured at; REPORT_ONLY=1 writes the
 # tables and figures again from them without running anything, and
-# ONLY="dslam ..." measures only those back-ends again, keeping the others'
-# runs (the page names the commit of every back-end's runs).
+# ONLY="dslam ..." measures only those back-ends again at the SIZES given,
+# keeping every other run (the page names the commit of every back-end's
+# runs).
 #
-# usage: bench/city_scale.sh [RUNS] [SIZES] [--update-docs]   (default 3, "1k 10k 30k 100k")
+# usage: bench/city_scale.sh [RUNS] [SIZES] [--update-docs]   (default 3, "1k 10k 30k 60k 100k")
 # Environment: ESIF, ESIF_BENCH_OUT, ESIF_RESULTS_DIR (bench/common.sh);
 # MAX_SIZES, default "slsjf=100k dslam_lmj=10k dslam=10k ceres_full=10k ekf=1k";
 # RUN_TIMEOUT, seconds after which a run is stopped and reported as such
@@ -34,7 +37,7 @@
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 runs=${1:-3}
-sizes=${2:-"1k 10k 30k 100k"}
+sizes=${2:-"1k 10k 30k 60k 100k"}
 max_sizes=${MAX_SIZES:-"slsjf=100k dslam_lmj=10k dslam=10k ceres_full=10k ekf=1k"}
 run_timeout=${RUN_TIMEOUT:-600}
 cache=$bench_out; mkdir -p "$cache"
@@ -64,7 +67,7 @@ runs_at() {
   limit=$(tr ' ' '\n' <<<"$max_sizes" | sed -n "s/^$1=//p")
   [ -n "$limit" ] || { echo 0; return; }
   if [ "$(landmarks_of_size "$2")" -gt "$(landmarks_of_size "$limit")" ]; then echo 0
-  elif [ "$2" = 100k ]; then echo 1
+  elif [ "$(landmarks_of_size "$2")" -ge 60000 ]; then echo 1  # minutes to hours each
   else echo "$runs"; fi
 }
 
@@ -86,14 +89,17 @@ run_once() {
 
 if [ "${REPORT_ONLY:-0}" != 1 ]; then
   if [ -n "${ONLY:-}" ]; then
-    # Keep the other back-ends' runs; forget only the ones measured again.
+    # Keep every other run; forget only the back-ends' runs at the sizes
+    # measured again.
     [ -f "$runs_dir/runs.tsv" ] || { echo "bench/city_scale.sh: ONLY needs the runs of a whole bench in $runs_dir" >&2; exit 1; }
     for backend in $backends; do
-      grep -v "^$backend " "$runs_dir/runs.tsv" >"$work/runs.tsv" || true
-      mv "$work/runs.tsv" "$runs_dir/runs.tsv"
-      rm -rf "$runs_dir/${backend}"_[0-9]*k_*  # not dslam_lmj_* for dslam
-      [ "$backend" = dslam ] && rm -rf "$runs_dir"/no_odometry_*
-      [ "$backend" = ekf ] && rm -f "$runs_dir/ekf_refusal"
+      for size in $sizes; do
+        grep -v "^$backend $size " "$runs_dir/runs.tsv" >"$work/runs.tsv" || true
+        mv "$work/runs.tsv" "$runs_dir/runs.tsv"
+        rm -rf "$runs_dir/${backend}_${size}"_*  # not dslam_lmj_* for dslam
+        [ "$backend" = dslam ] && rm -rf "$runs_dir/no_odometry_$size"
+        [ "$backend" = ekf ] && [ "$size" = 100k ] && rm -f "$runs_dir/ekf_refusal"
+      done
     done
   else
     rm -rf "$runs_dir"; mkdir -p "$runs_dir"
@@ -182,8 +188,12 @@ for (backend, size), runs in rows.items():
                       recovery_s=med([r["stats"].get("plugin_sparse_recovery_time_s") for r in ok]),
                       association_s=med([r["stats"].get("plugin_association_s") for r in ok]),
                       read_s=med([r["stats"].get("time_read_s") for r in ok]),
+                      work={key: med([r["stats"].get("plugin_sparse_" + key) for r in ok])
+                            for key in ["full_reorders", "partial_refactorisations", "updated_path_columns",
+                                        "updown_flops", "fresh_factor_flops", "factor_nnz"]},
                       rmse=s.get("landmark_rmse_m")))
 order = {"slsjf": 0, "dslam_lmj": 1, "dslam": 2, "ceres_full": 3, "ekf": 4}
+all_sizes = sorted({size for _, size in rows}, key=lambda size: int(size[:-1]))
 table.sort(key=lambda t: (order[t["backend"]], int(t["size"][:-1])))
 
 def cell(fmt, v):
@@ -206,7 +216,7 @@ print("\n### Landmark RMSE against the ground truth, beside the full-SLAM optimu
 print("| city | slsjf m | ceres_full m | ratio |")
 print("|---|---:|---:|---:|")
 by = {(t["backend"], t["size"]): t for t in table if not t["failed"]}
-for size in ["1k", "10k", "30k", "100k"]:
+for size in all_sizes:
     a, b = by.get(("slsjf", size)), by.get(("ceres_full", size))
     if a and b and a["rmse"] and b["rmse"]:
         print(f"| {size} | {a['rmse']:.2f} | {b['rmse']:.2f} | {a['rmse'] / b['rmse']:.2f} |")
@@ -262,11 +272,39 @@ if big:
     if big["read_s"] is not None:
         print(f"| reading the rawlog (before the replay) | {big['read_s']:.2f} | - |")
 
+# What a fusion costs SLSJF's factor (the sparse core's work counters).
+costed = [t for t in table if t["backend"] == "slsjf" and not t["failed"] and t["work"]["partial_refactorisations"]
+          and None not in t["work"].values()]  # runs of a binary without the counters are left out
+if costed:
+    print("\n### What a fusion costs SLSJF's factor\n")
+    print("The sparse core's work counters (`plugin_sparse_*` of stats.json). A partial refactorisation applies the")
+    print("updates of one recovery, about one fusion, to the factor where they land (`cholmod_updown`): it modifies the")
+    print("columns on the elimination-tree paths of the rows it touches, and every path ends in the top separators,")
+    print("which link the whole city. Its flops are CHOLMOD's own count; a fresh factorisation's are CHOLMOD's")
+    print("prediction from the analysis. Slopes as above, against the landmarks.\n")
+    print("| city | landmarks | fusions | partial refactorisations | columns modified per refactorisation | "
+          "update Mflop per refactorisation | fresh factorisations | fresh factorisation Gflop | update Gflop | nnz(L) M |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    per = []
+    for t in costed:
+        w = t["work"]
+        partial = w["partial_refactorisations"]
+        columns, mflop = w["updated_path_columns"] / partial, w["updown_flops"] / partial / 1e6
+        per.append((t["landmarks"], columns, mflop))
+        print(f"| {t['size']} | {t['landmarks']} | {t['local_maps']} | {partial:.0f} | {columns:.0f} | {mflop:.2f} | "
+              f"{w['full_reorders']:.0f} | {w['fresh_factor_flops'] / 1e9:.1f} | {w['updown_flops'] / 1e9:.1f} | "
+              f"{w['factor_nnz'] / 1e6:.2f} |")
+    if len(per) > 1:
+        print("\n| interval | columns modified per refactorisation | update flops per refactorisation |")
+        print("|---|---:|---:|")
+        for k, (cs, fs) in enumerate(zip(slopes([(n, c) for n, c, _ in per]), slopes([(n, f) for n, _, f in per]))):
+            print(f"| {per[k][0]} - {per[k + 1][0]} | {cs:.2f} | {fs:.2f} |")
+
 def stats_of(run_dir):
     path = os.path.join(runs_dir, run_dir, "stats.json")
     return json.load(open(path)) if os.path.exists(path) else None
 
-bounds = [(size, stats_of(f"no_odometry_{size}")) for size in ["1k", "10k", "30k", "100k"]]
+bounds = [(size, stats_of(f"no_odometry_{size}")) for size in all_sizes]
 bounds = [(size, s) for size, s in bounds if s]
 if bounds:
     print("\n### D-SLAM's map against what its measurements hold\n")
@@ -316,11 +354,11 @@ if [ "$update_docs" = 1 ]; then
   done
   {
     cat <<'MD'
-Every back-end on one simulated city cut at four sizes (`configs/sim/city*.ini`:
+Every back-end on one simulated city cut at five sizes (`configs/sim/city*.ini`:
 a 1100 m square of features on a 3 m grid, a random tour at 1.5 m/s, the
 sensor and noise of `configs/sim/booksim.ini`), with the rawlog's IDs, each
 with its shipped config (`configs/<back-end>.ini`). Whole `esif run
---no-figures` processes; medians over the runs (the 100k city once). "Per
+--no-figures` processes; medians over the runs (the 60k and 100k cities once). "Per
 fusion / step" is the replay's mean time per local-map fusion for the
 map-joining filters and per step otherwise; peak memory is the whole
 process's (`/usr/bin/time`), rawlog included. Slopes are log-log slopes
@@ -331,5 +369,5 @@ MD
     echo "600 s) is listed with the memory it had reached."
     echo
     cat "$work/tables.md"
-  } | results_page city_scale "City scale: cost against map size" "configs/sim/city_1k.ini, city_10k.ini, city_30k.ini and city.ini simulated by \`esif simulate\`, $runs runs"
+  } | results_page city_scale "City scale: cost against map size" "configs/sim/city_1k.ini, city_10k.ini, city_30k.ini, city_60k.ini and city.ini simulated by \`esif simulate\`, $runs runs"
 fi

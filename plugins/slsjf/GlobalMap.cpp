@@ -224,18 +224,6 @@ double largestChange(const InformationForm& info, const Eigen::VectorXd& before,
 	return change;
 }
 
-void accumulate(SparseCounters& total, const SparseCounters& part)
-{
-	total.full_reorders += part.full_reorders;
-	total.partial_refactorisations += part.partial_refactorisations;
-	total.pcg_solves += part.pcg_solves;
-	total.pcg_iterations_total += part.pcg_iterations_total;
-	total.pcg_iterations_max = std::max(total.pcg_iterations_max, part.pcg_iterations_max);
-	total.back_substitution_columns += part.back_substitution_columns;
-	total.update_time_s += part.update_time_s;
-	total.factor_time_s += part.factor_time_s;
-	total.recovery_time_s += part.recovery_time_s;
-}
 }  // namespace
 
 int GlobalMap::relinearise(int max_iterations, double tolerance)
@@ -246,7 +234,7 @@ int GlobalMap::relinearise(int max_iterations, double tolerance)
 		auto fresh = rebuiltCore();
 		fresh->recoverState();
 		const double change = largestChange(fresh->information(), before, fresh->state());
-		accumulate(retired_, core_->counters());
+		retired_ += core_->counters();
 		core_ = std::move(fresh);
 		if (change <= tolerance) return restartFirstEstimates(), iteration;
 	}
@@ -263,7 +251,7 @@ void GlobalMap::restartFirstEstimates()
 SparseCounters GlobalMap::counters() const
 {
 	SparseCounters total = core_->counters();
-	accumulate(total, retired_);
+	total += retired_;
 	return total;
 }
 

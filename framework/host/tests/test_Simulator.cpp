@@ -108,7 +108,7 @@ Reloaded reload(const std::string& path)
 TEST(Simulator, DefaultsAndCommittedConfigsAreValid)
 {
 	EXPECT_NO_THROW(Simulator(Scenario{}));
-	for (const char* name : {"small", "grid196", "grid1225", "grid1225_large", "city", "city_30k", "city_10k", "city_1k"})
+	for (const char* name : {"small", "grid196", "grid1225", "grid1225_large", "city", "city_60k", "city_30k", "city_10k", "city_1k"})
 	{
 		SCOPED_TRACE(name);
 		Scenario s;
@@ -131,6 +131,7 @@ TEST(Simulator, CityConfigsDifferOnlyInTheirSteps)
 	const std::string city = keysButSteps("city");
 	EXPECT_NE(city.find("features_per_side"), std::string::npos);
 	EXPECT_EQ(keysButSteps("city_10k"), city);
+	EXPECT_EQ(keysButSteps("city_60k"), city);
 	EXPECT_EQ(keysButSteps("city_30k"), city);
 	EXPECT_EQ(keysButSteps("city_1k"), city);
 }

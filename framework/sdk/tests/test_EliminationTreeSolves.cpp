@@ -172,3 +172,33 @@ TEST_F(EliminationTreeSolves, PositionsOutsideTheFactorAreRefused)
 }
 
 }  // namespace
+
+TEST_F(EliminationTreeSolves, TheRootSeparatorIsTheDenseTrailingTriangle)
+{
+	// The separator here is a chain: only its last two columns are full.
+	EXPECT_EQ(denseTrailingColumns(*L_, kN), 2);
+
+	// Twenty leaves, each linked to two of six hub scalars that form a
+	// clique: eliminating the leaves first leaves the hubs a full triangle,
+	// and a leaf's column (itself and two hubs) is not part of it.
+	constexpr int leaves = 20, hubs = 6, n = leaves + hubs;
+	Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+	for (int i = 0; i < leaves; ++i)
+	{
+		A(i, leaves + i % hubs) = A(leaves + i % hubs, i) = 0.3;
+		A(i, leaves + (i + 1) % hubs) = A(leaves + (i + 1) % hubs, i) = -0.2;
+	}
+	for (int a = leaves; a < n; ++a)
+		for (int b = leaves; b < a; ++b) A(a, b) = A(b, a) = 0.1;
+	for (int i = 0; i < n; ++i) A(i, i) = A.row(i).cwiseAbs().sum() + 1.0;
+	CholmodCommon c;
+	c.useGivenOrderingForModification();
+	auto S = toCholmod(LowerCsc::fromDenseLower(A), c);
+	std::vector<int> natural(n);
+	for (int g = 0; g < n; ++g) natural[g] = g;
+	auto L = ownFactor(cholmod_analyze_p(S.get(), natural.data(), nullptr, 0, c.get()), c);
+	ASSERT_TRUE(L);
+	cholmod_factorize(S.get(), L.get(), c.get());
+	ASSERT_FALSE(L->is_super);
+	EXPECT_EQ(denseTrailingColumns(*L, n), hubs);
+}

@@ -87,14 +87,16 @@ TEST(SparseCounters, ListsEveryCounterByName)
 	c.back_substitution_columns = 7;
 	c.recovery_time_s = 0.5;
 	const auto list = c.list();
-	ASSERT_EQ(list.size(), 11u);
+	ASSERT_EQ(list.size(), 15u);
 	EXPECT_EQ(list[1].first, "sparse_factor_nnz");
 	EXPECT_EQ(list[1].second, 42.0);
-	EXPECT_EQ(list[6].first, "sparse_pcg_iterations_max");
-	EXPECT_EQ(list[6].second, 2.0);
-	EXPECT_EQ(list[7].first, "sparse_back_substitution_columns");
-	EXPECT_EQ(list[7].second, 7.0);
-	EXPECT_EQ(list[10].first, "sparse_recovery_time_s");
+	EXPECT_EQ(list[2].first, "sparse_top_separator_scalars");
+	EXPECT_EQ(list[7].first, "sparse_pcg_iterations_max");
+	EXPECT_EQ(list[7].second, 2.0);
+	EXPECT_EQ(list[8].first, "sparse_back_substitution_columns");
+	EXPECT_EQ(list[8].second, 7.0);
+	EXPECT_EQ(list[10].first, "sparse_updown_flops");
+	EXPECT_EQ(list[14].first, "sparse_recovery_time_s");
 	EXPECT_EQ(c.list("dslam_")[0].first, "dslam_information_nnz");
 }
 

@@ -234,6 +234,8 @@ struct FillTriggerRun
 	std::size_t reorders = 0;
 	std::size_t factor_nnz = 0;
 	double worst_error = 0;  ///< state and a covariance block against dense, every 40 steps
+	SparseCounters counters;
+	int scalars = 0;  ///< of the final state
 };
 
 FillTriggerRun runWithFillTrigger(double max_fill_growth)
@@ -257,6 +259,8 @@ FillTriggerRun runWithFillTrigger(double max_fill_growth)
 	}
 	run.reorders = core.counters().full_reorders;
 	run.factor_nnz = core.counters().factor_nnz;
+	run.counters = core.counters();
+	run.scalars = core.information().scalarDim();
 	return run;
 }
 
@@ -275,6 +279,40 @@ TEST(SparseRecoveryFillTrigger, ReordersAsTheFactorFillsIn)
 	EXPECT_GT(eager.reorders, shipped.reorders);
 	EXPECT_GT(shipped.reorders, lazy.reorders);
 	EXPECT_LT(eager.factor_nnz, lazy.factor_nnz);
+}
+
+TEST(SparseRecoveryFillTrigger, CountsTheWorkOfUpdatesAndOfFreshFactorisations)
+{
+	// Rebuilding on any fill-in pays in fresh factorisations what applying
+	// every update in place pays in update/downdate flops; each modified
+	// column costs at least one flop, and no refactorisation modifies more
+	// columns than the factor has.
+	const auto eager = runWithFillTrigger(1e-6), lazy = runWithFillTrigger(1e6);
+	EXPECT_GT(eager.counters.fresh_factor_flops, 2 * lazy.counters.fresh_factor_flops);
+	EXPECT_GT(lazy.counters.partial_refactorisations, 0u);
+	EXPECT_GT(lazy.counters.updated_path_columns, lazy.counters.partial_refactorisations);
+	EXPECT_GE(lazy.counters.updown_flops, static_cast<double>(lazy.counters.updated_path_columns));
+	EXPECT_LE(lazy.counters.updated_path_columns,
+			  lazy.counters.partial_refactorisations * static_cast<std::size_t>(lazy.scalars));
+}
+
+TEST(SparseCounters, AddsARetiredCoresCounts)
+{
+	SparseCounters total, part;
+	total.full_reorders = 2;
+	total.pcg_iterations_max = 9;
+	total.factor_nnz = 100;
+	part.full_reorders = 3;
+	part.pcg_iterations_max = 4;
+	part.updown_flops = 1.5;
+	part.updated_path_columns = 7;
+	part.factor_nnz = 50;
+	total += part;
+	EXPECT_EQ(total.full_reorders, 5u);
+	EXPECT_EQ(total.pcg_iterations_max, 9u);
+	EXPECT_EQ(total.updown_flops, 1.5);
+	EXPECT_EQ(total.updated_path_columns, 7u);
+	EXPECT_EQ(total.factor_nnz, 100u);  // a size, not a count
 }
 
 TEST(SparseRecoveryFillTrigger, OtherMethodsKeepTheirOwnRule)

@@ -243,4 +243,13 @@ std::size_t countFactorNonZeros(const cholmod_factor& L, std::size_t columns)
 	return nnz;
 }
 
+int denseTrailingColumns(const cholmod_factor& L, int columns)
+{
+	if (L.is_super) return 0;
+	const auto* nz = static_cast<const int*>(L.nz);
+	int dense = 0;
+	for (int j = std::min(columns, static_cast<int>(L.n)) - 1; j >= 0 && nz[j] == dense + 1; --j) ++dense;
+	return dense;
+}
+
 }  // namespace esif

@@ -99,4 +99,9 @@ std::vector<double> factorPivots(const cholmod_factor& L);
 /// over its leading `columns` columns.
 std::size_t countFactorNonZeros(const cholmod_factor& L, std::size_t columns);
 
+/// How many of the last of the leading `columns` columns of a simplicial
+/// factor form a full lower triangle: the root separator of the elimination
+/// tree, which every update's path ends in (0 for a supernodal factor).
+int denseTrailingColumns(const cholmod_factor& L, int columns);
+
 }  // namespace esif

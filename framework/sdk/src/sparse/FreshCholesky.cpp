@@ -24,6 +24,7 @@ void FreshCholesky::refresh(const InformationForm& info, const Eigen::Vector2d&)
 	common_.useFillReducingOrdering();
 	auto L = ownFactor(cholmod_analyze(A.get(), common_.get()), common_);
 	if (!L) common_.check(kWhat + ": analysis");
+	counters_.fresh_factor_flops += common_.get()->fl;
 	cholmod_factorize(A.get(), L.get(), common_.get());
 	common_.check(kWhat + ": factorisation");
 	const auto* perm = static_cast<const int*>(L->Perm);

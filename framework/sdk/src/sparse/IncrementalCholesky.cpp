@@ -70,6 +70,7 @@ void IncrementalCholesky::factorAfresh(const InformationForm& info, const Eigen:
 	std::vector<int> perm = wanted.order;
 	L_ = ownFactor(cholmod_analyze_p(A.get(), perm.data(), nullptr, 0, common_.get()), common_);
 	if (!L_) common_.check(kCholeskyWhat + ": analysis");
+	counters_.fresh_factor_flops += common_.get()->fl;  // set by the analysis for this ordering
 	cholmod_factorize(A.get(), L_.get(), common_.get());
 	common_.check(kCholeskyWhat + ": factorisation");
 
@@ -79,6 +80,7 @@ void IncrementalCholesky::factorAfresh(const InformationForm& info, const Eigen:
 	ordering_ = wanted;
 	factored_dim_ = n;
 	fresh_nnz_per_scalar_ = static_cast<double>(factorNonZeros()) / n;
+	counters_.top_separator_scalars = static_cast<std::size_t>(denseTrailingColumns(*L_, n));
 	try
 	{
 		checkFactor(info);
@@ -105,7 +107,9 @@ void IncrementalCholesky::refactorTrailingPart(const InformationForm& info)
 		removePaddingDiagonals(info);
 		// The modifications changed only the columns on the paths of the
 		// rows they touched: the other pivots passed their check before.
-		checkPivotsAt(*L_, pathsToRoots(*L_, touched), ordering_.order, params_.min_pivot_ratio, info, kCholeskyWhat);
+		const std::vector<int> paths = pathsToRoots(*L_, touched);
+		checkPivotsAt(*L_, paths, ordering_.order, params_.min_pivot_ratio, info, kCholeskyWhat);
+		counters_.updated_path_columns += paths.size();
 	}
 	catch (...)
 	{
@@ -143,6 +147,7 @@ void IncrementalCholesky::applyPendingUpdates()
 	if (!C) return;
 	cholmod_updown_solve(true, C.get(), L_.get(), y_.get(), delta_b_.get(), common_.get());
 	common_.check(kCholeskyWhat + ": update of the trailing factor");
+	counters_.updown_flops += common_.get()->modfl;
 }
 
 IncrementalCholesky::PositionedColumns IncrementalCholesky::staircaseAtPositions(const TrailingUpdates::Term& term)
@@ -222,6 +227,7 @@ void IncrementalCholesky::removePaddingDiagonals(const InformationForm& info)
 	static_cast<int*>(E->p)[added] = added;
 	cholmod_updown_solve(false, E.get(), L_.get(), y_.get(), delta_b_.get(), common_.get());
 	common_.check(kCholeskyWhat + ": adding " + info.describeScalar(factored_dim_) + " and the other new variables");
+	counters_.updown_flops += common_.get()->modfl;
 }
 
 void IncrementalCholesky::forwardSolve(const InformationForm& info)
