@@ -190,7 +190,7 @@ for (backend, size), runs in rows.items():
                       read_s=med([r["stats"].get("time_read_s") for r in ok]),
                       work={key: med([r["stats"].get("plugin_sparse_" + key) for r in ok])
                             for key in ["full_reorders", "partial_refactorisations", "updated_path_columns",
-                                        "updown_flops", "fresh_factor_flops", "factor_nnz"]},
+                                        "updown_flops", "fresh_factor_flops", "factor_nnz", "top_separator_scalars"]},
                       rmse=s.get("landmark_rmse_m")))
 order = {"slsjf": 0, "dslam_lmj": 1, "dslam": 2, "ceres_full": 3, "ekf": 4}
 all_sizes = sorted({size for _, size in rows}, key=lambda size: int(size[:-1]))
@@ -280,11 +280,13 @@ if costed:
     print("The sparse core's work counters (`plugin_sparse_*` of stats.json). A partial refactorisation applies the")
     print("updates of one recovery, about one fusion, to the factor where they land (`cholmod_updown`): it modifies the")
     print("columns on the elimination-tree paths of the rows it touches, and every path ends in the top separators,")
-    print("which link the whole city. Its flops are CHOLMOD's own count; a fresh factorisation's are CHOLMOD's")
-    print("prediction from the analysis. Slopes as above, against the landmarks.\n")
+    print("which link the whole city; the root separator is the dense triangle those paths end in (at the last fresh")
+    print("factorisation), and each update of rank k modifies all of it. Its flops are CHOLMOD's own count; a fresh")
+    print("factorisation's are CHOLMOD's prediction from the analysis. Slopes as above, against the landmarks.\n")
     print("| city | landmarks | fusions | partial refactorisations | columns modified per refactorisation | "
-          "update Mflop per refactorisation | fresh factorisations | fresh factorisation Gflop | update Gflop | nnz(L) M |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+          "update Mflop per refactorisation | root separator scalars | fresh factorisations | fresh factorisation Gflop | "
+          "update Gflop | nnz(L) M |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     per = []
     for t in costed:
         w = t["work"]
@@ -292,7 +294,7 @@ if costed:
         columns, mflop = w["updated_path_columns"] / partial, w["updown_flops"] / partial / 1e6
         per.append((t["landmarks"], columns, mflop))
         print(f"| {t['size']} | {t['landmarks']} | {t['local_maps']} | {partial:.0f} | {columns:.0f} | {mflop:.2f} | "
-              f"{w['full_reorders']:.0f} | {w['fresh_factor_flops'] / 1e9:.1f} | {w['updown_flops'] / 1e9:.1f} | "
+              f"{w['top_separator_scalars']:.0f} | {w['full_reorders']:.0f} | {w['fresh_factor_flops'] / 1e9:.1f} | {w['updown_flops'] / 1e9:.1f} | "
               f"{w['factor_nnz'] / 1e6:.2f} |")
     if len(per) > 1:
         print("\n| interval | columns modified per refactorisation | update flops per refactorisation |")
@@ -365,8 +367,8 @@ process's (`/usr/bin/time`), rawlog included. Slopes are log-log slopes
 against the landmarks between consecutive sizes; the projection extends the
 last one.
 MD
-    echo "A run stopped at the time limit (\`RUN_TIMEOUT\`, $run_timeout s; the target for the 100k city is"
-    echo "600 s) is listed with the memory it had reached."
+    echo "A run stopped at its time limit (\`RUN_TIMEOUT\`, named in its row; the target for the 100k city is 600 s) is"
+    echo "listed with how far it got and the memory it had reached."
     echo
     cat "$work/tables.md"
   } | results_page city_scale "City scale: cost against map size" "configs/sim/city_1k.ini, city_10k.ini, city_30k.ini, city_60k.ini and city.ini simulated by \`esif simulate\`, $runs runs"
