@@ -246,6 +246,29 @@ TEST(InformationForm, FactoredCovarianceGivesTheSameUpdate)
 	EXPECT_EQ(a.info.vector(), b.info.vector());  // nothing applied by the refused call
 }
 
+TEST(InformationForm, ATermsInformationIsSymmetricAndWithdrawnAgain)
+{
+	// A term over three variables (a local map's shape, eq. 5.9) adds J^T
+	// R^-1 J as one symmetric product: every block equals its mirror bit
+	// for bit. Withdrawing a second term leaves the first, to round-off.
+	Small s;
+	Eigen::MatrixXd J(4, 7);
+	J << 1, 0, -1, 0, 0.2, 0.3, 0, 0, 1, 0, -1, 0.1, 0, 0.4, 0.5, 0.5, 0, 0, 1, -1, 0, 0.1, 0, 0.7, 0.2, 0, 0, 1;
+	Eigen::Matrix4d R = Eigen::Matrix4d::Identity() * 0.04;
+	R(0, 1) = R(1, 0) = 0.01;
+	R(2, 3) = R(3, 2) = -0.005;
+	s.info.addMeasurement({s.p1, s.pose, s.p2}, J, R, Eigen::Vector4d(0.1, -0.2, 0.05, 0.0));
+	const Eigen::MatrixXd I = s.info.matrix().toDense();
+	EXPECT_EQ(I, I.transpose());
+	// J's columns are in the state's order (p1, pose, p2).
+	EXPECT_LT((I - J.transpose() * R.inverse() * J).norm(), 1e-12 * I.norm());
+
+	// A term of the same size: withdrawing it costs a few ulps of I.
+	const UpdateTerm second = s.info.addMeasurement({s.p1, s.pose, s.p2}, J, 2 * R, Eigen::Vector4d::Zero());
+	s.info.subtract(second);
+	EXPECT_LT((s.info.matrix().toDense() - I).norm(), 1e-13 * I.norm());
+}
+
 TEST(InformationForm, PriorAddsInformationAndMean)
 {
 	Small s;

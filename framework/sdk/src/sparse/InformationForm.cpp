@@ -149,33 +149,39 @@ UpdateTerm InformationForm::addPrior(VarId v, const Eigen::VectorXd& mean, const
 UpdateTerm InformationForm::applyWhitened(const std::vector<VarId>& vars, Eigen::MatrixXd C, const Eigen::VectorXd& w)
 {
 	const std::vector<int> start = starts(vars);
-	// Only the blocks of the touched variables change: C_a C_b^T for each pair.
-	for (std::size_t b = 0; b < vars.size(); ++b)
-	{
-		const auto Cb = C.middleRows(start[b], dim(vars[b]));
-		I_.addBlock(vars[b].value, vars[b].value, Cb * Cb.transpose());
-		for (std::size_t a = b + 1; a < vars.size(); ++a)
-			I_.addBlock(vars[a].value, vars[b].value, C.middleRows(start[a], dim(vars[a])) * Cb.transpose());
-	}
+	addOuterProduct(vars, start, C, 1.0);
 	UpdateTerm term{vars, std::move(C), Eigen::VectorXd()};
 	term.delta_i = term.C * w;
 	addToVector(vars, start, term.delta_i);
 	return term;
 }
 
+void InformationForm::addOuterProduct(const std::vector<VarId>& vars, const std::vector<int>& start,
+									  const Eigen::MatrixXd& C, double sign)
+{
+	// Only the blocks of the touched variables change. C C^T is formed as
+	// one symmetric rank-k product (syrk) and then scattered: one small
+	// product per pair of variables cost more in packing than in flops when
+	// a whole local map is one term (relinearising D-SLAM map joining on the
+	// 10k city, eq. 4.17).
+	const Eigen::Index n = C.rows();
+	Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
+	H.selfadjointView<Eigen::Lower>().rankUpdate(C, sign);
+	for (std::size_t b = 0; b < vars.size(); ++b)
+	{
+		const int db = dim(vars[b]);
+		const Eigen::MatrixXd diagonal = H.block(start[b], start[b], db, db).selfadjointView<Eigen::Lower>();
+		I_.addBlock(vars[b].value, vars[b].value, diagonal);
+		for (std::size_t a = b + 1; a < vars.size(); ++a)
+			I_.addBlock(vars[a].value, vars[b].value, H.block(start[a], start[b], dim(vars[a]), db));
+	}
+}
+
 void InformationForm::subtract(const UpdateTerm& term)
 {
 	checkVars(term.vars, static_cast<int>(term.C.rows()));
-	std::vector<int> start(term.vars.size());
-	for (std::size_t a = 0, k = 0; a < term.vars.size(); k += dim(term.vars[a]), ++a) start[a] = static_cast<int>(k);
-	for (std::size_t b = 0; b < term.vars.size(); ++b)
-	{
-		const auto Cb = term.C.middleRows(start[b], dim(term.vars[b]));
-		I_.addBlock(term.vars[b].value, term.vars[b].value, -Cb * Cb.transpose());
-		for (std::size_t a = b + 1; a < term.vars.size(); ++a)
-			I_.addBlock(term.vars[a].value, term.vars[b].value,
-						-term.C.middleRows(start[a], dim(term.vars[a])) * Cb.transpose());
-	}
+	const std::vector<int> start = starts(term.vars);
+	addOuterProduct(term.vars, start, term.C, -1.0);
 	for (std::size_t a = 0; a < term.vars.size(); ++a)
 		i_.segment(offset(term.vars[a]), dim(term.vars[a])) -= term.delta_i.segment(start[a], dim(term.vars[a]));
 }

@@ -102,6 +102,9 @@ class InformationForm
 	UpdateTerm applyFactored(const std::vector<VarId>& vars, const Eigen::MatrixXd& J,
 							 const Eigen::LLT<Eigen::MatrixXd>& R_factor, const Eigen::VectorXd& innovation);
 	UpdateTerm applyWhitened(const std::vector<VarId>& vars, Eigen::MatrixXd C, const Eigen::VectorXd& rhs);
+	/// I += sign C C^T over the blocks of `vars` (C's rows stacked as `start`).
+	void addOuterProduct(const std::vector<VarId>& vars, const std::vector<int>& start, const Eigen::MatrixXd& C,
+						 double sign);
 
 	BlockSparseMatrix I_;
 	Eigen::VectorXd i_;
