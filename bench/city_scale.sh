@@ -98,7 +98,7 @@ if [ "${REPORT_ONLY:-0}" != 1 ]; then
         mv "$work/runs.tsv" "$runs_dir/runs.tsv"
         rm -rf "$runs_dir/${backend}_${size}"_*  # not dslam_lmj_* for dslam
         [ "$backend" = dslam ] && rm -rf "$runs_dir/no_odometry_$size"
-        [ "$backend" = ekf ] && [ "$size" = 100k ] && rm -f "$runs_dir/ekf_refusal"
+        [ "$backend" = ekf ] && [ "$size" = 100k ] && [ "${sizes##* }" = 100k ] && rm -f "$runs_dir/ekf_refusal"  # measured again below
       done
     done
   else

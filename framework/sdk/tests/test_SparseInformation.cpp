@@ -249,8 +249,8 @@ TEST(InformationForm, FactoredCovarianceGivesTheSameUpdate)
 TEST(InformationForm, ATermsInformationIsSymmetricAndWithdrawnAgain)
 {
 	// A term over three variables (a local map's shape, eq. 5.9) adds J^T
-	// R^-1 J as one symmetric product: every block equals its mirror bit
-	// for bit. Withdrawing a second term leaves the first, to round-off.
+	// R^-1 J, every block equal to its mirror bit for bit, and withdrawing a
+	// second term leaves the first, to round-off.
 	Small s;
 	Eigen::MatrixXd J(4, 7);
 	J << 1, 0, -1, 0, 0.2, 0.3, 0, 0, 1, 0, -1, 0.1, 0, 0.4, 0.5, 0.5, 0, 0, 1, -1, 0, 0.1, 0, 0.7, 0.2, 0, 0, 1;

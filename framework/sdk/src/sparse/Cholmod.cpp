@@ -245,7 +245,7 @@ std::size_t countFactorNonZeros(const cholmod_factor& L, std::size_t columns)
 
 int denseTrailingColumns(const cholmod_factor& L, int columns)
 {
-	if (L.is_super) return 0;
+	if (L.is_super || !L.nz) return 0;
 	const auto* nz = static_cast<const int*>(L.nz);
 	int dense = 0;
 	for (int j = std::min(columns, static_cast<int>(L.n)) - 1; j >= 0 && nz[j] == dense + 1; --j) ++dense;

@@ -101,7 +101,8 @@ std::size_t countFactorNonZeros(const cholmod_factor& L, std::size_t columns);
 
 /// How many of the last of the leading `columns` columns of a simplicial
 /// factor form a full lower triangle: the root separator of the elimination
-/// tree, which every update's path ends in (0 for a supernodal factor).
+/// tree, which every update's path ends in, when the tree has one root (0
+/// for a supernodal or symbolic factor).
 int denseTrailingColumns(const cholmod_factor& L, int columns);
 
 }  // namespace esif

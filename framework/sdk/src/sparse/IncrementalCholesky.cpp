@@ -80,7 +80,6 @@ void IncrementalCholesky::factorAfresh(const InformationForm& info, const Eigen:
 	ordering_ = wanted;
 	factored_dim_ = n;
 	fresh_nnz_per_scalar_ = static_cast<double>(factorNonZeros()) / n;
-	counters_.top_separator_scalars = static_cast<std::size_t>(denseTrailingColumns(*L_, n));
 	try
 	{
 		checkFactor(info);
@@ -90,6 +89,7 @@ void IncrementalCholesky::factorAfresh(const InformationForm& info, const Eigen:
 		L_.reset();  // never keep a factor that failed its check
 		throw;
 	}
+	counters_.top_separator_scalars = static_cast<std::size_t>(denseTrailingColumns(*L_, n));
 	forwardSolve(info);
 	partial_.invalidate();
 	delta_b_ = zeroDense(capacity_, 1, common_);

@@ -163,7 +163,8 @@ void InformationForm::addOuterProduct(const std::vector<VarId>& vars, const std:
 	// one symmetric rank-k product (syrk) and then scattered: one small
 	// product per pair of variables cost more in packing than in flops when
 	// a whole local map is one term (relinearising D-SLAM map joining on the
-	// 10k city, eq. 4.17).
+	// 10k city, eq. 4.17). H holds n x n doubles for the term's n scalars,
+	// at most twice what C itself holds for a full-rank term (a local map).
 	const Eigen::Index n = C.rows();
 	Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
 	H.selfadjointView<Eigen::Lower>().rankUpdate(C, sign);
