@@ -41,6 +41,19 @@ Eigen::MatrixXd blocksWithSeparator(unsigned seed)
 	return A;
 }
 
+/// CHOLMOD's simplicial LDL^T of A in natural order (the ordering the
+/// incremental factor keeps is given, too).
+CholmodFactorPtr naturalOrderFactor(const Eigen::MatrixXd& A, CholmodCommon& c)
+{
+	c.useGivenOrderingForModification();
+	auto S = toCholmod(LowerCsc::fromDenseLower(A), c);
+	std::vector<int> natural(static_cast<std::size_t>(A.rows()));
+	for (std::size_t g = 0; g < natural.size(); ++g) natural[g] = static_cast<int>(g);
+	auto L = ownFactor(cholmod_analyze_p(S.get(), natural.data(), nullptr, 0, c.get()), c);
+	if (L) cholmod_factorize(S.get(), L.get(), c.get());
+	return L;
+}
+
 Eigen::VectorXd randomVector(unsigned seed)
 {
 	std::mt19937 rng(seed);
@@ -57,15 +70,9 @@ class EliminationTreeSolves : public ::testing::Test
 	{
 		A_ = blocksWithSeparator(3);
 		// Natural order: the blocks, then the separator, as a nested
-		// dissection would order them (the ordering the incremental factor
-		// keeps is given, too).
-		c_.useGivenOrderingForModification();
-		auto S = toCholmod(LowerCsc::fromDenseLower(A_), c_);
-		std::vector<int> natural(kN);
-		for (int g = 0; g < kN; ++g) natural[g] = g;
-		L_ = ownFactor(cholmod_analyze_p(S.get(), natural.data(), nullptr, 0, c_.get()), c_);
+		// dissection would order them.
+		L_ = naturalOrderFactor(A_, c_);
 		ASSERT_TRUE(L_);
-		cholmod_factorize(S.get(), L_.get(), c_.get());
 		ASSERT_EQ(c_->status, CHOLMOD_OK);
 		ASSERT_FALSE(L_->is_super);
 		ASSERT_FALSE(L_->is_ll);
@@ -171,8 +178,6 @@ TEST_F(EliminationTreeSolves, PositionsOutsideTheFactorAreRefused)
 	EXPECT_THROW(partial.solveAt(*L_, y.data(), {-1}), std::out_of_range);
 }
 
-}  // namespace
-
 TEST_F(EliminationTreeSolves, TheRootSeparatorIsTheDenseTrailingTriangle)
 {
 	// The separator here is a chain: only its last two columns are full.
@@ -192,13 +197,11 @@ TEST_F(EliminationTreeSolves, TheRootSeparatorIsTheDenseTrailingTriangle)
 		for (int b = leaves; b < a; ++b) A(a, b) = A(b, a) = 0.1;
 	for (int i = 0; i < n; ++i) A(i, i) = A.row(i).cwiseAbs().sum() + 1.0;
 	CholmodCommon c;
-	c.useGivenOrderingForModification();
-	auto S = toCholmod(LowerCsc::fromDenseLower(A), c);
-	std::vector<int> natural(n);
-	for (int g = 0; g < n; ++g) natural[g] = g;
-	auto L = ownFactor(cholmod_analyze_p(S.get(), natural.data(), nullptr, 0, c.get()), c);
+	const auto L = naturalOrderFactor(A, c);
 	ASSERT_TRUE(L);
-	cholmod_factorize(S.get(), L.get(), c.get());
+	ASSERT_EQ(c->status, CHOLMOD_OK);
 	ASSERT_FALSE(L->is_super);
 	EXPECT_EQ(denseTrailingColumns(*L, n), hubs);
 }
+
+}  // namespace

@@ -231,8 +231,6 @@ TEST_P(SparseRecovery, RecoversAfterAnErrorOnceTheProblemIsFixed)
 /// One incremental-Cholesky run under the fill-growth trigger.
 struct FillTriggerRun
 {
-	std::size_t reorders = 0;
-	std::size_t factor_nnz = 0;
 	double worst_error = 0;  ///< state and a covariance block against dense, every 40 steps
 	SparseCounters counters;
 	int scalars = 0;  ///< of the final state
@@ -257,8 +255,6 @@ FillTriggerRun runWithFillTrigger(double max_fill_growth)
 									relativeDifference(core.covariance(set),
 													   denseBlock(ref.P, core.information().scalarIndices(set)))});
 	}
-	run.reorders = core.counters().full_reorders;
-	run.factor_nnz = core.counters().factor_nnz;
 	run.counters = core.counters();
 	run.scalars = core.information().scalarDim();
 	return run;
@@ -276,9 +272,9 @@ TEST(SparseRecoveryFillTrigger, ReordersAsTheFactorFillsIn)
 	// loop closures join old and new variables), and the trigger trades
 	// that fill for reorders.
 	const auto eager = runWithFillTrigger(1e-6), shipped = runWithFillTrigger(0.2), lazy = runWithFillTrigger(1e6);
-	EXPECT_GT(eager.reorders, shipped.reorders);
-	EXPECT_GT(shipped.reorders, lazy.reorders);
-	EXPECT_LT(eager.factor_nnz, lazy.factor_nnz);
+	EXPECT_GT(eager.counters.full_reorders, shipped.counters.full_reorders);
+	EXPECT_GT(shipped.counters.full_reorders, lazy.counters.full_reorders);
+	EXPECT_LT(eager.counters.factor_nnz, lazy.counters.factor_nnz);
 }
 
 TEST(SparseRecoveryFillTrigger, CountsTheWorkOfUpdatesAndOfFreshFactorisations)

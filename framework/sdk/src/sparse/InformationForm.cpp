@@ -171,7 +171,9 @@ void InformationForm::addOuterProduct(const std::vector<VarId>& vars, const std:
 	for (std::size_t b = 0; b < vars.size(); ++b)
 	{
 		const int db = dim(vars[b]);
-		const Eigen::MatrixXd diagonal = H.block(start[b], start[b], db, db).selfadjointView<Eigen::Lower>();
+		// At most 3 x 3 (a pose): on the stack, not one allocation per variable.
+		const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3> diagonal =
+			H.block(start[b], start[b], db, db).selfadjointView<Eigen::Lower>();
 		I_.addBlock(vars[b].value, vars[b].value, diagonal);
 		for (std::size_t a = b + 1; a < vars.size(); ++a)
 			I_.addBlock(vars[a].value, vars[b].value, H.block(start[a], start[b], dim(vars[a]), db));
