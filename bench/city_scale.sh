@@ -9,7 +9,8 @@
 # per fusion (map joining) or per step, and the landmark RMSE against the
 # ground truth; then log-log slopes between consecutive sizes, a projection of the
 # 1,000,000-landmark run from them, what SLSJF's fusions cost its factor
-# (the sparse core's work counters), and the figures
+# (the sparse core's work counters), where D-SLAM map joining's fusion and
+# D-SLAM's step grow (the same counters per fusion or step), and the figures
 # docs/results/city_scale_time.svg and city_scale_memory.svg.
 #
 # D-SLAM's map is also measured against what its measurements hold: the
@@ -187,6 +188,8 @@ for (backend, size), runs in rows.items():
                       factor_s=med([r["stats"].get("plugin_sparse_factor_time_s") for r in ok]),
                       recovery_s=med([r["stats"].get("plugin_sparse_recovery_time_s") for r in ok]),
                       association_s=med([r["stats"].get("plugin_association_s") for r in ok]),
+                      update_s=med([r["stats"].get("plugin_sparse_update_time_s") for r in ok]),
+                      relinearised=med([r["stats"].get("plugin_relinearised_terms") for r in ok]),
                       read_s=med([r["stats"].get("time_read_s") for r in ok]),
                       work={key: med([r["stats"].get("plugin_sparse_" + key) for r in ok])
                             for key in ["full_reorders", "partial_refactorisations", "updated_path_columns",
@@ -301,6 +304,40 @@ if costed:
         print("|---|---:|---:|")
         for k, (cs, fs) in enumerate(zip(slopes([(n, c) for n, c, _ in per]), slopes([(n, f) for n, _, f in per]))):
             print(f"| {per[k][0]} - {per[k + 1][0]} | {cs:.2f} | {fs:.2f} |")
+
+# Where the per-fusion (D-SLAM map joining) and per-step (D-SLAM) time grows:
+# the same counters, divided by the fusions or steps, with their slopes.
+def unit_costs(t):
+    """Per fusion or step: its time (as in the first table), factorisation and term-update ms, fresh
+    factorisations, Mflop per fresh factorisation, relinearised terms."""
+    units, w = (t["local_maps"] or t["steps"]), t["work"]
+    fresh = w["full_reorders"]
+    return [t["unit_us"] / 1e3, t["factor_s"] * 1e3 / units, t["update_s"] * 1e3 / units, fresh / units,
+            w["fresh_factor_flops"] / fresh / 1e6 if fresh else None, t["relinearised"] / units]
+
+decomposed = [t for t in table if t["backend"] in ("dslam_lmj", "dslam") and not t["failed"]
+              and None not in (t["factor_s"], t["update_s"], t["relinearised"], t["work"]["fresh_factor_flops"])]
+if decomposed:
+    names = ["time ms", "factorisation ms", "term updates ms", "fresh factorisations",
+             "Mflop per fresh factorisation", "relinearised terms"]
+    print("\n### Where D-SLAM map joining's fusion and D-SLAM's step grow\n")
+    print("The sparse core's timers and work counters (stats.json) divided by the fusions (map joining) or the steps")
+    print("(D-SLAM). Factorisation is the fresh (reorder, analysis, numeric) and partial refactorisations; term updates")
+    print("add and withdraw the map's terms, relinearised ones included. A withdrawn term (relinearisation) is not")
+    print("downdated from the factor: the next refresh factors afresh (`IncrementalCholesky::noteWithdrawal`). The")
+    print("time is the first table's per fusion or step. Slopes against the landmarks between consecutive sizes.\n")
+    print("| back-end | city | landmarks | per | " + " | ".join(names) + " |")
+    print("|---|---|---:|---|" + "---:|" * len(names))
+    for t in decomposed:
+        print(f"| {t['backend']} | {t['size']} | {t['landmarks']} | {t['unit']} | "
+              + " | ".join(cell("%.2f", v) for v in unit_costs(t)) + " |")
+    for backend in ("dslam_lmj", "dslam"):
+        rows_b = sorted((t for t in decomposed if t["backend"] == backend), key=lambda t: t["landmarks"])
+        for a, b in zip(rows_b, rows_b[1:]):
+            ca, cb = unit_costs(a), unit_costs(b)
+            cells = ["-" if not (x and y) else "%.2f" % (math.log(y / x) / math.log(b["landmarks"] / a["landmarks"]))
+                     for x, y in zip(ca, cb)]
+            print(f"| {backend} | slope {a['size']} - {b['size']} | - | - | " + " | ".join(cells) + " |")
 
 def stats_of(run_dir):
     path = os.path.join(runs_dir, run_dir, "stats.json")
