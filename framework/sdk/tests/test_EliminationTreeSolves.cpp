@@ -4,7 +4,7 @@
 // block never enters another, so the restricted solves must read fewer
 // columns than the whole factor and still be exact.
 
-#include "sparse/Cholmod.h"
+#include "NaturalOrderFactor.h"
 #include "sparse/EliminationTreeSolves.h"
 
 #include <Eigen/Dense>
@@ -41,19 +41,6 @@ Eigen::MatrixXd blocksWithSeparator(unsigned seed)
 	return A;
 }
 
-/// CHOLMOD's simplicial LDL^T of A in natural order (the ordering the
-/// incremental factor keeps is given, too).
-CholmodFactorPtr naturalOrderFactor(const Eigen::MatrixXd& A, CholmodCommon& c)
-{
-	c.useGivenOrderingForModification();
-	auto S = toCholmod(LowerCsc::fromDenseLower(A), c);
-	std::vector<int> natural(static_cast<std::size_t>(A.rows()));
-	for (std::size_t g = 0; g < natural.size(); ++g) natural[g] = static_cast<int>(g);
-	auto L = ownFactor(cholmod_analyze_p(S.get(), natural.data(), nullptr, 0, c.get()), c);
-	if (L) cholmod_factorize(S.get(), L.get(), c.get());
-	return L;
-}
-
 Eigen::VectorXd randomVector(unsigned seed)
 {
 	std::mt19937 rng(seed);
@@ -71,7 +58,7 @@ class EliminationTreeSolves : public ::testing::Test
 		A_ = blocksWithSeparator(3);
 		// Natural order: the blocks, then the separator, as a nested
 		// dissection would order them.
-		L_ = naturalOrderFactor(A_, c_);
+		L_ = test::naturalOrderFactor(A_, c_);
 		ASSERT_TRUE(L_);
 		ASSERT_EQ(c_->status, CHOLMOD_OK);
 		ASSERT_FALSE(L_->is_super);
@@ -197,7 +184,7 @@ TEST_F(EliminationTreeSolves, TheRootSeparatorIsTheDenseTrailingTriangle)
 		for (int b = leaves; b < a; ++b) A(a, b) = A(b, a) = 0.1;
 	for (int i = 0; i < n; ++i) A(i, i) = A.row(i).cwiseAbs().sum() + 1.0;
 	CholmodCommon c;
-	const auto L = naturalOrderFactor(A, c);
+	const auto L = test::naturalOrderFactor(A, c);
 	ASSERT_TRUE(L);
 	ASSERT_EQ(c->status, CHOLMOD_OK);
 	ASSERT_FALSE(L->is_super);

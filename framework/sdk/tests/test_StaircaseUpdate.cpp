@@ -6,8 +6,7 @@
 // block's first scalar runs through the block and the separator, and a path
 // from a separator scalar only through the rest of the separator.
 
-#include "sparse/Cholmod.h"
-#include <esif/sparse/LowerCsc.h>
+#include "NaturalOrderFactor.h"
 #include "sparse/StaircaseUpdate.h"
 
 #include <Eigen/Dense>
@@ -86,13 +85,8 @@ Updated updateAndSolve(const Eigen::MatrixXd& A, const std::vector<int>& rows, c
 					   const Eigen::VectorXd& b)
 {
 	CholmodCommon c;
-	c.useGivenOrderingForModification();
-	auto S = toCholmod(LowerCsc::fromDenseLower(A), c);
-	std::vector<int> natural(kN);
-	for (int g = 0; g < kN; ++g) natural[g] = g;
-	auto L = ownFactor(cholmod_analyze_p(S.get(), natural.data(), nullptr, 0, c.get()), c);
-	cholmod_factorize(S.get(), L.get(), c.get());
-	EXPECT_EQ(c->status, CHOLMOD_OK);
+	auto L = test::naturalOrderFactor(A, c);
+	EXPECT_TRUE(L && c->status == CHOLMOD_OK);
 	auto U = ownSparse(cholmod_allocate_sparse(kN, C.cols(), C.size(), true, true, 0, CHOLMOD_REAL, c.get()), c);
 	auto* p = static_cast<int*>(U->p);
 	auto* i = static_cast<int*>(U->i);
