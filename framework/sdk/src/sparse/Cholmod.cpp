@@ -197,14 +197,12 @@ void cholmodSolve(int sys, cholmod_factor* L, cholmod_dense* B, CholmodDensePtr&
 std::vector<double> factorPivots(const cholmod_factor& L)
 {
 	std::vector<double> d(L.n);
-	const auto* x = static_cast<const double*>(L.x);
 	if (!L.is_super)
 	{
-		const auto* p = static_cast<const int*>(L.p);
-		// Simplicial columns start with their diagonal entry.
-		for (std::size_t j = 0; j < L.n; ++j) d[j] = L.is_ll ? x[p[j]] * x[p[j]] : x[p[j]];
+		for (std::size_t j = 0; j < L.n; ++j) d[j] = simplicialPivot(L, static_cast<int>(j));
 		return d;
 	}
+	const auto* x = static_cast<const double*>(L.x);
 	// Supernodal: supernode s holds columns super[s]..super[s+1]-1 as a dense
 	// column-major block of nsrow rows starting at x[px[s]].
 	const auto* super = static_cast<const int*>(L.super);

@@ -94,6 +94,13 @@ void cholmodSolve(int sys, cholmod_factor* L, cholmod_dense* B, CholmodDensePtr&
 /// The pivots d_j of a simplicial or supernodal factor of
 /// P A P^T = L D L^T (for an LL^T factor, d_j = L_jj^2), in factor order.
 std::vector<double> factorPivots(const cholmod_factor& L);
+/// Pivot j of a simplicial factor: D(j, j) of LDL^T, L(j, j)^2 of LL^T. A
+/// simplicial column starts with its diagonal entry.
+inline double simplicialPivot(const cholmod_factor& L, int j)
+{
+	const double ljj = static_cast<const double*>(L.x)[static_cast<const int*>(L.p)[j]];
+	return L.is_ll ? ljj * ljj : ljj;
+}
 
 /// Structural non-zeros of a numeric factor (lower triangle with diagonal),
 /// over its leading `columns` columns.

@@ -29,6 +29,7 @@ struct FactorArrays
 	/// Off-diagonal entries of column j: [begin, end).
 	int begin(int j) const { return p[j] + 1; }
 	int end(int j) const { return p[j] + nz[j]; }
+	/// D(j, j): simplicialPivot() of an LDL^T factor, on the arrays cached for the solves' inner loops.
 	double diagonal(int j) const { return x[p[j]]; }
 };
 

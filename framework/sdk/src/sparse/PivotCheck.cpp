@@ -1,5 +1,6 @@
 #include <esif/config/ParamBinder.h>
 #include <esif/core/Errors.h>
+#include "sparse/Cholmod.h"
 #include "sparse/PivotCheck.h"
 
 #include <algorithm>
@@ -40,11 +41,10 @@ void checkPivotsAt(const cholmod_factor& L, const std::vector<int>& positions, c
 				   double min_ratio, const InformationForm& info, const std::string& what)
 {
 	if (L.is_super || L.is_ll) throw std::logic_error("checkPivotsAt: needs a simplicial LDL^T factor");
-	const auto* p = static_cast<const int*>(L.p);
-	const auto* x = static_cast<const double*>(L.x);
 	const int n = info.scalarDim();
 	for (const int k : positions)
-		if (k < static_cast<int>(order.size()) && order[k] < n) checkPivot(x[p[k]], order[k], min_ratio, info, what);
+		if (k < static_cast<int>(order.size()) && order[k] < n)
+			checkPivot(simplicialPivot(L, k), order[k], min_ratio, info, what);
 }
 
 }  // namespace esif
