@@ -94,6 +94,11 @@ void Dslam::updateAndRecoverMap(const Observed& obs, const Pose2& sensor)
 	relinearise(params_.relinearise_iterations);
 }
 
+void Dslam::reserveLandmarkIds(LandmarkId largest_input_id)
+{
+	next_own_id_ = std::max(next_own_id_, largest_input_id + 1);
+}
+
 void Dslam::finish()
 {
 	if (params_.relinearise_every_steps > 0 && map_ && map_->featureCount() > 0) relinearise(1);

@@ -50,6 +50,8 @@ class Dslam : public PluginWithParams<dslam::DslamParams>
 	std::string sectionName() const override { return "dslam"; }
 	StepReport processStep(const StepInput& step) override;
 	void finish() override;
+	/// New features without a measured ID are numbered above the input's IDs.
+	void reserveLandmarkIds(LandmarkId largest_input_id) override;
 	PoseEstimate robotPose() const override;
 	Estimate estimate() const override;
 	CostFigures costFigures() const override;

@@ -19,6 +19,7 @@ class EkfSlam : public PluginWithParams<EkfSlamParams>
    public:
 	std::string sectionName() const override { return "ekf"; }
 	StepReport processStep(const StepInput& step) override { return filter_.processStep(step); }
+	void reserveLandmarkIds(LandmarkId largest_input_id) override { filter_.reserveIdsUpTo(largest_input_id); }
 	PoseEstimate robotPose() const override { return filter_.robotPose(); }
 	Estimate estimate() const override { return filter_.estimate(); }
 	CostFigures costFigures() const override;

@@ -38,6 +38,23 @@ TEST(LandmarkIdRequirement, AnyIdAnywhereIsEnough)
 	EXPECT_NO_THROW(esif::requireLandmarkIds(plugin, makeRawlog({{{std::nullopt}}, {{5}}}), {"c.ini", false, ""}));
 }
 
+TEST(LandmarkIdRequirement, LargestInputIdIsTheRecordedAssociationsOrTheRawlogs)
+{
+	// Plugins number their own landmarks above it (FilterPlugin::reserveLandmarkIds).
+	EXPECT_EQ(esif::largestInputLandmarkId(makeRawlog({{{std::nullopt}}, std::nullopt}), nullptr), std::nullopt);
+	const auto log = makeRawlog({{{4, std::nullopt}}, {{17, 2}}});
+	EXPECT_EQ(esif::largestInputLandmarkId(log, nullptr), 17);
+	// A recorded association's IDs replace the rawlog's; its rejected rows carry none.
+	esif::RecordedAssociations recorded;
+	recorded.steps.resize(2);
+	recorded.steps[0].associations = {{esif::Association::Kind::New, 3}, {esif::Association::Kind::Rejected, -1}};
+	recorded.steps[1].associations = {{esif::Association::Kind::Matched, 3}, {esif::Association::Kind::New, 9}};
+	EXPECT_EQ(esif::largestInputLandmarkId(log, &recorded), 9);
+	recorded.steps[1].associations = {{esif::Association::Kind::Rejected, -1}, {esif::Association::Kind::Rejected, -1}};
+	recorded.steps[0].associations[0] = {esif::Association::Kind::Rejected, -1};
+	EXPECT_EQ(esif::largestInputLandmarkId(log, &recorded), std::nullopt);
+}
+
 TEST(LandmarkIdRequirement, PluginThatAssociatesItselfNeedsNoIds)
 {
 	FakePlugin plugin;

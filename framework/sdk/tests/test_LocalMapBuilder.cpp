@@ -543,6 +543,52 @@ TEST(LocalMapBuilderNoiseFree, HiddenIdsCountOwnFeaturesWithTheJoiningFiltersCou
 	EXPECT_EQ(undecided, mapLengthsWithCounter(run.steps, nullptr));
 }
 
+TEST(LocalMapBuilderNoiseFree, ScansWithAndWithoutIdsKeepTheirFeaturesApart)
+{
+	// A recorded association (`--associations-from`) takes the ID off every
+	// measurement its run rejected, so a log can hold scans with IDs and
+	// scans without; here the first five steps of every 30 lose theirs. The
+	// builder numbers the features of the scans without IDs above the log's
+	// IDs (reserveIdsUpTo, as the host asks every plugin), so no number names
+	// a feature a later ID names; and a numbered feature matched to the
+	// previous map keeps its number when a feature of its map holds that
+	// map's ID already (the same landmark seen without and with its ID).
+	// Before, the first map's features 1, 2 and 4, numbered by the builder,
+	// took the log's IDs 1, 2 and 4, whose measurements the ID gate then
+	// rejected, and map 2 held feature 6 twice.
+	auto run = tb::simulateInMemory(
+		tb::withoutNoise(tb::scenarioFromConfig("small")), kFilterStdRange, kFilterStdBearing);
+	LandmarkId largest = 0;
+	for (auto& step : run.steps)
+		for (auto& m : step.scan->measurements)
+		{
+			largest = std::max(largest, *m.id);
+			if (step.index % 30 < 5) m.id.reset();
+		}
+	LocalMapBuilderParams params;
+	params.local_map_steps = 30;
+	LocalMapBuilder builder(params);
+	builder.reserveIdsUpTo(largest);
+	tb::BuiltMaps built;
+	for (const auto& step : run.steps)
+	{
+		ASSERT_NO_THROW(built.provisional_reports.push_back(builder.processStep(step))) << "step " << step.index;
+		if (auto m = builder.takeClosedMap()) built.maps.push_back(std::move(*m));
+	}
+	if (auto m = builder.finish()) built.maps.push_back(std::move(*m)), built.last_from_finish = true;
+	ASSERT_GE(built.maps.size(), 3u);
+	expectStepReports(built, run.steps);
+	// Noise-free: every measurement that carries an ID is used on the feature of that ID.
+	for (std::size_t k = 0; k < run.steps.size(); ++k)
+		for (std::size_t i = 0; i < run.steps[k].scan->measurements.size(); ++i)
+			if (const auto id = run.steps[k].scan->measurements[i].id)
+			{
+				EXPECT_NE(built.provisional_reports[k].associations[i].kind, Association::Kind::Rejected)
+					<< "step " << k << ", ID " << *id;
+				EXPECT_EQ(built.provisional_reports[k].associations[i].id, *id) << "step " << k;
+			}
+}
+
 // -------------------------------------------------------- information form
 
 TEST(LocalMapBuilder, StationaryRobotGetsTheDocumentedStabilisation)

@@ -3,6 +3,7 @@
 #include <esif/formats/AssociationFile.h>
 #include <esif/localmap/LocalMapBuilder.h>
 #include <esif/localmaps/LocalMapBuild.h>
+#include <esif/run/LandmarkIdRequirement.h>
 #include <esif/run/ProgressBar.h>
 #include <esif/run/RunConfig.h>
 #include <esif/safeio/RunFolder.h>
@@ -15,6 +16,7 @@ namespace esif
 std::vector<LocalMap> buildLocalMaps(const Rawlog& log, const LocalMapBuilderParams& params, bool progress_bar)
 {
 	LocalMapBuilder builder(params);
+	if (const auto largest = largestInputLandmarkId(log, nullptr)) builder.reserveIdsUpTo(*largest);
 	std::vector<LocalMap> maps;
 	ProgressBar progress("local maps", progress_bar ? log.steps.size() : 0);
 	for (std::size_t k = 0; k < log.steps.size(); ++k)

@@ -129,6 +129,8 @@ Stats runInto(const RunRequest& request, PluginLoader& loader)
 	scoreAgainstMeasurementTruth(
 		log, request.ground_truth_prefix.value_or(groundTruthPrefixFor(request.rawlog_path)));
 	requireLandmarkIds(*plugin, log, {cfg.origin(), host.hide_landmark_ids, associations.value_or("")});
+	if (const auto largest = largestInputLandmarkId(log, recorded ? &*recorded : nullptr))
+		plugin->reserveLandmarkIds(*largest);
 	requireMemory(*plugin, log, cfg.origin(), memoryBudget(), recorded ? &*recorded : nullptr);
 	if (initial_estimate)
 	{

@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <map>
+#include <set>
 
 namespace esif
 {
@@ -64,6 +65,12 @@ StepReport LocalMapBuilder::processStep(const StepInput& step)
 	measurements_ += step.scan ? step.scan->measurements.size() : 0;
 	if (policyWantsToClose()) closed_ = closeOpenMap();
 	return report;
+}
+
+void LocalMapBuilder::reserveIdsUpTo(LandmarkId largest_input_id)
+{
+	next_own_id_ = std::max(next_own_id_, largest_input_id + 1);
+	ekf_.reserveIdsUpTo(largest_input_id);
 }
 
 std::optional<LocalMap> LocalMapBuilder::takeClosedMap()
@@ -150,6 +157,28 @@ Eigen::MatrixXd informationOf(const Eigen::MatrixXd& P, std::size_t map_index)
 	return 0.5 * (I + I.transpose());
 }
 
+/// Gives up every rename onto an ID the open map holds already, or that
+/// another rename takes, until no ID is held twice: in a log whose scans
+/// carry IDs only in part, a landmark seen by the builder's numbers in one
+/// scan and by its ID in another is two features of the open map, and the
+/// numbered one keeps its number.
+void keepEveryIdOnce(const std::vector<LandmarkId>& ids, std::map<LandmarkId, LandmarkId>& renames)
+{
+	for (bool changed = true; changed;)
+	{
+		changed = false;
+		std::set<LandmarkId> held;	// IDs of the features not renamed
+		for (const LandmarkId id : ids)
+			if (!renames.count(id)) held.insert(id);
+		std::set<LandmarkId> taken;
+		for (auto it = renames.begin(); it != renames.end();)
+			if (held.count(it->second) || !taken.insert(it->second).second)
+				it = renames.erase(it), changed = true;
+			else
+				++it;
+	}
+}
+
 void renameInReports(std::vector<StepReport>& reports, const std::map<LandmarkId, LandmarkId>& renames)
 {
 	for (auto& r : reports)
@@ -183,6 +212,7 @@ LocalMap LocalMapBuilder::closeOpenMap()
 			{
 				if (const auto m = matches[a++]) renames[id] = previous_->features[*m].id;
 			}
+		keepEveryIdOnce(ekf_.ids(), renames);
 	}
 	for (std::size_t i = 0; i < ekf_.ids().size(); ++i)
 	{

@@ -18,6 +18,12 @@ void MapJoiningPlugin::startBuilder(const LocalMapBuilderParams& params)
 	});
 }
 
+void MapJoiningPlugin::reserveLandmarkIds(LandmarkId largest_input_id)
+{
+	requireBuilder();
+	builder_->reserveIdsUpTo(largest_input_id);
+}
+
 void MapJoiningPlugin::requireBuilder() const
 {
 	if (!builder_) throw std::logic_error(filter_name_ + ": used before configure()");

@@ -5,9 +5,11 @@
 /// landmark IDs: otherwise it would map nothing, and the run would look like
 /// a result rather than a configuration mistake.
 
+#include <esif/formats/AssociationFile.h>
 #include <esif/formats/RawlogReader.h>
 #include <esif/plugin/FilterPlugin.h>
 
+#include <optional>
 #include <string>
 
 namespace esif
@@ -28,5 +30,11 @@ bool hasAnyLandmarkId(const Rawlog& log);
 /// `log` has one, naming the config, the plugin class, the rawlog (or the
 /// associations file that left none) and the fix: `[esif] associations_from`.
 void requireLandmarkIds(const FilterPlugin& plugin, const Rawlog& log, const LandmarkIdSource& source);
+
+/// The largest landmark ID a measurement reaches the plugin with: the
+/// recorded association's when one is given, else the rawlog's (none when
+/// hidden); nullopt when no measurement carries one. The host hands it to
+/// FilterPlugin::reserveLandmarkIds before the first step.
+std::optional<LandmarkId> largestInputLandmarkId(const Rawlog& log, const RecordedAssociations* recorded);
 
 }  // namespace esif

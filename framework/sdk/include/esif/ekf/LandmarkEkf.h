@@ -41,6 +41,7 @@
 #include <esif/ekf/EkfSlamCore.h>
 #include <esif/ekf/SightingRejections.h>
 
+#include <algorithm>
 #include <optional>
 #include <unordered_map>
 #include <unordered_set>
@@ -69,6 +70,9 @@ class LandmarkEkf
 	std::optional<std::size_t> indexOf(LandmarkId id) const;
 	/// The ID the next landmark created without a measured ID would get (or a larger one).
 	LandmarkId nextOwnId() const { return next_own_id_; }
+	/// Numbers the landmarks it creates without a measured ID above
+	/// `largest_input_id` (FilterPlugin::reserveLandmarkIds).
+	void reserveIdsUpTo(LandmarkId largest_input_id) { next_own_id_ = std::max(next_own_id_, largest_input_id + 1); }
 	/// JCBB search nodes explored so far (MRPT's count).
 	std::size_t jcbbNodes() const { return jcbb_nodes_; }
 	/// Scans too ambiguous for JCBB (SearchBounds), associated by nearest

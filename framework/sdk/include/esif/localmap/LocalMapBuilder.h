@@ -37,6 +37,10 @@ class LocalMapBuilder
 	/// map when the closed map's covariance is not positive definite.
 	StepReport processStep(const StepInput& step);
 
+	/// Numbers the features it numbers itself above `largest_input_id`, in
+	/// the open map and every later one (FilterPlugin::reserveLandmarkIds).
+	void reserveIdsUpTo(LandmarkId largest_input_id);
+
 	/// The map the last processStep() closed, if any (then cleared).
 	std::optional<LocalMap> takeClosedMap();
 

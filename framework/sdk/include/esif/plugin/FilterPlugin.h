@@ -69,6 +69,15 @@ class FilterPlugin : public mrpt::rtti::CObject
 	/// The host refuses to start such a plugin on input without any ID.
 	virtual bool needsLandmarkIds() const { return false; }
 
+	/// Called once, after configure() and before the first step, with the
+	/// largest landmark ID any measurement of the run carries (the rawlog's,
+	/// or a recorded association's), when one does. A plugin that numbers
+	/// the landmarks of measurements without an ID itself numbers them above
+	/// it: in a log whose scans carry IDs only in part (a recorded run leaves
+	/// none on the measurements it rejected), its numbers would otherwise
+	/// name landmarks the input names.
+	virtual void reserveLandmarkIds(LandmarkId /*largest_input_id*/) {}
+
 	/// Whether the plugin starts from another run's estimate when the config
 	/// gives one (`[esif] initial_run`); the host refuses the key for a
 	/// plugin that does not.

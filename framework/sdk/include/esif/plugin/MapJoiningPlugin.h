@@ -39,6 +39,8 @@ class MapJoiningPlugin : public FilterPlugin, public LocalMapJoiner
 	void joinLocalMap(const LocalMap& map) final;
 	/// Closes and fuses the open local map, then finishJoining().
 	void finish() final;
+	/// The local-map builder numbers its own features above the input's IDs.
+	void reserveLandmarkIds(LandmarkId largest_input_id) final;
 	/// Each step's measurements as finally settled by the fusion of its map:
 	/// a local feature's provisional ID replaced by its global one.
 	std::optional<std::vector<StepReport>> finalReports() const final;
