@@ -335,7 +335,7 @@ if decomposed:
         rows_b = sorted((t for t in decomposed if t["backend"] == backend), key=lambda t: t["landmarks"])
         for a, b in zip(rows_b, rows_b[1:]):
             ca, cb = unit_costs(a), unit_costs(b)
-            cells = ["-" if not (x and y) else "%.2f" % (math.log(y / x) / math.log(b["landmarks"] / a["landmarks"]))
+            cells = ["-" if not (x and y) else "%.2f" % slopes([(a["landmarks"], x), (b["landmarks"], y)])[0]
                      for x, y in zip(ca, cb)]
             print(f"| {backend} | slope {a['size']} - {b['size']} | - | - | " + " | ".join(cells) + " |")
 
