@@ -272,6 +272,20 @@ TEST_F(LocalMapsCli, PluginThatCannotJoinIsOneLineAndWritesNothing)
 	EXPECT_FALSE(fs::exists(out));
 }
 
+TEST_F(LocalMapsCli, BuildRefusesAssociationWithAGlobalMapItDoesNotHave)
+{
+	// The maps SLSJF builds with local_map_global_features_radius_m are
+	// associated with its global map as they are built: esif localmaps build
+	// has none, so it refuses rather than write maps SLSJF would not fuse.
+	std::ofstream(dir_->file("scan_global.ini"))
+		<< "[esif]\nplugin = Slsjf\nhide_landmark_ids = true\n[slsjf]\nlocal_map_global_features_radius_m = 12\n";
+	const std::string out = dir_->file("scan_global_out");
+	expectOneErrorLine(runEsif("localmaps build --config " + config("scan_global.ini") + " --rawlog " +
+							   quoted(kGrid196) + " --out " + quoted(out)),
+					   "scan_global.ini: local_map_global_features_radius_m needs the joining filter's global map");
+	EXPECT_FALSE(fs::exists(out));
+}
+
 TEST_F(LocalMapsCli, RawlogAndLocalMapsTogetherOrNeitherIsAnError)
 {
 	const std::string out = dir_->file("both_out");

@@ -1,11 +1,13 @@
 // Tentative landmarks (TentativeFeatures) and waiting on an ambiguous match
 // (Ambiguity.h), the SDK's shared pieces of association without IDs; and
 // both in LandmarkEkf, on small constructed cases: two twins, a blind
-// drive, a poorly observed feature.
+// drive, a poorly observed feature; and the association of a local map's
+// scans with the global map's features (EarlierFeatures) in the same cases.
 
 #include <esif/association/Ambiguity.h>
 #include <esif/association/Chi2.h>
 #include <esif/association/TentativeFeatures.h>
+#include <esif/ekf/EarlierFeatures.h>
 #include <esif/ekf/LandmarkEkf.h>
 #include <esif/localmap/LocalMapBuilder.h>
 
@@ -298,5 +300,145 @@ TEST(LandmarkEkfSightingNoise, FusionKeepsTheInflatedNoise)
 	}
 	EXPECT_EQ(inflated.core().state(), both.core().state());
 	EXPECT_EQ(inflated.core().covariance(), both.core().covariance());
+}
+
+TEST(EarlierFeatures, InFrameMovesTheFeaturesAndAddsTheFrameUncertainty)
+{
+	EarlierFeatures f;
+	f.ids = {7};
+	f.positions = Eigen::Vector2d(2.0, 0.0);
+	f.covariance = Eigen::Vector2d(0.04, 0.01).asDiagonal();
+	// Seen from (1, 0) facing +y, whose heading is uncertain by 0.1 rad: the
+	// feature is 1 m to its right, and the heading moves it along the
+	// frame's x axis by 1 m x 0.1 rad.
+	const EarlierFeatures g = f.inFrame(Pose2(1.0, 0.0, M_PI / 2), Eigen::Vector3d(0, 0, 0.01).asDiagonal());
+	ASSERT_EQ(g.ids, f.ids);
+	EXPECT_NEAR(g.position(0).x(), 0.0, 1e-12);
+	EXPECT_NEAR(g.position(0).y(), -1.0, 1e-12);
+	// The feature's own covariance rotated by 90 deg (x <-> y), plus 0.01 in x.
+	EXPECT_NEAR(g.covariance(0, 0), 0.01 + 0.01, 1e-12);
+	EXPECT_NEAR(g.covariance(1, 1), 0.04, 1e-12);
+	EXPECT_NEAR(g.covariance(0, 1), 0.0, 1e-12);
+}
+
+/// Earlier features `points` (IDs 100, 101, ...) seen from the global
+/// frame's origin, uncertain by `sigma_xy` each and by a shared heading of
+/// `sigma_phi` (the start pose's, correlating them).
+EarlierFeatures earlierAtOrigin(const std::vector<Eigen::Vector2d>& points, double sigma_xy, double sigma_phi)
+{
+	const auto n = static_cast<Eigen::Index>(points.size());
+	Eigen::MatrixXd joint = std::pow(sigma_xy, 2) * Eigen::MatrixXd::Identity(3 + 2 * n, 3 + 2 * n);
+	joint(0, 0) = joint(1, 1) = 0;
+	joint(2, 2) = sigma_phi * sigma_phi;
+	std::vector<LandmarkId> ids;
+	for (Eigen::Index i = 0; i < n; ++i) ids.push_back(100 + i);
+	return earlierFeaturesInFrame(Pose2::Zero(), ids, points, joint);
+}
+
+/// A builder of one open map (no close) associating by distance, given the
+/// earlier features `earlier` before its first step.
+LocalMapBuilder builderWithEarlier(const EarlierFeatures& earlier, EkfAssociationParams association)
+{
+	LocalMapBuilderParams params;
+	params.local_map_steps = 0;
+	params.association = association;
+	LocalMapBuilder builder(params);
+	builder.reserveIdsUpTo(999);
+	builder.setEarlierFeatures(earlier);
+	return builder;
+}
+
+TEST(LocalMapBuilderEarlierFeatures, ASightingOfOneStartsItsFeatureUnderItsId)
+{
+	LocalMapBuilder builder = builderWithEarlier(earlierAtOrigin({{5.0, 0.0}, {0.0, 5.0}}, 0.1, 0.0),
+												 distanceAssociation(false, 0));
+	// 5.05 m ahead: d2 = 0.0025 / (0.01 + 0.01) = 0.125, inside the gate.
+	auto r = builder.processStep(step(0, -1, 0, 0, {{5.05, 0.0}, {8.0, -1.0}}));
+	ASSERT_EQ(r.associations.size(), 2u);
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::New);
+	EXPECT_EQ(r.associations[0].id, 100);
+	EXPECT_EQ(r.associations[1].kind, Association::Kind::New);	// far from both: the builder's own number
+	EXPECT_EQ(r.associations[1].id, 1000);
+	EXPECT_EQ(builder.earlierFeatureStarts(), 1u);
+	// The open map places it by the measurement alone and knows nothing of
+	// the global map: its state is what a filter given the IDs alone holds.
+	const LandmarkEkf& open = builder.openMap();
+	ASSERT_EQ(open.ids(), (std::vector<LandmarkId>{100, 1000}));
+	EXPECT_NEAR(open.core().landmark(0).x(), 5.05, 1e-12);
+	EkfAssociationParams by_ids = distanceAssociation(false, 0);
+	by_ids.association = EkfAssociation::KnownIds;
+	LandmarkEkf alone(by_ids);
+	StepInput with_ids = step(0, -1, 0, 0, {{5.05, 0.0}, {8.0, -1.0}});
+	with_ids.scan->measurements[0].id = 100;
+	with_ids.scan->measurements[1].id = 1000;
+	alone.processStep(with_ids);
+	EXPECT_LT((open.core().covariance() - alone.core().covariance()).norm(), 1e-12);
+	// From now on a sighting of it is a match in the open map.
+	r = builder.processStep(step(1, 0.0, 1e-3, 1e-4, {{5.0, 0.0}}));
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::Matched);
+	EXPECT_EQ(r.associations[0].id, 100);
+	EXPECT_EQ(builder.earlierFeatureStarts(), 1u);
+}
+
+TEST(LocalMapBuilderEarlierFeatures, ASightingBesideOneIsLeftOutNotMappedAgain)
+{
+	// As the poorly observed landmark above: 0.51 m beyond an earlier feature
+	// known to 0.1 m, d2 = 13, outside the 0.99 gate and inside the 0.9999
+	// new-landmark gate.
+	LocalMapBuilder builder =
+		builderWithEarlier(earlierAtOrigin({{5.0, 0.0}}, 0.1, 0.0), distanceAssociation(false, 0));
+	const auto r = builder.processStep(step(0, -1, 0, 0, {{5.51, 0.0}}));
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::Rejected);
+	EXPECT_EQ(builder.rejections().poorly_observed, 1u);
+	EXPECT_EQ(builder.openMap().core().landmarkCount(), 0u);
+}
+
+TEST(LocalMapBuilderEarlierFeatures, TwinsUnderAnUncertainStartHeadingWaitThenAMatchSettlesTheHeading)
+{
+	// Two earlier features 1.5 m apart, 6 m ahead; the map's start heading is
+	// uncertain by 0.2 rad (a blind drive): 1.2 m across at 6 m, so one
+	// sighting fits both.
+	EkfAssociationParams jcbb = distanceAssociation(false, 0.99);
+	jcbb.association = EkfAssociation::Jcbb;
+	LocalMapBuilder builder = builderWithEarlier(earlierAtOrigin({{6.0, 0.0}, {6.0, 1.5}}, 0.05, 0.2), jcbb);
+	auto r = builder.processStep(step(0, -1, 0, 0, {{6.0, 0.1}}));
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::Rejected);
+	EXPECT_EQ(builder.rejections().ambiguous_waits, 1u);
+	EXPECT_EQ(builder.openMap().core().landmarkCount(), 0u);
+	// Both together: their 1.5 m spacing, which the heading does not blur,
+	// decides the pairing jointly, each under its own ID.
+	const Eigen::Vector2d left(std::hypot(6.0, 1.5), std::atan2(1.5, 6.0));
+	r = builder.processStep(step(1, 0.0, 1e-3, 1e-4, {{6.0, 0.1}, left + Eigen::Vector2d(0, 0.1)}));
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::New);
+	EXPECT_EQ(r.associations[0].id, 100);
+	EXPECT_EQ(r.associations[1].kind, Association::Kind::New);
+	EXPECT_EQ(r.associations[1].id, 101);
+	// The association filter now knows the heading (0.1 rad off): a lone
+	// sighting of the right twin, which waited at step 0, is matched.
+	r = builder.processStep(step(2, 0.0, 1e-3, 1e-4, {left + Eigen::Vector2d(0, 0.1)}));
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::Matched);
+	EXPECT_EQ(r.associations[0].id, 101);
+	EXPECT_EQ(builder.rejections().ambiguous_waits, 1u);
+}
+TEST(LocalMapBuilderEarlierFeatures, WithAnOdometryLinkTheyAreMovedThroughTheLink)
+{
+	// Maps of one step linked by the next step's odometry (eq. 5.4): the
+	// earlier features, given in the previous map's end frame, are seen from
+	// the new map's origin one link later (1 m ahead, 0.05 m uncertain).
+	LocalMapBuilderParams params;
+	params.local_map_steps = 1;
+	params.local_map_link = LocalMapLink::Odometry;
+	params.association = distanceAssociation(false, 0);
+	LocalMapBuilder builder(params);
+	builder.reserveIdsUpTo(999);
+	builder.processStep(step(0, -1, 0, 0, {}));
+	ASSERT_TRUE(builder.takeClosedMap());
+	builder.setEarlierFeatures(earlierAtOrigin({{5.0, 0.0}}, 0.05, 0.0));
+	// The feature 4 m ahead of the new origin: its earlier ID. Unmoved, it
+	// would sit 1 m off, d2 = 1 / (0.0025 + 0.01) = 80: a new feature.
+	const auto r = builder.processStep(step(1, 1.0, 0.05, 1e-4, {{4.0, 0.0}}));
+	ASSERT_EQ(r.associations.size(), 1u);
+	EXPECT_EQ(r.associations[0].kind, Association::Kind::New);
+	EXPECT_EQ(r.associations[0].id, 100);
 }
 }  // namespace

@@ -89,6 +89,10 @@ LocalMapsOfRawlog buildLocalMapsOfRawlog(const LocalMapBuildRequest& request, Pl
 	auto plugin = createConfiguredPlugin(cfg, host, loader);
 	const LocalMapJoiner* joiner = asLocalMapJoiner(*plugin);
 	if (!joiner) throw ConfigError(cfg.origin() + ": plugin " + host.plugin + " is not a local-map joining plugin");
+	// Maps built apart from any global map cannot be associated with one.
+	if (joiner->localMapBuilderParams().local_map_global_features_radius_m > 0)
+		throw ConfigError(cfg.origin() + ": local_map_global_features_radius_m needs the joining filter's global map "
+										 "while the maps are built; esif localmaps build writes maps without one: set it to 0");
 	const auto associations = locateAssociations(cfg, host, false);
 
 	Rawlog log = readRawlog(request.rawlog_path, readOptionsOf(host));

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 namespace esif
@@ -305,6 +306,28 @@ void LandmarkEkf::addNewLandmarks(const Scan& scan, std::size_t step, StepReport
 		const std::size_t idx = core_.addLandmark(Eigen::Vector2d(m.range_m, m.bearing_rad), m.cov, sensor);
 		ids_.push_back(a.id);
 		index_of_[a.id] = idx;
+	}
+}
+
+void LandmarkEkf::addPriorLandmarks(const EarlierFeatures& features)
+{
+	if (features.size() == 0) return;
+	const auto n = static_cast<Eigen::Index>(core_.stateDim());
+	const auto m = static_cast<Eigen::Index>(2 * features.size());
+	Eigen::VectorXd x(n + m);
+	x << core_.state(), features.positions;
+	Eigen::MatrixXd P = Eigen::MatrixXd::Zero(n + m, n + m);
+	P.topLeftCorner(n, n) = core_.covariance();
+	P.bottomRightCorner(m, m) = features.covariance;
+	for (const LandmarkId id : features.ids)
+		if (index_of_.count(id))
+			throw std::invalid_argument("LandmarkEkf::addPriorLandmarks: landmark " + std::to_string(id) + " is mapped already");
+	core_.setState(x, P);
+	for (const LandmarkId id : features.ids)
+	{
+		index_of_[id] = ids_.size();
+		ids_.push_back(id);
+		confirmed_.insert(id);
 	}
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <stdexcept>
 
 namespace esif
 {
@@ -36,35 +37,84 @@ LocalMapBuilder::LocalMapBuilder(const LocalMapBuilderParams& params)
 StepReport LocalMapBuilder::processStep(const StepInput& step)
 {
 	if (steps_ == 0) first_step_ = step.index;
-	StepReport report;
+	StepInput in_map = step;
 	if (link_pending_ && step.odometry)
 	{
 		// Eq. (5.4): this step's motion links the previous end pose to the
 		// new map's start pose, which is the origin of the new map.
 		link_ = step.odometry;
 		link_pending_ = false;
-		StepInput rest = step;
-		rest.odometry.reset();
-		report = ekf_.processStep(rest);
+		in_map.odometry.reset();
+		if (earlier_through_link_) startAssociationFilter(earlier_through_link_->inFrame(link_->delta, link_->cov));
+		earlier_through_link_.reset();
 	}
 	else
 	{
 		link_pending_ = false;
-		report = ekf_.processStep(step);
 		if (step.odometry) travelled_m_ += std::hypot(step.odometry->delta.x(), step.odometry->delta.y());
 	}
+	const StepReport report = association_ekf_ ? processAsTheGlobalMapDecides(in_map) : ekf_.processStep(in_map);
 	// Features the filter numbered itself: every new one of a scan associated
 	// by distance, even when the log's IDs are present (association = nn|jcbb).
 	if (step.scan && !associatedByIds(params_.association, *step.scan))
 		for (const auto& a : report.associations)
-			if (a.kind == Association::Kind::New) own_ids_.insert(a.id);
+			if (a.kind == Association::Kind::New && !earlier_ids_.count(a.id)) own_ids_.insert(a.id);
 	next_own_id_ = std::max(next_own_id_, ekf_.nextOwnId());
+	if (association_ekf_) next_own_id_ = std::max(next_own_id_, association_ekf_->nextOwnId());
 	reports_.push_back(report);
 	++steps_;
 	last_step_ = step.index;
 	measurements_ += step.scan ? step.scan->measurements.size() : 0;
 	if (policyWantsToClose()) closed_ = closeOpenMap();
 	return report;
+}
+
+StepReport LocalMapBuilder::processAsTheGlobalMapDecides(const StepInput& step)
+{
+	const StepReport decided = association_ekf_->processStep(step);
+	if (!step.scan) return ekf_.processStep(step);
+	// The open map takes the decided measurements under the decided IDs and
+	// leaves out the rest, as the association filter did.
+	StepInput by_id = step;
+	by_id.scan->measurements.clear();
+	std::vector<std::size_t> kept;
+	for (std::size_t i = 0; i < decided.associations.size(); ++i)
+	{
+		const Association& a = decided.associations[i];
+		if (a.kind == Association::Kind::Rejected) continue;
+		RangeBearing m = step.scan->measurements[i];
+		m.id = a.id;
+		by_id.scan->measurements.push_back(m);
+		kept.push_back(i);
+	}
+	const StepReport in_map = ekf_.processStep(by_id);
+	StepReport report;
+	report.associations.assign(decided.associations.size(), Association{Association::Kind::Rejected, -1});
+	for (std::size_t u = 0; u < kept.size(); ++u)
+	{
+		report.associations[kept[u]] = in_map.associations[u];
+		earlier_starts_ += in_map.associations[u].kind == Association::Kind::New && earlier_ids_.count(in_map.associations[u].id);
+	}
+	return report;
+}
+
+void LocalMapBuilder::setEarlierFeatures(EarlierFeatures features)
+{
+	if (steps_ > 0) throw std::logic_error("LocalMapBuilder::setEarlierFeatures: the open map has taken steps");
+	if (link_pending_)
+		earlier_through_link_ = std::move(features);
+	else
+		startAssociationFilter(features);
+}
+
+void LocalMapBuilder::startAssociationFilter(const EarlierFeatures& features)
+{
+	earlier_ids_ = std::set<LandmarkId>(features.ids.begin(), features.ids.end());
+	association_ekf_.emplace(params_.association, next_own_id_, params_.jacobians);
+	association_ekf_->addPriorLandmarks(features);
+	EkfAssociationParams by_ids = params_.association;
+	by_ids.association = EkfAssociation::KnownIds;
+	ekf_ = LandmarkEkf(by_ids, next_own_id_, params_.jacobians);
 }
 
 void LocalMapBuilder::reserveIdsUpTo(LandmarkId largest_input_id)
@@ -203,7 +253,7 @@ LocalMap LocalMapBuilder::closeOpenMap()
 
 	// Features the builder numbered that are features of the previous map take that map's IDs.
 	std::map<LandmarkId, LandmarkId> renames;
-	if (previous_ && !own_ids_.empty())
+	if (previous_ && !own_ids_.empty() && earlier_ids_.empty())
 	{
 		std::size_t a = 0;
 		const auto matches = matchOwnFeaturesToPrevious();
@@ -236,12 +286,17 @@ SightingRejections LocalMapBuilder::rejections() const
 {
 	SightingRejections all = rejections_in_closed_maps_;
 	all += ekf_.rejections();
+	if (association_ekf_) all += association_ekf_->rejections();
 	return all;
 }
 
 void LocalMapBuilder::startNextMap()
 {
 	rejections_in_closed_maps_ += ekf_.rejections();
+	if (association_ekf_) rejections_in_closed_maps_ += association_ekf_->rejections();
+	association_ekf_.reset();
+	earlier_ids_.clear();
+	earlier_through_link_.reset();
 	++index_;
 	ekf_ = LandmarkEkf(params_.association, next_own_id_, params_.jacobians);
 	steps_ = measurements_ = 0;

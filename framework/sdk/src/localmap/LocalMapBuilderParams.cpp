@@ -24,6 +24,12 @@ void LocalMapBuilderParams::declare(ParamBinder& b)
 		{{"shared_pose", LocalMapLink::SharedPose}, {"odometry", LocalMapLink::Odometry}},
 		"next map starts at the previous end pose (shared_pose) or one step later, linked by that step's "
 		"odometry (odometry, eq. 5.4)");
+	b.real("local_map_global_features_radius_m", local_map_global_features_radius_m,
+		   "associate each scan of a local map also with the global map's features within this distance of the "
+		   "map's start [m], at least the sensor's range plus the distance one local map covers; a sighting of "
+		   "one starts a local feature under its global ID, and the map level checks those IDs; 0 = off (a local "
+		   "map knows only its own features, as in the book)",
+		   Bounds::nonNegative());
 	PrefixedBinder local(b, "local_");
 	association.declare(local);
 	local.enumeration<JacobianPoints>(

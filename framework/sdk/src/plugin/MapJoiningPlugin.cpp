@@ -37,12 +37,16 @@ const LocalMapBuilder& MapJoiningPlugin::builder() const
 
 void MapJoiningPlugin::appendLocalMapCounters(std::vector<std::pair<std::string, double>>& counters) const
 {
-	if (builder_) builder_->rejections().appendCounters(counters, "local_");
+	if (!builder_) return;
+	builder_->rejections().appendCounters(counters, "local_");
+	if (localFeaturesCarryGlobalIds())
+		counters.emplace_back("local_features_started_from_global", static_cast<double>(builder_->earlierFeatureStarts()));
 }
 
 StepReport MapJoiningPlugin::processStep(const StepInput& step)
 {
 	requireBuilder();
+	built_from_steps_ = true;
 	if (step.scan)
 		for (const auto& m : step.scan->measurements) saw_measurement_without_id_ |= !m.id.has_value();
 	StepReport report = builder_->processStep(step);
@@ -51,10 +55,21 @@ StepReport MapJoiningPlugin::processStep(const StepInput& step)
 		local_poses_.push_back({map->end_pose, map->covariance->topLeftCorner<3, 3>()});
 		++maps_given_;
 		fuseLocalMap(*map);
+		giveGlobalFeaturesToOpenMap();
 	}
 	else
 		local_poses_.push_back(builder_->openMap().robotPose());
 	return report;
+}
+
+void MapJoiningPlugin::giveGlobalFeaturesToOpenMap()
+{
+	const double radius_m = builder_params_.local_map_global_features_radius_m;
+	if (radius_m <= 0) return;
+	auto features = globalFeaturesNearOpenMapStart(radius_m);
+	if (!features)
+		throw InputError(filter_name_ + ": local_map_global_features_radius_m is not supported by this filter");
+	builder_->setEarlierFeatures(std::move(*features));
 }
 
 void MapJoiningPlugin::joinLocalMap(const LocalMap& map)

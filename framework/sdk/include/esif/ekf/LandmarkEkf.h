@@ -37,6 +37,7 @@
 
 #include <esif/association/TentativeFeatures.h>
 #include <esif/core/Estimate.h>
+#include <esif/ekf/EarlierFeatures.h>
 #include <esif/ekf/EkfAssociationParams.h>
 #include <esif/ekf/EkfSlamCore.h>
 #include <esif/ekf/SightingRejections.h>
@@ -62,6 +63,13 @@ class LandmarkEkf
 	/// Association per measurement. Throws InputError when association =
 	/// known_ids and a measurement has no ID, NumericalError on a failed update.
 	StepReport processStep(const StepInput& step);
+
+	/// Appends `features` as landmarks under their IDs, with their mean and
+	/// joint covariance and no correlation with the rest of the state (known
+	/// independently of it: the map-joining builder's association filter,
+	/// LocalMapBuilder.h). Throws std::invalid_argument for an ID already
+	/// mapped. They count as confirmed for the ID gate.
+	void addPriorLandmarks(const EarlierFeatures& features);
 
 	const EkfSlamCore& core() const { return core_; }
 	/// Landmark IDs in the core's order (index i = landmark i).

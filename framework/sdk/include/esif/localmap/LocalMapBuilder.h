@@ -12,6 +12,19 @@
 /// the whole log) and, when a map is closed, gives the features it matched
 /// to the previous map (PreviousMapMatcher) that map's IDs, so that equal
 /// IDs mean one feature in every map, as in the authors' files.
+///
+/// With local_map_global_features_radius_m > 0 the joining filter gives each
+/// new map the global features near its start (setEarlierFeatures), and the
+/// scans are associated by a second EKF, the association filter: the open
+/// map's filter with those features added as landmarks, each with its
+/// global estimate and their joint covariance in the map's frame. It
+/// decides every measurement as the EKF plugin does (its waits, gates and
+/// tentative features), and after a match it knows the robot better, so the
+/// next sighting is judged against a corrected pose, as in the EKF. The
+/// open map itself takes the decided measurements by ID and stays
+/// independent of the global map (its information enters the global map
+/// once, eq. 5.8): a feature first seen there as a global one carries its
+/// global ID, and the close renames nothing (the scans have decided).
 
 #include <esif/ekf/LandmarkEkf.h>
 #include <esif/localmap/LocalMap.h>
@@ -40,6 +53,14 @@ class LocalMapBuilder
 	/// Numbers the features it numbers itself above `largest_input_id`, in
 	/// the open map and every later one (FilterPlugin::reserveLandmarkIds).
 	void reserveIdsUpTo(LandmarkId largest_input_id);
+
+	/// Features of the global map in the open map's frame (EarlierFeatures.h),
+	/// given after the previous map's fusion and before the open map's first
+	/// step. With local_map_link = odometry they are moved through the link
+	/// when it arrives.
+	void setEarlierFeatures(EarlierFeatures features);
+	/// Features of the local maps started under a global feature's ID, over every map so far.
+	std::size_t earlierFeatureStarts() const { return earlier_starts_; }
 
 	/// The map the last processStep() closed, if any (then cleared).
 	std::optional<LocalMap> takeClosedMap();
@@ -80,6 +101,9 @@ class LocalMapBuilder
 	static constexpr double kMinRobotVariance = 1e-6;
 
    private:
+	/// A step with the association filter: it decides, the open map follows by ID.
+	StepReport processAsTheGlobalMapDecides(const StepInput& step);
+	void startAssociationFilter(const EarlierFeatures& features);
 	bool policyWantsToClose() const;
 	LocalMap closeOpenMap();
 	std::vector<std::optional<std::size_t>> matchOwnFeaturesToPrevious() const;
@@ -94,6 +118,10 @@ class LocalMapBuilder
 	bool link_pending_ = false;	 // odometry mode: the next step's odometry links the maps
 	std::optional<OdometryIncrement> link_;
 	std::set<LandmarkId> own_ids_;	// features of the open map numbered by the builder
+	std::set<LandmarkId> earlier_ids_;	// IDs of the open map's earlier features
+	std::optional<EarlierFeatures> earlier_through_link_;  // odometry link: set once the link is known
+	std::optional<LandmarkEkf> association_ekf_;  // the open map's filter plus the earlier features
+	std::size_t earlier_starts_ = 0;
 	std::vector<StepReport> reports_;  // the open map's steps
 	std::set<LandmarkId> ids_in_closed_maps_;
 	std::optional<LocalMap> previous_;	// the last closed map

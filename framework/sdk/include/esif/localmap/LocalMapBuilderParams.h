@@ -50,6 +50,16 @@ struct LocalMapBuilderParams
 	int local_map_min_common_features = 0;
 	CommonFeaturesIn local_map_common_features_in = CommonFeaturesIn::PreviousMap;	///< previous_map | earlier_maps
 	LocalMapLink local_map_link = LocalMapLink::SharedPose;	 ///< shared_pose | odometry
+	/// A joining filter that can (SLSJF, D-SLAM map joining) gives each new
+	/// local map the global map's features within this distance of the map's
+	/// start [m], and each scan is associated with them too: a sighting of a
+	/// mapped feature then starts a local feature under its global ID, with
+	/// the per-scan waits of the EKF, and the map level checks those IDs.
+	/// At least the sensor's range plus the distance one local map covers: a
+	/// feature the map sees but was not given is associated at the map level
+	/// only, and one near the edge can be mistaken for a given neighbour.
+	/// 0 = off: a local map knows only its own features (the book).
+	double local_map_global_features_radius_m = 0;
 	/// Association inside a local map (keys prefixed `local_`, e.g. local_association).
 	EkfAssociationParams association;
 	/// Where the local map's EKF takes its Jacobians (key local_jacobians):

@@ -62,6 +62,13 @@ class MapJoiningPlugin : public FilterPlugin, public LocalMapJoiner
 	void appendLocalMapCounters(std::vector<std::pair<std::string, double>>& counters) const;
 	/// Whether any step so far had a measurement without a landmark ID.
 	bool sawMeasurementWithoutId() const { return saw_measurement_without_id_; }
+	/// Whether the local maps this run builds were associated scan by scan
+	/// with the global map (local_map_global_features_radius_m): their
+	/// features' IDs are then global IDs, which the map level checks by ID.
+	bool localFeaturesCarryGlobalIds() const
+	{
+		return built_from_steps_ && builder_params_.local_map_global_features_radius_m > 0;
+	}
 	/// Every step's robot pose in its local map's frame (the end pose for the
 	/// step that closed a map), in step order.
 	const std::vector<PoseEstimate>& localPoses() const { return local_poses_; }
@@ -94,8 +101,18 @@ class MapJoiningPlugin : public FilterPlugin, public LocalMapJoiner
 		return std::nullopt;
 	}
 
+	/// For local_map_global_features_radius_m: the global map's features
+	/// within `radius_m` of the open map's start, in the open map's frame
+	/// (earlierFeaturesInFrame), after a fusion. The open map's start is the
+	/// last fused map's end pose (with local_map_link = odometry the builder
+	/// moves them through the link). nullopt (the default): the filter
+	/// cannot, and the first fusion stops with an InputError naming the key.
+	virtual std::optional<EarlierFeatures> globalFeaturesNearOpenMapStart(double radius_m) { return std::nullopt; }
+
    private:
 	void requireBuilder() const;
+	/// After a fusion: the open map's earlier features (local_map_global_features_radius_m).
+	void giveGlobalFeaturesToOpenMap();
 
 	std::string filter_name_;
 	LocalMapBuilderParams builder_params_;
@@ -103,6 +120,7 @@ class MapJoiningPlugin : public FilterPlugin, public LocalMapJoiner
 	std::size_t maps_given_ = 0;
 	std::vector<PoseEstimate> local_poses_;
 	bool saw_measurement_without_id_ = false;
+	bool built_from_steps_ = false;
 };
 
 }  // namespace esif
