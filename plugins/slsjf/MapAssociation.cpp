@@ -174,6 +174,53 @@ MapAssociationOutcome associateByIds(
 	return out;
 }
 
+namespace
+{
+/// Sec. 5.4.1 for the local features `chosen` (indices into the map): their
+/// decisions in `out` become Matched, Rejected or stay New; the global
+/// features in `claimed` are not candidates.
+void decideGeometrically(const LocalMap& map, const Eigen::MatrixXd& local_cov, VarId start, GlobalMap& global,
+						 const SlsjfParams& params, const std::vector<Eigen::Index>& chosen,
+						 const std::set<int>& claimed, MapAssociationOutcome& out)
+{
+	if (chosen.empty()) return;
+	const Eigen::Matrix3d start_cov = global.covariance({start});
+	out.extent.start_uncertainty_m = params.overlap_sigmas * largestSigma(start_cov.topLeftCorner<2, 2>());
+	// A local feature moves with the start position and, at the map's
+	// radius, with its heading: both uncertainties, plus the margin.
+	const double slack_m = out.extent.start_uncertainty_m +
+		params.overlap_sigmas * std::sqrt(start_cov(2, 2)) * out.extent.radius_m + params.overlap_margin_m;
+	std::vector<Eigen::Vector2d> local_features;
+	for (const Eigen::Index i : chosen) local_features.push_back(map.features[i].position);
+	std::vector<VarId> candidates;
+	for (const VarId v : overlapCandidates(global, global.pose(start), local_features, out.extent,
+										   params.overlap_margin_m, slack_m, out.maps_selected))
+		if (!claimed.count(v.value)) candidates.push_back(v);
+	out.tally.candidates += candidates.size();
+	if (candidates.empty()) return;
+
+	PointSets sets;
+	const auto M = static_cast<Eigen::Index>(chosen.size());
+	sets.observed.resize(M, 2);
+	std::vector<Eigen::Index> rows;
+	std::vector<int> slots;
+	for (Eigen::Index u = 0; u < M; ++u)
+	{
+		const Eigen::Index i = chosen[static_cast<std::size_t>(u)];
+		sets.observed.row(u) = map.features[i].position.transpose();
+		rows.push_back(3 + 2 * i);
+		rows.push_back(4 + 2 * i);
+		slots.push_back(static_cast<int>(i));
+	}
+	sets.observed_cov = local_cov(rows, rows);
+	candidatesInLocalFrame(global, start, candidates, sets);
+
+	std::vector<LandmarkId> candidate_ids;
+	for (const VarId v : candidates) candidate_ids.push_back(global.featureId(v));
+	applyMapLevelDecisions(decideMapFeatures(sets, params), slots, candidate_ids, out.decisions, out.tally);
+}
+}  // namespace
+
 MapAssociationOutcome associateGeometrically(
 	const LocalMap& map, const Eigen::MatrixXd& local_cov, std::optional<VarId> start, GlobalMap& global,
 	const SlsjfParams& params)
@@ -181,34 +228,30 @@ MapAssociationOutcome associateGeometrically(
 	MapAssociationOutcome out;
 	out.extent.radius_m = mapRadius(map, local_cov, params.overlap_sigmas);
 	for (const auto& f : map.features) out.decisions.associations.push_back({Association::Kind::New, f.id});
-	if (!start || map.features.empty()) return out;
-
-	const Eigen::Matrix3d start_cov = global.covariance({*start});
-	out.extent.start_uncertainty_m = params.overlap_sigmas * largestSigma(start_cov.topLeftCorner<2, 2>());
-	// A local feature moves with the start position and, at the map's
-	// radius, with its heading: both uncertainties, plus the margin.
-	const double slack_m = out.extent.start_uncertainty_m +
-		params.overlap_sigmas * std::sqrt(start_cov(2, 2)) * out.extent.radius_m + params.overlap_margin_m;
-	std::vector<Eigen::Vector2d> local_features;
-	for (const auto& f : map.features) local_features.push_back(f.position);
-	const auto candidates = overlapCandidates(
-		global, global.pose(*start), local_features, out.extent, params.overlap_margin_m, slack_m, out.maps_selected);
-	out.tally.candidates = candidates.size();
-	if (candidates.empty()) return out;
-
-	PointSets sets;
-	const auto M = static_cast<Eigen::Index>(map.features.size());
-	sets.observed.resize(M, 2);
-	for (Eigen::Index i = 0; i < M; ++i) sets.observed.row(i) = map.features[i].position.transpose();
-	sets.observed_cov = local_cov.bottomRightCorner(2 * M, 2 * M);
-	candidatesInLocalFrame(global, *start, candidates, sets);
-
-	std::vector<int> slots(static_cast<std::size_t>(M));
-	for (Eigen::Index i = 0; i < M; ++i) slots[i] = static_cast<int>(i);
-	std::vector<LandmarkId> candidate_ids;
-	for (const VarId v : candidates) candidate_ids.push_back(global.featureId(v));
-	applyMapLevelDecisions(decideMapFeatures(sets, params), slots, candidate_ids, out.decisions, out.tally);
+	if (!start) return out;
+	std::vector<Eigen::Index> all(map.features.size());
+	for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Eigen::Index>(i);
+	decideGeometrically(map, local_cov, *start, global, params, all, {}, out);
 	return out;
+}
+
+void associateUnidentifiedGeometrically(const LocalMap& map, const Eigen::MatrixXd& local_cov, VarId start,
+										GlobalMap& global, const SlsjfParams& params, MapAssociationOutcome& outcome)
+{
+	outcome.extent.radius_m = mapRadius(map, local_cov, params.overlap_sigmas);
+	std::vector<Eigen::Index> unidentified;
+	std::set<int> claimed;
+	for (std::size_t i = 0; i < map.features.size(); ++i)
+	{
+		const Association& a = outcome.decisions.associations[i];
+		if (const auto var = global.featureVar(map.features[i].id))
+		{
+			if (a.kind == Association::Kind::Matched) claimed.insert(var->value);
+		}
+		else if (a.kind == Association::Kind::New)
+			unidentified.push_back(static_cast<Eigen::Index>(i));
+	}
+	decideGeometrically(map, local_cov, start, global, params, unidentified, claimed, outcome);
 }
 
 }  // namespace esif::slsjf

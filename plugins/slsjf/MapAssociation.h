@@ -54,6 +54,19 @@ MapAssociationOutcome associateByIds(
 	const LocalMap& map, const Eigen::MatrixXd& local_cov, std::optional<VarId> start, GlobalMap& global,
 	const SlsjfParams& params);
 
+/// For a map whose features carry global IDs from its scans' association
+/// (local_map_global_features_radius_m), after associateByIds: the features
+/// whose ID the global map does not hold (the scans found no global feature
+/// for them, or it was out of reach) are associated as
+/// associateGeometrically associates every feature, against the global
+/// features no feature of the map is matched to. A scan decides on one
+/// sighting, the map level on the feature all its sightings placed, so a
+/// feature the scans could not place near a global one gets a second look
+/// before it starts a global feature (docs/plugins/slsjf.md, "Association
+/// with the global map").
+void associateUnidentifiedGeometrically(const LocalMap& map, const Eigen::MatrixXd& local_cov, VarId start,
+										GlobalMap& global, const SlsjfParams& params, MapAssociationOutcome& outcome);
+
 /// Sec. 5.4.1 as above. `local_cov` is the local state's covariance,
 /// `start` the map's start pose variable (from GlobalMap::startPose).
 MapAssociationOutcome associateGeometrically(

@@ -41,14 +41,21 @@ bool Slsjf::useIds(const LocalMap& map) const
 	switch (params_.association)
 	{
 		case MapAssociationMethod::KnownIds: return true;
-		case MapAssociationMethod::Auto: return map.ids_identify_features && !sawMeasurementWithoutId();
-		default: return false;
+		case MapAssociationMethod::Auto:
+			return (map.ids_identify_features && !sawMeasurementWithoutId()) || localFeaturesCarryGlobalIds();
+		default: return localFeaturesCarryGlobalIds();
 	}
 }
 
 MapAssociationOutcome Slsjf::associate(const LocalMap& map, std::optional<VarId> start)
 {
-	if (useIds(map)) return associateByIds(map, map.covarianceMatrix(), start, *global_, params_);
+	if (useIds(map))
+	{
+		MapAssociationOutcome out = associateByIds(map, map.covarianceMatrix(), start, *global_, params_);
+		if (localFeaturesCarryGlobalIds() && start)
+			associateUnidentifiedGeometrically(map, map.covarianceMatrix(), *start, *global_, params_, out);
+		return out;
+	}
 	return associateGeometrically(map, map.covarianceMatrix(), start, *global_, params_);
 }
 
@@ -76,6 +83,26 @@ void Slsjf::fuseLocalMap(const LocalMap& map)
 		records_.size() % static_cast<std::size_t>(params_.smoothing_every_maps) == 0)
 		smooth();
 	costs_.push_back({map.index, secondsSince(t0), association_s, static_cast<std::size_t>(global_->core().stateDim())});
+}
+
+std::optional<EarlierFeatures> Slsjf::globalFeaturesNearOpenMapStart(double radius_m)
+{
+	requireConfigured();
+	if (records_.empty()) return EarlierFeatures{};
+	global_->core().refresh();	// the estimates as of this fusion, as the covariance recovery sees them
+	const VarId end = global_->fusedMaps().back().end;
+	const Pose2 frame = global_->pose(end);
+	std::vector<VarId> vars = {end};
+	std::vector<LandmarkId> ids;
+	std::vector<Eigen::Vector2d> points;
+	for (const VarId v : global_->featureVars())
+		if ((global_->point(v) - frame.head<2>()).norm() <= radius_m)
+		{
+			vars.push_back(v);
+			ids.push_back(global_->featureId(v));
+			points.push_back(global_->point(v));
+		}
+	return earlierFeaturesInFrame(frame, ids, points, global_->covariance(vars));
 }
 
 void Slsjf::smooth()

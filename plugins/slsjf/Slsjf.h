@@ -55,6 +55,10 @@ class Slsjf : public PluginWithParams<slsjf::SlsjfParams, MapJoiningPlugin>
 	void finishJoining() override;
 	std::vector<SettledFusion> settledFusions() const override;
 	SparseInformationCore& globalInformation() const override;
+	/// The global features within `radius_m` of the last fused map's end
+	/// pose, moved into its frame with the joint covariance of [end pose;
+	/// features] (one recovery per local map).
+	std::optional<EarlierFeatures> globalFeaturesNearOpenMapStart(double radius_m) override;
 
    private:
 	void start() override;

@@ -132,6 +132,30 @@ TEST(SlsjfGrid196, WithoutIdsMakesNoWrongAssociation)
 	EXPECT_GE(*r.accuracy.landmark_consistent_fraction, 0.95);
 }
 
+TEST(SlsjfGrid196, WithoutIdsScansAssociatedWithTheGlobalMapMakeNoWrongAssociation)
+{
+	// The same, each local map's scans associated with the global features
+	// within 12 m of its start: the 5 m sensor range plus a local map's
+	// travel (45 steps of 0.15 m), as the key's documentation asks. The
+	// association filter decides, the map level checks the IDs.
+	RawlogReadOptions hidden;
+	hidden.hide_landmark_ids = true;
+	const Scored r = run("Slsjf", sectionOf("configs/slsjf_jcbb.ini") + "\nlocal_map_global_features_radius_m = 12\n",
+						 readRawlog(kGrid196, hidden));
+	const auto& audit = r.result.audit;
+	print("SLSJF, JCBB scan by scan against the global map", r);
+	EXPECT_EQ(audit.wrongCount(), 0u);
+	EXPECT_EQ(r.result.record.final_estimate.landmarks.size(), 164u);
+	EXPECT_EQ(audit.filterToTrue().size(), 164u);
+	EXPECT_GE(*r.accuracy.landmark_consistent_fraction, 0.95);
+	// The path is taken: revisited features start local features under their global IDs.
+	const auto counters = r.plugin->costFigures().counters;
+	const auto started = std::find_if(counters.begin(), counters.end(),
+									  [](const auto& c) { return c.first == "local_features_started_from_global"; });
+	ASSERT_NE(started, counters.end());
+	EXPECT_GT(started->second, 100.0);
+}
+
 TEST(SlsjfGrid196, EndHeadingsAreMoreCertainThanTheEkfsAndPositionsAsCertain)
 {
 	// Fig. 5.5: SLSJF keeps every local map's end pose, and each is smoothed
