@@ -245,6 +245,27 @@ std::optional<std::size_t> DslamLocalMapJoining::ownFeaturesInGlobalMap(
 		open_map, own_ids, openMapFrame(), global_->features(), params_.gate_chi2_quantile);
 }
 
+std::optional<EarlierFeatures> DslamLocalMapJoining::globalFeaturesNearOpenMapStart(double radius_m)
+{
+	requireConfigured();
+	if (!global_->anchored()) return EarlierFeatures{};
+	const PoseEstimate start = openMapFrame();
+	relative::FeatureMap& global = global_->features();
+	std::vector<LandmarkId> ids;
+	std::vector<Eigen::Vector2d> points;
+	for (const LandmarkId id : global.ids())
+		if (global.supported(id) && (global.position(id) - start.mean.head<2>()).norm() <= radius_m)
+		{
+			ids.push_back(id);
+			points.push_back(global.position(id));
+		}
+	const auto n = static_cast<Eigen::Index>(ids.size());
+	Eigen::MatrixXd joint = Eigen::MatrixXd::Zero(3 + 2 * n, 3 + 2 * n);
+	joint.topLeftCorner<3, 3>() = start.cov;
+	if (n > 0) joint.bottomRightCorner(2 * n, 2 * n) = global.covariance(ids);
+	return earlierFeaturesInFrame(start.mean, ids, points, joint);
+}
+
 PoseEstimate DslamLocalMapJoining::startOf(const LocalMap& map) const
 {
 	PoseEstimate start;	 // map 1 starts at the global origin, known exactly

@@ -68,6 +68,12 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 	/// features in the global map (Sec. 4.4.4 without IDs).
 	std::optional<std::size_t> ownFeaturesInGlobalMap(
 		const LandmarkEkf& open_map, const std::set<LandmarkId>& own_ids) const override;
+	/// The supported global features within `radius_m` of the open map's
+	/// start (openMapFrame), moved into its frame. The start pose and the
+	/// features are taken as independent, as the start-pose frame of the
+	/// upper-level association takes them (the start pose comes from a pair
+	/// of them, Sec. 4.4.1, whose correlation with it is not kept).
+	std::optional<EarlierFeatures> globalFeaturesNearOpenMapStart(double radius_m) override;
 
    private:
 	void start() override;
