@@ -94,6 +94,23 @@ TEST(LmjGrid196, WithoutIdsMakesNoWrongAssociation)
 	EXPECT_GE(*s.accuracy.landmark_consistent_fraction, 0.95);
 }
 
+TEST(LmjGrid196, WithoutIdsScansAssociatedWithTheGlobalMapMakeNoWrongAssociation)
+{
+	// The same, each local map's scans associated with the global features
+	// within 100 m of its start: the 5 m range plus a 600-step map's travel
+	// (90 m). The global IDs reach the upper level as known features.
+	const Scored s = run("DslamLocalMapJoining",
+						 sectionOf("configs/dslam_lmj_jcbb.ini") + "\nlocal_map_global_features_radius_m = 100\n", true);
+	const auto& audit = s.result.audit;
+	std::cout << "grid196 LMJ without IDs, scans against the global map: " << audit.newCount() << " new, "
+			  << audit.matchedCount() << " matched, " << audit.rejectedCount() << " rejected, " << audit.wrongCount()
+			  << " wrong; landmark RMSE " << *s.accuracy.landmark_rmse_m << " m\n";
+	EXPECT_EQ(audit.wrongCount(), 0u);
+	EXPECT_EQ(s.result.record.final_estimate.landmarks.size(), 164u);
+	EXPECT_GE(*s.accuracy.landmark_consistent_fraction, 0.95);
+	EXPECT_GT(counter(*s.plugin, "local_features_started_from_global"), 100.0);
+}
+
 TEST(LmjGrid196, FeaturesEnterWhenTheirMapIsFusedThenMatchTheEkf)
 {
 	// Fig. 4.9 (Sec. 4.6.1): a feature first seen inside local map 2 enters
