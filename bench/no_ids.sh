@@ -9,6 +9,10 @@
 #  - two sweeps on Victoria Park without IDs: D-SLAM map joining's
 #    upper-level frame against its local-map length, and how long D-SLAM's
 #    local SLAM holds a tree out of view against its anchors' cut;
+#  - the map-joining filters without IDs with their scans associated with
+#    the global map (local_map_global_features_radius_m) over a range of
+#    radii, 0 (the book's map-level association) included, on Victoria Park
+#    and on MRCLAM;
 #  - MRCLAM dataset 6, robots 1-5: every configs/mrclam/ config with the
 #    barcodes and without (*_jcbb), against the Vicon ground truth; each
 #    no-ID config again with its pair gate moved by about half a percent
@@ -34,7 +38,22 @@ without=$(ls configs/vicpark/*_jcbb.ini | paste -sd,)
 set +e
 "$esif" compare --configs "$with_ids" --rawlog "$vp" --out "$out/vicpark_ids" >/dev/null
 "$esif" compare --configs "$without" --rawlog "$vp" --reference "$out/vicpark_ids/ceres_full" --out "$out/vicpark_no_ids" >/dev/null
+# The filter times are a few tenths of a second each: two more runs of both
+# sets give the time ratio as a ratio of medians of three.
+for rep in 2 3; do
+  "$esif" compare --configs "$with_ids" --rawlog "$vp" --out "$out/vicpark_ids_rep$rep" >/dev/null
+  "$esif" compare --configs "$without" --rawlog "$vp" --out "$out/vicpark_no_ids_rep$rep" >/dev/null
+done
 set -e
+
+# `config` with the KEY=VALUE settings given set in its [section] (any
+# line setting KEY removed first), on standard output.
+with_keys() {
+  local config=$1 section=$2; shift 2
+  local edits=()
+  for kv in "$@"; do edits+=(-e "/^${kv%%=*} =/d" -e "/^\[$section\]/a ${kv%%=*} = ${kv#*=}"); done
+  sed "${edits[@]}" "$config"
+}
 
 # One run of a sweep: `config` with KEY=VALUE settings replaced, run on
 # Victoria Park into sweep folder `folder` as `name` (a failure leaves its
@@ -71,6 +90,17 @@ for hold in 0 50 200 500 1000 3000; do
   done
 done
 
+# The map-joining filters without IDs, each local map's scans associated
+# with the global features within the radius of its start (0: off).
+radii_vp="0 30 70 100"
+for filter in slsjf dslam_lmj; do
+  for radius in $radii_vp; do
+    with_keys "configs/vicpark/${filter}_jcbb.ini" "$filter" "local_map_global_features_radius_m=$radius" \
+      > "$work/${filter}_radius_$radius.ini"
+    sweep_run scan_association_sweep "${filter}_$radius" "$work/${filter}_radius_$radius.ini"
+  done
+done
+
 mrclam_dir=${MRCLAM_DIR:-../shared/data/mrclam/MRCLAM_Dataset6}
 [ -d "$mrclam_dir" ] || { echo "bench/$bench_script: $(realpath -m "$mrclam_dir") not present (MRCLAM dataset 6; set MRCLAM_DIR)" >&2; exit 1; }
 for r in 1 2 3 4 5; do
@@ -81,9 +111,10 @@ for r in 1 2 3 4 5; do
   set -e
 done
 
-python3 - "$out" <<'PY' | tee "$work/report.md"
+python3 - "$out" "$radii_vp" <<'PY' | tee "$work/report.md"
 import csv, os, statistics, sys
 out = sys.argv[1]
+radii_vp = sys.argv[2].split()
 def rows(folder):
     path = os.path.join(out, folder, "comparison.csv")
     return {r["label"]: r for r in csv.DictReader(open(path))} if os.path.exists(path) else {}
@@ -93,17 +124,23 @@ def num(r, k):
 def f(v, fmt):
     return "-" if v is None else fmt.format(v)
 ids, noids = rows("vicpark_ids"), rows("vicpark_no_ids")
+def median_wall(folder, label):
+    """The median filter time of `label` over the set's three runs."""
+    t = [num(rows(f).get(label, {}), "wall_s") for f in (folder, folder + "_rep2", folder + "_rep3")]
+    t = [x for x in t if x is not None]
+    return statistics.median(t) if t else None
 print("## Victoria Park\n")
 print("With IDs: the config under its own name, the dataset's tree IDs as association with the 0.9999 gates on. "
       "Without IDs: its `_jcbb` twin, scored against the hidden IDs. Both against the optimum solved with the IDs "
       "(`configs/vicpark/ceres_full.ini`); RMS over the trees paired through the IDs. Recall: the share of all "
-      "3,640 measurements used on the landmark that stands for their tree (the target: 95%).\n")
+      "3,640 measurements used on the landmark that stands for their tree (the target: 95%). Filter time ratio: "
+      "without IDs over with, each the median of three runs.\n")
 print("| filter | IDs: landmarks | rejected | RMS [m] | inside own 95% | no IDs: landmarks | found / dup. / spurious | precision | recall | RMS [m] | RMS ratio | filter time ratio | status |")
 print("|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---|")
 for label, a in ids.items():
     b = noids.get(label + "_jcbb", {})
     ra, rb = num(a, "ref_landmark_rms_m"), num(b, "ref_landmark_rms_m")
-    ta, tb = num(a, "wall_s"), num(b, "wall_s")
+    ta, tb = median_wall("vicpark_ids", label), median_wall("vicpark_no_ids", label + "_jcbb")
     meas = num(a, "measurements")
     rej = num(a, "da_rejected")
     print("| " + " | ".join([
@@ -147,6 +184,16 @@ for hold in (0, 50, 200, 500, 1000, 3000):
     for cut in ("0.5", "1000"):
         print("| %d | %s | %s |" % (hold, cut, sweep_row("dslam_hold_sweep", "hold_%d_cut_%s" % (hold, cut),
                                                         scored + [("wall_s", "{:.2f}")])))
+print("\n## Map-joining filters associated scan by scan with the global map\n")
+print("`configs/vicpark/<filter>_jcbb.ini` with `local_map_global_features_radius_m` varied (0: off, the map level "
+      "associates whole local maps, Sec. 4.4.2 and 5.4.1), the rest as shipped; scored as above. Started from global: "
+      "local features the association filter started under a global feature's ID (docs/local-maps.md).\n")
+print("| filter | radius [m] | landmarks | found | dup. | precision | recall | RMS from the optimum [m] | wall [s] | started from global | status |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+for filter in ("slsjf", "dslam_lmj"):
+    for radius in radii_vp:
+        print("| %s | %s | %s |" % (filter, radius, sweep_row("scan_association_sweep", "%s_%s" % (filter, radius),
+              scored + [("wall_s", "{:.2f}"), ("plugin_local_features_started_from_global", "{:.0f}")])))
 print("\n## MRCLAM dataset 6, robots 1-5\n")
 print("Against the Vicon ground truth. Median over the five robots of the landmark RMSE and of the mean landmark "
       "NEES (2 when consistent), the landmarks mapped per robot beside the cylinders it saw, and the runs that "
@@ -170,18 +217,39 @@ for label in labels:
           f(med(nees), "{:.2f}"), " ".join(f(v, "{:.1f}") for v in nees), maps, failed, suspect))
 PY
 
+# One MRCLAM sweep point: configs/mrclam/<filter>_jcbb.ini with the
+# KEY=VALUE settings given, run on robots 1-5 into sweep folder
+# `folder`/`name`/r<R> (a failed run leaves no stats.json).
+mrclam_sweep_run() {
+  local folder=$1 name=$2 filter=$3; shift 3
+  local cfg=$work/$folder-$name.ini
+  with_keys "configs/mrclam/${filter}_jcbb.ini" "$filter" "$@" |
+    sed "s|^calibration = ../calibration/|calibration = $PWD/configs/calibration/|" > "$cfg"
+  for r in 1 2 3 4 5; do
+    "$esif" run -q --no-figures --config "$cfg" --rawlog "out/data/mrclam6_r$r.rawlog" \
+      --out "$out/$folder/$name/r$r" >/dev/null 2>&1 || true
+  done
+}
+
 # MRCLAM without IDs: each no-ID config with its pair gate moved a little
 # (gate_chi2_quantile, shipped 0.99), how far the robots' medians move.
 gates="0.98 0.985 0.99 0.995"
 for filter in ekf slsjf dslam_lmj dslam; do
   for gate in $gates; do
-    cfg=$work/${filter}_gate_$gate.ini
-    sed -e "s|^calibration = ../calibration/|calibration = $PWD/configs/calibration/|" -e '/^gate_chi2_quantile =/d' \
-        -e "/^\[$filter\]/a gate_chi2_quantile = $gate" "configs/mrclam/${filter}_jcbb.ini" > "$cfg"
-    for r in 1 2 3 4 5; do
-      "$esif" run -q --no-figures --config "$cfg" --rawlog "out/data/mrclam6_r$r.rawlog" \
-        --out "$out/mrclam_gate_sweep/${filter}_$gate/r$r" >/dev/null 2>&1 || true
-    done
+    gates_of=("gate_chi2_quantile=$gate")
+    # The map-joining filters' scans decide too (local maps, and the global
+    # map with local_map_global_features_radius_m): their gate moves with it.
+    case $filter in slsjf|dslam_lmj) gates_of+=("local_gate_chi2_quantile=$gate") ;; esac
+    mrclam_sweep_run mrclam_gate_sweep "${filter}_$gate" "$filter" "${gates_of[@]}"
+  done
+done
+
+# MRCLAM without IDs: the map-joining filters' scans associated with the
+# global map, over the radius (0: off).
+radii_mrclam="0 5 10 20 40"
+for filter in slsjf dslam_lmj; do
+  for radius in $radii_mrclam; do
+    mrclam_sweep_run mrclam_radius_sweep "${filter}_$radius" "$filter" "local_map_global_features_radius_m=$radius"
   done
 done
 
@@ -190,7 +258,8 @@ done
   echo "## MRCLAM without IDs: how far the medians move with the pair gate"
   echo
   echo "Each \`configs/mrclam/<filter>_jcbb.ini\` with its individual-compatibility gate (\`gate_chi2_quantile\`, shipped 0.99:"
-  echo "the scan gate of the EKF, the map-level gate of SLSJF and D-SLAM map joining, D-SLAM's hypothesis gate) moved"
+  echo "the scan gate of the EKF, the map-level gate of SLSJF and D-SLAM map joining, D-SLAM's hypothesis gate; for the"
+  echo "map-joining filters the local maps' scan gate \`local_gate_chi2_quantile\` with it) moved"
   echo "by half a percent or so, the rest as shipped: a median that moves more than the difference between two"
   echo "versions of a filter says that difference is not measured by these five runs."
   echo
@@ -211,6 +280,29 @@ for filter in ["ekf", "slsjf", "dslam_lmj", "dslam"]:
         cells.append("%s (%s)" % ("%.3f" % statistics.median(ok) if ok else "-",
                                   " ".join("%.2f" % x if x is not None else "failed" for x in v)))
     print("| %s | %s |" % (filter, " | ".join(cells)))
+PY
+  echo
+  echo "## MRCLAM: map-joining filters associated scan by scan with the global map"
+  echo
+  echo "Each \`configs/mrclam/<filter>_jcbb.ini\` with \`local_map_global_features_radius_m\` varied (0: off), the rest as"
+  echo "shipped: the median landmark RMSE over robots 1-5 and the landmarks mapped per robot (15 cylinders)."
+  echo
+  python3 - "$out/mrclam_radius_sweep" $radii_mrclam <<'PY'
+import json, os, statistics, sys
+folder, radii = sys.argv[1], sys.argv[2:]
+print("| filter | radius [m] | landmark RMSE median [m] (per robot) | landmarks (per robot) |")
+print("|---|---:|---|---|")
+for filter in ["slsjf", "dslam_lmj"]:
+    for radius in radii:
+        runs = []
+        for r in range(1, 6):
+            path = os.path.join(folder, "%s_%s" % (filter, radius), "r%d" % r, "stats.json")
+            runs.append(json.load(open(path)) if os.path.exists(path) else None)
+        rmse = [m.get("landmark_rmse_m") if m else None for m in runs]
+        ok = [x for x in rmse if x is not None]
+        print("| %s | %s | %s (%s) | %s |" % (filter, radius, "%.3f" % statistics.median(ok) if ok else "-",
+              " ".join("%.2f" % x if x is not None else "failed" for x in rmse),
+              " ".join("%d" % m["landmarks"] if m else "x" for m in runs)))
 PY
   echo
   echo "## MRCLAM: what a perfect pose would associate"
