@@ -252,6 +252,12 @@ for filter in slsjf dslam_lmj; do
     mrclam_sweep_run mrclam_radius_sweep "${filter}_$radius" "$filter" "local_map_global_features_radius_m=$radius"
   done
 done
+# D-SLAM map joining also in the book's pair frame, which takes the scans'
+# global IDs as known pairs unchecked.
+for radius in 0 20; do
+  mrclam_sweep_run mrclam_radius_sweep "dslam_lmj_pair_$radius" dslam_lmj "local_map_global_features_radius_m=$radius" \
+    upper_level_frame=pair local_map_common_features_in=previous_map
+done
 
 {
   echo
@@ -285,24 +291,26 @@ PY
   echo "## MRCLAM: map-joining filters associated scan by scan with the global map"
   echo
   echo "Each \`configs/mrclam/<filter>_jcbb.ini\` with \`local_map_global_features_radius_m\` varied (0: off), the rest as"
-  echo "shipped: the median landmark RMSE over robots 1-5 and the landmarks mapped per robot (15 cylinders)."
+  echo "shipped: the median landmark RMSE over robots 1-5 and the landmarks mapped per robot (15 cylinders). \`dslam_lmj_pair\`:"
+  echo "D-SLAM map joining in the book's pair frame (\`upper_level_frame = pair\`, the close rule on the previous map) instead"
+  echo "of the shipped start-pose frame."
   echo
   python3 - "$out/mrclam_radius_sweep" $radii_mrclam <<'PY'
 import json, os, statistics, sys
 folder, radii = sys.argv[1], sys.argv[2:]
 print("| filter | radius [m] | landmark RMSE median [m] (per robot) | landmarks (per robot) |")
 print("|---|---:|---|---|")
-for filter in ["slsjf", "dslam_lmj"]:
-    for radius in radii:
-        runs = []
-        for r in range(1, 6):
-            path = os.path.join(folder, "%s_%s" % (filter, radius), "r%d" % r, "stats.json")
-            runs.append(json.load(open(path)) if os.path.exists(path) else None)
-        rmse = [m.get("landmark_rmse_m") if m else None for m in runs]
-        ok = [x for x in rmse if x is not None]
-        print("| %s | %s | %s (%s) | %s |" % (filter, radius, "%.3f" % statistics.median(ok) if ok else "-",
-              " ".join("%.2f" % x if x is not None else "failed" for x in rmse),
-              " ".join("%d" % m["landmarks"] if m else "x" for m in runs)))
+points = [(f, r) for f in ("slsjf", "dslam_lmj") for r in radii] + [("dslam_lmj_pair", r) for r in ("0", "20")]
+for filter, radius in points:
+    runs = []
+    for r in range(1, 6):
+        path = os.path.join(folder, "%s_%s" % (filter, radius), "r%d" % r, "stats.json")
+        runs.append(json.load(open(path)) if os.path.exists(path) else None)
+    rmse = [m.get("landmark_rmse_m") if m else None for m in runs]
+    ok = [x for x in rmse if x is not None]
+    print("| %s | %s | %s (%s) | %s |" % (filter, radius, "%.3f" % statistics.median(ok) if ok else "-",
+          " ".join("%.2f" % x if x is not None else "failed" for x in rmse),
+          " ".join("%d" % m["landmarks"] if m else "x" for m in runs)))
 PY
   echo
   echo "## MRCLAM: what a perfect pose would associate"
