@@ -2,6 +2,7 @@
 #include <esif/association/Chi2.h>
 #include <esif/association/DataAssociation.h>
 #include <esif/core/Errors.h>
+#include <esif/core/MeasurementSubset.h>
 #include <esif/models/RangeBearingModel.h>
 #include <esif/ekf/LandmarkEkf.h>
 
@@ -85,27 +86,14 @@ double LandmarkEkf::innovationDistance2(
 StepReport LandmarkEkf::processUsableMeasurements(const StepInput& step)
 {
 	// The scan without the measurements closer than min_range_m, which are
-	// reported as rejected in their places; a copy, so that the rest of the
-	// scan (its sensor, field of view, sighting noise) stays as it was.
-	Scan kept = *step.scan;
-	kept.measurements.clear();
-	std::vector<bool> used;
-	for (const auto& m : step.scan->measurements)
-	{
-		used.push_back(m.range_m >= params_.min_range_m);
-		if (used.back()) kept.measurements.push_back(m);
-	}
+	// reported as rejected in their places (MeasurementSubset).
+	const MeasurementSubset usable_part = measurementSubset(
+		*step.scan, [&](std::size_t, const RangeBearing& m) { return m.range_m >= params_.min_range_m; });
 	StepInput usable;
 	usable.index = step.index;
 	usable.time_s = step.time_s;
-	usable.scan = std::move(kept);
-	const StepReport partial = processScan(usable);
-
-	StepReport report;
-	std::size_t next = 0;
-	for (std::size_t i = 0; i < used.size(); ++i)
-		report.associations.push_back(used[i] ? partial.associations[next++] : Association{Association::Kind::Rejected, -1});
-	return report;
+	usable.scan = usable_part.scan;
+	return usable_part.spread(processScan(usable));
 }
 
 std::optional<std::size_t> LandmarkEkf::indexOf(LandmarkId id) const

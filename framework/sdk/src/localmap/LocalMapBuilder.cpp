@@ -1,6 +1,7 @@
 #include <esif/core/Errors.h>
 #include <esif/localmap/LocalMapBuilder.h>
 #include "localmap/PreviousMapMatcher.h"
+#include <esif/core/MeasurementSubset.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -75,27 +76,17 @@ StepReport LocalMapBuilder::processAsTheGlobalMapDecides(const StepInput& step)
 	if (!step.scan) return ekf_.processStep(step);
 	// The open map takes the decided measurements under the decided IDs and
 	// leaves out the rest, as the association filter did.
+	MeasurementSubset decided_part = measurementSubset(*step.scan, [&](std::size_t i, const RangeBearing&) {
+		return decided.associations[i].kind != Association::Kind::Rejected;
+	});
+	for (std::size_t u = 0; u < decided_part.kept.size(); ++u)
+		decided_part.scan.measurements[u].id = decided.associations[decided_part.kept[u]].id;
 	StepInput by_id = step;
-	by_id.scan->measurements.clear();
-	std::vector<std::size_t> kept;
-	for (std::size_t i = 0; i < decided.associations.size(); ++i)
-	{
-		const Association& a = decided.associations[i];
-		if (a.kind == Association::Kind::Rejected) continue;
-		RangeBearing m = step.scan->measurements[i];
-		m.id = a.id;
-		by_id.scan->measurements.push_back(m);
-		kept.push_back(i);
-	}
+	by_id.scan = decided_part.scan;
 	const StepReport in_map = ekf_.processStep(by_id);
-	StepReport report;
-	report.associations.assign(decided.associations.size(), Association{Association::Kind::Rejected, -1});
-	for (std::size_t u = 0; u < kept.size(); ++u)
-	{
-		report.associations[kept[u]] = in_map.associations[u];
-		earlier_starts_ += in_map.associations[u].kind == Association::Kind::New && earlier_ids_.count(in_map.associations[u].id);
-	}
-	return report;
+	for (const Association& a : in_map.associations)
+		earlier_starts_ += a.kind == Association::Kind::New && earlier_ids_.count(a.id);
+	return decided_part.spread(in_map);
 }
 
 void LocalMapBuilder::setEarlierFeatures(EarlierFeatures features)
