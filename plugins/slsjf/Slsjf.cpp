@@ -49,14 +49,12 @@ bool Slsjf::useIds(const LocalMap& map) const
 
 MapAssociationOutcome Slsjf::associate(const LocalMap& map, std::optional<VarId> start)
 {
-	if (useIds(map))
-	{
-		MapAssociationOutcome out = associateByIds(map, map.covarianceMatrix(), start, *global_, params_);
-		if (localFeaturesCarryGlobalIds() && start)
-			associateUnidentifiedGeometrically(map, map.covarianceMatrix(), *start, *global_, params_, out);
-		return out;
-	}
-	return associateGeometrically(map, map.covarianceMatrix(), start, *global_, params_);
+	const Eigen::MatrixXd local_cov = map.covarianceMatrix();  // a copy, or the inverse of a file's information
+	if (!useIds(map)) return associateGeometrically(map, local_cov, start, *global_, params_);
+	MapAssociationOutcome out = associateByIds(map, local_cov, start, *global_, params_);
+	if (localFeaturesCarryGlobalIds() && start)
+		associateUnidentifiedGeometrically(map, local_cov, *start, *global_, params_, out);
+	return out;
 }
 
 void Slsjf::fuseLocalMap(const LocalMap& map)
