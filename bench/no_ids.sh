@@ -260,57 +260,46 @@ for radius in 0 20; do
 done
 
 {
-  echo
-  echo "## MRCLAM without IDs: how far the medians move with the pair gate"
-  echo
-  echo "Each \`configs/mrclam/<filter>_jcbb.ini\` with its individual-compatibility gate (\`gate_chi2_quantile\`, shipped 0.99:"
-  echo "the scan gate of the EKF, the map-level gate of SLSJF and D-SLAM map joining, D-SLAM's hypothesis gate; for the"
-  echo "map-joining filters the local maps' scan gate \`local_gate_chi2_quantile\` with it) moved"
-  echo "by half a percent or so, the rest as shipped: a median that moves more than the difference between two"
-  echo "versions of a filter says that difference is not measured by these five runs."
-  echo
-  python3 - "$out/mrclam_gate_sweep" $gates <<'PY'
+  python3 - "$out" "$gates" "$radii_mrclam" <<'PY'
 import json, os, statistics, sys
-folder, gates = sys.argv[1], sys.argv[2:]
+out, gates, radii = sys.argv[1], sys.argv[2].split(), sys.argv[3].split()
+def robots(folder, name):
+    """Robots 1-5 of sweep point `name`: each run's stats.json, or None when it failed."""
+    paths = [os.path.join(out, folder, name, "r%d" % r, "stats.json") for r in range(1, 6)]
+    return [json.load(open(p)) if os.path.exists(p) else None for p in paths]
+def rmse_cell(runs):
+    """The median landmark RMSE and, in brackets, each robot's."""
+    rmse = [m.get("landmark_rmse_m") if m else None for m in runs]
+    ok = [x for x in rmse if x is not None]
+    return "%s (%s)" % ("%.3f" % statistics.median(ok) if ok else "-",
+                        " ".join("%.2f" % x if x is not None else "failed" for x in rmse))
+print()
+print("## MRCLAM without IDs: how far the medians move with the pair gate")
+print()
+print("Each `configs/mrclam/<filter>_jcbb.ini` with its individual-compatibility gate (`gate_chi2_quantile`, shipped 0.99:")
+print("the scan gate of the EKF, the map-level gate of SLSJF and D-SLAM map joining, D-SLAM's hypothesis gate; for the")
+print("map-joining filters the local maps' scan gate `local_gate_chi2_quantile` with it) moved")
+print("by half a percent or so, the rest as shipped: a median that moves more than the difference between two")
+print("versions of a filter says that difference is not measured by these five runs.")
+print()
 print("| filter | " + " | ".join("gate %s: median (per robot)" % g for g in gates) + " |")
 print("|---|" + "---|" * len(gates))
 for filter in ["ekf", "slsjf", "dslam_lmj", "dslam"]:
-    cells = []
-    for g in gates:
-        v = []
-        for r in range(1, 6):
-            path = os.path.join(folder, "%s_%s" % (filter, g), "r%d" % r, "stats.json")
-            m = json.load(open(path)) if os.path.exists(path) else {}
-            v.append(m.get("landmark_rmse_m"))
-        ok = [x for x in v if x is not None]
-        cells.append("%s (%s)" % ("%.3f" % statistics.median(ok) if ok else "-",
-                                  " ".join("%.2f" % x if x is not None else "failed" for x in v)))
-    print("| %s | %s |" % (filter, " | ".join(cells)))
-PY
-  echo
-  echo "## MRCLAM: map-joining filters associated scan by scan with the global map"
-  echo
-  echo "Each \`configs/mrclam/<filter>_jcbb.ini\` with \`local_map_global_features_radius_m\` varied (0: off), the rest as"
-  echo "shipped: the median landmark RMSE over robots 1-5 and the landmarks mapped per robot (15 cylinders). \`dslam_lmj_pair\`:"
-  echo "D-SLAM map joining in the book's pair frame (\`upper_level_frame = pair\`, the close rule on the previous map) instead"
-  echo "of the shipped start-pose frame."
-  echo
-  python3 - "$out/mrclam_radius_sweep" $radii_mrclam <<'PY'
-import json, os, statistics, sys
-folder, radii = sys.argv[1], sys.argv[2:]
+    print("| %s | %s |" % (filter, " | ".join(rmse_cell(robots("mrclam_gate_sweep", "%s_%s" % (filter, g))) for g in gates)))
+print()
+print("## MRCLAM: map-joining filters associated scan by scan with the global map")
+print()
+print("Each `configs/mrclam/<filter>_jcbb.ini` with `local_map_global_features_radius_m` varied (0: off), the rest as")
+print("shipped: the median landmark RMSE over robots 1-5 and the landmarks mapped per robot (15 cylinders). `dslam_lmj_pair`:")
+print("D-SLAM map joining in the book's pair frame (`upper_level_frame = pair`, the close rule on the previous map) instead")
+print("of the shipped start-pose frame.")
+print()
 print("| filter | radius [m] | landmark RMSE median [m] (per robot) | landmarks (per robot) |")
 print("|---|---:|---|---|")
 points = [(f, r) for f in ("slsjf", "dslam_lmj") for r in radii] + [("dslam_lmj_pair", r) for r in ("0", "20")]
 for filter, radius in points:
-    runs = []
-    for r in range(1, 6):
-        path = os.path.join(folder, "%s_%s" % (filter, radius), "r%d" % r, "stats.json")
-        runs.append(json.load(open(path)) if os.path.exists(path) else None)
-    rmse = [m.get("landmark_rmse_m") if m else None for m in runs]
-    ok = [x for x in rmse if x is not None]
-    print("| %s | %s | %s (%s) | %s |" % (filter, radius, "%.3f" % statistics.median(ok) if ok else "-",
-          " ".join("%.2f" % x if x is not None else "failed" for x in rmse),
-          " ".join("%d" % m["landmarks"] if m else "x" for m in runs)))
+    runs = robots("mrclam_radius_sweep", "%s_%s" % (filter, radius))
+    print("| %s | %s | %s | %s |" % (filter, radius, rmse_cell(runs), " ".join("%d" % m["landmarks"] if m else "x" for m in runs)))
 PY
   echo
   echo "## MRCLAM: what a perfect pose would associate"
