@@ -1,4 +1,5 @@
 #include <esif/association/Ambiguity.h>
+#include <esif/association/CandidateWindow.h>
 #include <esif/association/Chi2.h>
 #include <esif/association/DataAssociation.h>
 #include <esif/core/Errors.h>
@@ -15,11 +16,6 @@
 
 namespace esif
 {
-namespace
-{
-constexpr double kDeg = M_PI / 180.0;
-}
-
 LandmarkEkf::LandmarkEkf(const EkfAssociationParams& params, LandmarkId first_own_id, JacobianPoints jacobians)
 	: params_(params),
 	  gate_distance2_new_(chi2Quantile(params.new_landmark_chi2_quantile, 2)),
@@ -170,19 +166,10 @@ StepReport LandmarkEkf::associateByIds(const StepInput& step, std::vector<EkfSla
 
 std::vector<std::size_t> LandmarkEkf::candidatesFor(const Scan& scan) const
 {
-	const Pose2 sensor = scan.sensor_on_robot;
-	const double max_range = scan.max_range_m > 0 ? scan.max_range_m + params_.candidate_margin_m : INFINITY;
-	const double half_fov =
-		scan.fov_rad > 0 ? 0.5 * scan.fov_rad + params_.candidate_margin_deg * kDeg : INFINITY;
+	const CandidateWindow window(scan, params_.candidate_margin_m, params_.candidate_margin_deg);
 	std::vector<std::size_t> out;
 	for (std::size_t i = 0; i < core_.landmarkCount(); ++i)
-	{
-		const auto h = core_.predictMeasurement(i, sensor);
-		// Within the range margin of the sensor the bearing says little (the
-		// robot may drive over a feature): such landmarks are always candidates.
-		const bool near = h.z(0) <= params_.candidate_margin_m;
-		if (near || (h.z(0) <= max_range && std::abs(h.z(1)) <= half_fov)) out.push_back(i);
-	}
+		if (window.admits(core_.predictMeasurement(i, scan.sensor_on_robot).z)) out.push_back(i);
 	return out;
 }
 

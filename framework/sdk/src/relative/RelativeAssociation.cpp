@@ -1,4 +1,5 @@
 #include <esif/association/Ambiguity.h>
+#include <esif/association/CandidateWindow.h>
 #include <esif/association/Chi2.h>
 #include <esif/association/DataAssociation.h>
 #include <esif/models/RangeBearingModel.h>
@@ -14,8 +15,6 @@ namespace esif::relative
 {
 namespace
 {
-constexpr double kDeg = M_PI / 180.0;
-
 Eigen::Vector2d measurementOf(const RangeBearing& m) { return {m.range_m, m.bearing_rad}; }
 }  // namespace
 
@@ -32,19 +31,14 @@ std::vector<LandmarkId> RelativeAssociation::candidatesFor(const Scan& scan, con
 														   const std::unordered_set<LandmarkId>& excluded) const
 {
 	const Pose2 sensor = scan.sensor_on_robot;
-	const double max_range = scan.max_range_m > 0 ? scan.max_range_m + params_.candidate_margin_m : INFINITY;
-	const double half_fov = scan.fov_rad > 0 ? 0.5 * scan.fov_rad + params_.candidate_margin_deg * kDeg : INFINITY;
-	const double k = params_.candidate_margin_sigmas;
+	const CandidateWindow window(scan, params_.candidate_margin_m, params_.candidate_margin_deg);
 	std::vector<LandmarkId> out;
 	for (LandmarkId id : map.ids())
 	{
 		if (excluded.count(id)) continue;
 		const auto h = predictRangeBearing(robot, sensor, map.position(id));
-		// Within the range margin of the sensor the bearing says little (the
-		// robot may drive over a feature): such features are always candidates.
-		const bool near = h.z(0) <= params_.candidate_margin_m;
 		const Eigen::Vector2d sd = (h.d_robot * robot_cov * h.d_robot.transpose()).diagonal().cwiseSqrt();
-		if (near || (h.z(0) <= max_range + k * sd(0) && std::abs(h.z(1)) <= half_fov + k * sd(1))) out.push_back(id);
+		if (window.admits(h.z, params_.candidate_margin_sigmas * sd)) out.push_back(id);
 	}
 	return out;
 }
