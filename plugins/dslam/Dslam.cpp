@@ -117,7 +117,9 @@ StepReport Dslam::associateByTrackingThenMap(const Scan& scan)
 {
 	const auto& assoc = params_.association;
 	const auto tracked = trackHeldFeatures(local_, scan, assoc.association != AssociationMode::NearestNeighbor,
-										   assoc.gate_chi2_quantile, assoc.search);
+										   assoc.gate_chi2_quantile,
+										   CandidateWindow(scan, assoc.candidate_margin_m, assoc.candidate_margin_deg),
+										   assoc.search);
 	Scan rest = scan;
 	rest.measurements.clear();
 	std::vector<std::size_t> rest_index;

@@ -72,19 +72,15 @@ std::optional<double> LocalSlam::innovationDistance2(const IdentifiedMeasurement
 	return nu.dot(S.ldlt().solve(nu));
 }
 
-LocalSlam::HeldPrediction LocalSlam::predictHeld(const Pose2& sensor_on_robot, const Eigen::Matrix2d& R) const
+LocalSlam::HeldPrediction LocalSlam::predictHeld(const std::vector<std::size_t>& held, const Pose2& sensor_on_robot,
+												  const Eigen::Matrix2d& R) const
 {
-	const std::size_t k = ids_.size();
 	HeldPrediction out;
-	out.predictions.resize(static_cast<Eigen::Index>(k), 2);
-	std::vector<std::size_t> all(k);
-	for (std::size_t i = 0; i < k; ++i)
-	{
-		all[i] = i;
-		out.predictions.row(static_cast<Eigen::Index>(i)) = ekf_.predictMeasurement(i, sensor_on_robot).z.transpose();
-	}
-	out.covariance = ekf_.predictionCovariance(all, sensor_on_robot);
-	for (std::size_t i = 0; i < k; ++i) out.covariance.block<2, 2>(2 * i, 2 * i) += R;
+	out.predictions.resize(static_cast<Eigen::Index>(held.size()), 2);
+	for (std::size_t i = 0; i < held.size(); ++i)
+		out.predictions.row(static_cast<Eigen::Index>(i)) = predictHeldMeasurement(held[i], sensor_on_robot).transpose();
+	out.covariance = ekf_.predictionCovariance(held, sensor_on_robot);
+	for (std::size_t i = 0; i < held.size(); ++i) out.covariance.block<2, 2>(2 * i, 2 * i) += R;
 	return out;
 }
 

@@ -68,20 +68,27 @@ class LocalSlam
 	/// EKF (S = H P H^T + R), or nothing when its feature is not held.
 	std::optional<double> innovationDistance2(const IdentifiedMeasurement& m, const Pose2& sensor_on_robot) const;
 
-	/// Predicted measurements of every held feature (rows in order()) and
-	/// their joint covariance H P H^T + R, robot-feature correlations
-	/// included, for a measurement noise `R`: the association input of
-	/// the tracking stage (HeldFeatureTracking.h).
+	/// Predicted measurements of the held features order()[k] for k in
+	/// `held` (rows in that order) and their joint covariance H P H^T + R,
+	/// robot-feature correlations included, for a measurement noise `R`: the
+	/// association input of the tracking stage (HeldFeatureTracking.h).
 	struct HeldPrediction
 	{
 		Eigen::MatrixXd predictions;  ///< k x 2 (range, bearing)
 		Eigen::MatrixXd covariance;	  ///< 2k x 2k
 	};
-	HeldPrediction predictHeld(const Pose2& sensor_on_robot, const Eigen::Matrix2d& R) const;
+	HeldPrediction predictHeld(const std::vector<std::size_t>& held, const Pose2& sensor_on_robot,
+							   const Eigen::Matrix2d& R) const;
+
+	/// Predicted measurement (range, bearing) of the held feature order()[k].
+	Eigen::Vector2d predictHeldMeasurement(std::size_t k, const Pose2& sensor_on_robot) const
+	{
+		return ekf_.predictMeasurement(k, sensor_on_robot).z;
+	}
 
 	/// Predicted measurement of the held feature order()[k] and its H P H^T
-	/// (robot uncertainty included, no sensor noise): one diagonal block of
-	/// predictHeld(), in constant time.
+	/// (robot uncertainty included, no sensor noise): a diagonal block of
+	/// predictHeld() without R, in constant time.
 	struct FeaturePrediction
 	{
 		Eigen::Vector2d z;
