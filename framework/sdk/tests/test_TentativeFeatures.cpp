@@ -441,4 +441,31 @@ TEST(LocalMapBuilderEarlierFeatures, WithAnOdometryLinkTheyAreMovedThroughTheLin
 	EXPECT_EQ(r.associations[0].kind, Association::Kind::New);
 	EXPECT_EQ(r.associations[0].id, 100);
 }
+TEST(LocalMapBuilderEarlierFeatures, WithNoneInTheRadiusTheCloseRenamesNothing)
+{
+	// Maps of one step, the robot standing still. The first map starts the
+	// feature 5 m ahead under its own number. The joining filter then finds
+	// no global feature within the radius of the second map's start and gives
+	// none: the second map's sighting of the same place is its own feature,
+	// left to the map level, and not renamed to the previous map's by the
+	// close (which it would be without the association filter).
+	LocalMapBuilderParams params;
+	params.local_map_steps = 1;
+	params.association = distanceAssociation(false, 0);
+	LocalMapBuilder builder(params);
+	builder.reserveIdsUpTo(999);
+	builder.processStep(step(0, -1, 0, 0, {{5.0, 0.0}}));
+	const auto first = builder.takeClosedMap();
+	ASSERT_TRUE(first);
+	ASSERT_EQ(first->features.size(), 1u);
+	EXPECT_EQ(first->features[0].id, 1000);
+
+	builder.setEarlierFeatures(EarlierFeatures{});
+	builder.processStep(step(1, 0.0, 1e-3, 1e-4, {{5.0, 0.0}}));
+	const auto second = builder.takeClosedMap();
+	ASSERT_TRUE(second);
+	ASSERT_EQ(second->features.size(), 1u);
+	EXPECT_EQ(second->features[0].id, 1001);
+	EXPECT_FALSE(second->features[0].in_earlier_maps);
+}
 }  // namespace

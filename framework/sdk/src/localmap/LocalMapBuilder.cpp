@@ -242,9 +242,12 @@ LocalMap LocalMapBuilder::closeOpenMap()
 	map.steps = steps_;
 	map.measurements = measurements_;
 
-	// Features the builder numbered that are features of the previous map take that map's IDs.
+	// Features the builder numbered that are features of the previous map take
+	// that map's IDs; not when the association filter decided the scans (even
+	// with no global feature in its radius): the filter's own numbers are then
+	// features the global map did not give, left to the map level.
 	std::map<LandmarkId, LandmarkId> renames;
-	if (previous_ && !own_ids_.empty() && earlier_ids_.empty())
+	if (previous_ && !own_ids_.empty() && !association_ekf_)
 	{
 		std::size_t a = 0;
 		const auto matches = matchOwnFeaturesToPrevious();
