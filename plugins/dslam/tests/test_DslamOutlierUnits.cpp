@@ -67,7 +67,10 @@ TEST(DslamReobservationGate, DistanceMatchesSampledInnovationStatistics)
 const Eigen::Matrix2d kSensorNoise = Eigen::Vector2d(0.01, std::pow(M_PI / 180, 2)).asDiagonal();
 
 /// Range and bearing of (x, y) from a robot and sensor at the origin.
-Eigen::Vector2d rangeBearingOf(double x, double y) { return predictRangeBearing(Pose2(0, 0, 0), Pose2(0, 0, 0), {x, y}).z; }
+Eigen::Vector2d rangeBearingOf(double x, double y)
+{
+	return predictRangeBearing(Pose2(0, 0, 0), Pose2(0, 0, 0), {x, y}).z;
+}
 
 /// A scan of the points `xy`, exact, with the noise kSensorNoise.
 Scan scanOf(const std::vector<std::pair<double, double>>& xy)
@@ -93,7 +96,8 @@ TEST(DslamHeldFeatureTracking, MatchesTheHeldFeatureNotItsGridNeighbour)
 	// must go to (3, 3), not to (3, 0) or to nothing.
 	LocalSlam local;
 	local.predict({Pose2(0, 0, 0), Eigen::Vector3d(0.0004, 2.25, 0.0001).asDiagonal()});
-	local.addFeatures({{10, rangeBearingOf(3, 0), kSensorNoise}, {11, rangeBearingOf(3, 3), kSensorNoise}}, Pose2(0, 0, 0));
+	local.addFeatures({{10, rangeBearingOf(3, 0), kSensorNoise}, {11, rangeBearingOf(3, 3), kSensorNoise}},
+					  Pose2(0, 0, 0));
 
 	const Scan scan = scanOf({{3.0, 3.0}, {6.0, 0.0}});
 	const auto tracked = trackHeldFeatures(local, scan, true, 0.99, CandidateWindow(scan, 2.0, 10.0), {});
