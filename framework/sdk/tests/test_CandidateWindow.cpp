@@ -56,6 +56,18 @@ TEST(CandidateWindow, AnUnknownRangeOrFieldOfViewLimitsNothing)
 {
 	const CandidateWindow window(Scan{}, 2.0, 10.0);
 	EXPECT_TRUE(window.admits({1e6, M_PI}));
+
+	Scan range_unknown = camera();
+	range_unknown.max_range_m = 0;
+	const CandidateWindow any_range(range_unknown, 2.0, 10.0);
+	EXPECT_TRUE(any_range.admits({1e6, 0.0}));
+	EXPECT_FALSE(any_range.admits({1e6, 41 * kDeg}));
+
+	Scan fov_unknown = camera();
+	fov_unknown.fov_rad = 0;
+	const CandidateWindow any_bearing(fov_unknown, 2.0, 10.0);
+	EXPECT_TRUE(any_bearing.admits({3.0, M_PI}));
+	EXPECT_FALSE(any_bearing.admits({7.1, 0.0}));
 }
 
 }  // namespace

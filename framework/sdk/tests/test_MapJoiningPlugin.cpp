@@ -6,6 +6,7 @@
 
 #include <esif/config/ConfigFile.h>
 #include <esif/core/Errors.h>
+#include <esif/plugin/MapJoiningPlugin.h>
 #include <esif/plugin/PluginWithParams.h>
 #include <esif/sparse/SparseInformationCore.h>
 

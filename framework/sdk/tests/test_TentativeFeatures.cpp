@@ -420,6 +420,7 @@ TEST(LocalMapBuilderEarlierFeatures, TwinsUnderAnUncertainStartHeadingWaitThenAM
 	EXPECT_EQ(r.associations[0].id, 101);
 	EXPECT_EQ(builder.rejections().ambiguous_waits, 1u);
 }
+
 TEST(LocalMapBuilderEarlierFeatures, WithAnOdometryLinkTheyAreMovedThroughTheLink)
 {
 	// Maps of one step linked by the next step's odometry (eq. 5.4): the
@@ -441,6 +442,7 @@ TEST(LocalMapBuilderEarlierFeatures, WithAnOdometryLinkTheyAreMovedThroughTheLin
 	EXPECT_EQ(r.associations[0].kind, Association::Kind::New);
 	EXPECT_EQ(r.associations[0].id, 100);
 }
+
 TEST(LocalMapBuilderEarlierFeatures, WithNoneInTheRadiusTheCloseRenamesNothing)
 {
 	// Maps of one step, the robot standing still. The first map starts the

@@ -7,7 +7,7 @@ namespace esif
 {
 CandidateWindow::CandidateWindow(const Scan& scan, double margin_m, double margin_deg)
 	: max_range_m_(scan.max_range_m > 0 ? scan.max_range_m + margin_m : std::numeric_limits<double>::infinity()),
-	  half_fov_rad_(scan.fov_rad > 0 ? 0.5 * scan.fov_rad + margin_deg * M_PI / 180.0
+	  half_fov_rad_(scan.fov_rad > 0 ? 0.5 * scan.fov_rad + margin_deg * (M_PI / 180.0)
 									 : std::numeric_limits<double>::infinity()),
 	  near_m_(margin_m)
 {

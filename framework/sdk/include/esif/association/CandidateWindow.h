@@ -30,9 +30,10 @@ class CandidateWindow
 	CandidateWindow(const Scan& scan, double margin_m, double margin_deg);
 
 	/// Whether a landmark predicted at `range_bearing` (sensor frame) is a
-	/// candidate, with the window widened by `widen` (range [m], bearing
-	/// [rad]: a number of standard deviations of the prediction; zero for
-	/// the fixed window).
+	/// candidate, with the window's range and bearing limits widened by
+	/// `widen` ([m], [rad]; e.g. k standard deviations of the prediction,
+	/// zero for the fixed window). The range margin's "near" rule is not
+	/// widened.
 	bool admits(const Eigen::Vector2d& range_bearing, const Eigen::Vector2d& widen = Eigen::Vector2d::Zero()) const;
 
    private:
