@@ -141,11 +141,12 @@ StepReport Dslam::associateByTrackingThenMap(const Scan& scan)
 	}
 	if (rest.measurements.empty()) return report;
 
-	// What tracking left is none of the held features, so they are no
-	// candidates: the map-level gate, robot and map independent, is far
-	// looser than tracking's and took new features for held neighbours
-	// (after long_gap's first crossing, half of all measurements were lost
-	// that way). The tracked mapped features anchor its relative tests.
+	// What tracking left matched none of the held features in view. No held
+	// feature is a candidate here: the map-level gate, robot and map
+	// independent, is far looser than tracking's and took new features for
+	// held neighbours (after long_gap's first crossing, half of all
+	// measurements were lost that way). The tracked mapped features anchor
+	// its relative tests.
 	// With fewer than two tracked anchors a lone sighting has nothing to be
 	// checked against: features held out of view stand in.
 	const std::unordered_set<LandmarkId> held(local_.order().begin(), local_.order().end());

@@ -1,11 +1,36 @@
 #include "HeldFeatureTracking.h"
 
 #include <esif/association/DataAssociation.h>
+#include <esif/models/Se2.h>
 
+#include <Eigen/Cholesky>
+#include <algorithm>
 #include <limits>
 
 namespace esif::dslam
 {
+namespace
+{
+/// Smallest squared Mahalanobis distance of each measurement of `scan` to
+/// any held feature, in view or not (noise `R` added to each H P H^T).
+std::vector<double> smallestDistances2ToHeld(const LocalSlam& local, const Scan& scan, const Eigen::Matrix2d& R)
+{
+	const auto& ms = scan.measurements;
+	std::vector<double> out(ms.size(), std::numeric_limits<double>::infinity());
+	for (std::size_t k = 0; k < local.order().size(); ++k)
+	{
+		const LocalSlam::FeaturePrediction h = local.predictHeldFeature(k, scan.sensor_on_robot);
+		const Eigen::LDLT<Eigen::Matrix2d> S(h.covariance + R);
+		for (std::size_t i = 0; i < ms.size(); ++i)
+		{
+			Eigen::Vector2d nu(ms[i].range_m - h.z(0), wrapAngle(ms[i].bearing_rad - h.z(1)));
+			out[i] = std::min(out[i], nu.dot(S.solve(nu)));
+		}
+	}
+	return out;
+}
+}  // namespace
+
 std::vector<TrackedMeasurement> trackHeldFeatures(const LocalSlam& local, const Scan& scan, bool jcbb,
 												  double gate_quantile, const CandidateWindow& window,
 												  const SearchBounds& bounds)
@@ -14,15 +39,19 @@ std::vector<TrackedMeasurement> trackHeldFeatures(const LocalSlam& local, const 
 	std::vector<TrackedMeasurement> out(ms.size(), {std::nullopt, std::numeric_limits<double>::infinity()});
 	if (ms.empty() || local.order().empty()) return out;
 
+	// One noise for all, as the map-level association (RelativeAssociation):
+	// a scan's measurements share their sensor's covariance.
+	const Eigen::Matrix2d R = sightingCov(scan, ms.front());
+	// Held features out of view are no candidates, but a measurement close to
+	// one is not a new feature either (Dslam's ambiguity rule).
+	const std::vector<double> nearest = smallestDistances2ToHeld(local, scan, R);
+	for (std::size_t i = 0; i < ms.size(); ++i) out[i].min_distance2 = nearest[i];
+
 	std::vector<std::size_t> candidates;
 	for (std::size_t k = 0; k < local.order().size(); ++k)
 		if (window.admits(local.predictHeldMeasurement(k, scan.sensor_on_robot))) candidates.push_back(k);
 	if (candidates.empty()) return out;
-
-	// One noise for all, as the map-level association (RelativeAssociation):
-	// a scan's measurements share their sensor's covariance.
-	const LocalSlam::HeldPrediction held =
-		local.predictHeld(candidates, scan.sensor_on_robot, sightingCov(scan, ms.front()));
+	const LocalSlam::HeldPrediction held = local.predictHeld(candidates, scan.sensor_on_robot, R);
 	AssociationInput in;
 	in.observations.resize(static_cast<Eigen::Index>(ms.size()), 2);
 	for (std::size_t i = 0; i < ms.size(); ++i) in.observations.row(static_cast<Eigen::Index>(i)) << ms[i].range_m, ms[i].bearing_rad;
@@ -34,7 +63,6 @@ std::vector<TrackedMeasurement> trackHeldFeatures(const LocalSlam& local, const 
 	std::vector<bool> taken(candidates.size(), false);
 	for (std::size_t i = 0; i < ms.size(); ++i)
 	{
-		out[i].min_distance2 = r.min_distance2[i];
 		const int c = r.candidate_of[i];
 		if (c < 0 || taken[static_cast<std::size_t>(c)]) continue;
 		taken[static_cast<std::size_t>(c)] = true;

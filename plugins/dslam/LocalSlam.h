@@ -74,8 +74,8 @@ class LocalSlam
 	/// association input of the tracking stage (HeldFeatureTracking.h).
 	struct HeldPrediction
 	{
-		Eigen::MatrixXd predictions;  ///< k x 2 (range, bearing)
-		Eigen::MatrixXd covariance;	  ///< 2k x 2k
+		Eigen::MatrixXd predictions;  ///< held.size() x 2 (range, bearing)
+		Eigen::MatrixXd covariance;	  ///< 2 held.size() square
 	};
 	HeldPrediction predictHeld(const std::vector<std::size_t>& held, const Pose2& sensor_on_robot,
 							   const Eigen::Matrix2d& R) const;

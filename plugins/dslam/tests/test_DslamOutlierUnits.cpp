@@ -13,6 +13,7 @@
 
 #include <Eigen/Cholesky>
 
+#include <cmath>
 #include <random>
 #include <utility>
 #include <vector>
@@ -115,7 +116,9 @@ TEST(DslamHeldFeatureTracking, LeavesHeldFeaturesOutOfViewOutOfTheCandidates)
 	// A new pair of the same shape ahead, 3 m off in a 60 deg camera, fits the
 	// held pair turned by 180 deg within the individual gate (d2 about
 	// pi^2 / 1.5^2 = 4.4 < 9.2), and JCBB cannot tell equal pairs apart. The
-	// predicted pose places the held pair out of view: no candidates.
+	// predicted pose places the held pair out of view: no candidates. Each
+	// measurement still reports that distance, so D-SLAM leaves it out as
+	// ambiguous rather than mapping it as new.
 	LocalSlam local;
 	local.addFeatures({{10, rangeBearingOf(-3, -0.1), kSensorNoise}, {11, rangeBearingOf(-3, 0.1), kSensorNoise}},
 					  Pose2(0, 0, 0));
@@ -124,15 +127,59 @@ TEST(DslamHeldFeatureTracking, LeavesHeldFeaturesOutOfViewOutOfTheCandidates)
 	Scan scan = scanOf({{3.0, 0.1}, {3.0, -0.1}});
 	scan.max_range_m = 5;
 	scan.fov_rad = 60 * M_PI / 180;
-	for (const auto& t : trackHeldFeatures(local, scan, true, 0.99, CandidateWindow(scan, 2.0, 10.0), {}))
+	const auto in_view = trackHeldFeatures(local, scan, true, 0.99, CandidateWindow(scan, 2.0, 10.0), {});
+	ASSERT_EQ(in_view.size(), 2u);
+	for (const auto& t : in_view)
+	{
 		EXPECT_FALSE(t.feature.has_value());
+		EXPECT_GT(t.min_distance2, 3.0);
+		EXPECT_LT(t.min_distance2, 6.0);
+	}
 
 	// The same scan from a sensor of unknown field of view: the held pair is a
 	// candidate and JCBB takes it (what the window prevents).
 	Scan unbounded = scan;
 	unbounded.fov_rad = 0;
 	const auto tracked = trackHeldFeatures(local, unbounded, true, 0.99, CandidateWindow(unbounded, 2.0, 10.0), {});
+	ASSERT_EQ(tracked.size(), 2u);
 	EXPECT_TRUE(tracked[0].feature.has_value() && tracked[1].feature.has_value());
+}
+
+TEST(DslamHeldFeatureTracking, AFeatureInViewIsFoundBesideOneHeldOutOfView)
+{
+	// The local SLAM holds a feature behind the robot (first) and one ahead
+	// (second): only the second is a candidate, and a sighting of it gets
+	// its ID, with the distance to it, not to the one behind.
+	LocalSlam local;
+	local.addFeatures({{20, rangeBearingOf(-3, 0), kSensorNoise}, {21, rangeBearingOf(3, 0.5), kSensorNoise}},
+					  Pose2(0, 0, 0));
+	local.predict({Pose2(0, 0, 0), Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal()});
+	Scan scan = scanOf({{3.0, 0.5}});
+	scan.max_range_m = 5;
+	scan.fov_rad = 60 * M_PI / 180;
+	const auto tracked = trackHeldFeatures(local, scan, true, 0.99, CandidateWindow(scan, 2.0, 10.0), {});
+	ASSERT_EQ(tracked.size(), 1u);
+	ASSERT_TRUE(tracked[0].feature.has_value());
+	EXPECT_EQ(*tracked[0].feature, 21);
+	EXPECT_LT(tracked[0].min_distance2, 0.01);
+}
+
+TEST(DslamLocalSlam, PredictionOfSomeHeldFeaturesIsTheirPartOfThePredictionOfAll)
+{
+	LocalSlam local;
+	local.addFeatures({{20, rangeBearingOf(-3, 0), kSensorNoise}, {21, rangeBearingOf(3, 0.5), kSensorNoise},
+					   {22, rangeBearingOf(4, -1), kSensorNoise}},
+					  Pose2(0, 0, 0));
+	local.predict({Pose2(0.5, 0, 0.1), Eigen::Vector3d(0.01, 0.02, 0.003).asDiagonal()});
+	const Pose2 sensor(0.1, 0, 0);
+	const LocalSlam::HeldPrediction all = local.predictHeld({0, 1, 2}, sensor, kSensorNoise);
+	const LocalSlam::HeldPrediction some = local.predictHeld({2, 0}, sensor, kSensorNoise);
+	ASSERT_EQ(some.predictions.rows(), 2);
+	EXPECT_EQ(some.predictions.row(0), all.predictions.row(2));
+	EXPECT_EQ(some.predictions.row(1), all.predictions.row(0));
+	EXPECT_LT((some.covariance.block<2, 2>(0, 0) - all.covariance.block<2, 2>(4, 4)).norm(), 1e-15);
+	EXPECT_LT((some.covariance.block<2, 2>(0, 2) - all.covariance.block<2, 2>(4, 0)).norm(), 1e-15);
+	EXPECT_LT((some.covariance.block<2, 2>(2, 2) - all.covariance.block<2, 2>(0, 0)).norm(), 1e-15);
 }
 
 }  // namespace
