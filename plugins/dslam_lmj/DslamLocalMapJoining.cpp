@@ -251,19 +251,14 @@ std::optional<EarlierFeatures> DslamLocalMapJoining::globalFeaturesNearOpenMapSt
 	if (!global_->anchored()) return EarlierFeatures{};
 	const PoseEstimate start = openMapFrame();
 	relative::FeatureMap& global = global_->features();
-	std::vector<LandmarkId> ids;
-	std::vector<Eigen::Vector2d> points;
+	EarlierFeatures near;  // in the global frame
 	for (const LandmarkId id : global.ids())
-		if (global.supported(id) && (global.position(id) - start.mean.head<2>()).norm() <= radius_m)
-		{
-			ids.push_back(id);
-			points.push_back(global.position(id));
-		}
-	const auto n = static_cast<Eigen::Index>(ids.size());
-	Eigen::MatrixXd joint = Eigen::MatrixXd::Zero(3 + 2 * n, 3 + 2 * n);
-	joint.topLeftCorner<3, 3>() = start.cov;
-	if (n > 0) joint.bottomRightCorner(2 * n, 2 * n) = global.covariance(ids);
-	return earlierFeaturesInFrame(start.mean, ids, points, joint);
+		if (global.supported(id) && (global.position(id) - start.mean.head<2>()).norm() <= radius_m) near.ids.push_back(id);
+	near.positions.resize(static_cast<Eigen::Index>(2 * near.size()));
+	for (std::size_t i = 0; i < near.size(); ++i)
+		near.positions.segment<2>(2 * static_cast<Eigen::Index>(i)) = global.position(near.ids[i]);
+	near.covariance = near.ids.empty() ? Eigen::MatrixXd(0, 0) : global.covariance(near.ids);
+	return near.inFrame(start.mean, start.cov);  // the start independent of the features
 }
 
 PoseEstimate DslamLocalMapJoining::startOf(const LocalMap& map) const
