@@ -11,20 +11,30 @@ namespace esif::dslam
 {
 namespace
 {
-/// Smallest squared Mahalanobis distance of each measurement of `scan` to
-/// any held feature, in view or not (noise `R` added to each H P H^T).
-std::vector<double> smallestDistances2ToHeld(const LocalSlam& local, const Scan& scan, const Eigen::Matrix2d& R)
+/// One look at every held feature for a scan: which are candidates, and
+/// each measurement's smallest squared Mahalanobis distance to any held
+/// feature, in view or not (noise `R` added to each H P H^T).
+struct HeldFeaturesSeen
+{
+	std::vector<std::size_t> candidates;  ///< held indices `window` admits
+	std::vector<double> nearest;  ///< per measurement
+};
+
+HeldFeaturesSeen lookAtHeldFeatures(const LocalSlam& local, const Scan& scan, const Eigen::Matrix2d& R,
+									const CandidateWindow& window)
 {
 	const auto& ms = scan.measurements;
-	std::vector<double> out(ms.size(), std::numeric_limits<double>::infinity());
+	HeldFeaturesSeen out;
+	out.nearest.assign(ms.size(), std::numeric_limits<double>::infinity());
 	for (std::size_t k = 0; k < local.order().size(); ++k)
 	{
 		const LocalSlam::FeaturePrediction h = local.predictHeldFeature(k, scan.sensor_on_robot);
+		if (window.admits(h.z)) out.candidates.push_back(k);
 		const Eigen::LDLT<Eigen::Matrix2d> S(h.covariance + R);
 		for (std::size_t i = 0; i < ms.size(); ++i)
 		{
 			Eigen::Vector2d nu(ms[i].range_m - h.z(0), wrapAngle(ms[i].bearing_rad - h.z(1)));
-			out[i] = std::min(out[i], nu.dot(S.solve(nu)));
+			out.nearest[i] = std::min(out.nearest[i], nu.dot(S.solve(nu)));
 		}
 	}
 	return out;
@@ -44,12 +54,9 @@ std::vector<TrackedMeasurement> trackHeldFeatures(const LocalSlam& local, const 
 	const Eigen::Matrix2d R = sightingCov(scan, ms.front());
 	// Held features out of view are no candidates, but a measurement close to
 	// one is not a new feature either (Dslam's ambiguity rule).
-	const std::vector<double> nearest = smallestDistances2ToHeld(local, scan, R);
-	for (std::size_t i = 0; i < ms.size(); ++i) out[i].min_distance2 = nearest[i];
-
-	std::vector<std::size_t> candidates;
-	for (std::size_t k = 0; k < local.order().size(); ++k)
-		if (window.admits(local.predictHeldMeasurement(k, scan.sensor_on_robot))) candidates.push_back(k);
+	const HeldFeaturesSeen seen = lookAtHeldFeatures(local, scan, R, window);
+	for (std::size_t i = 0; i < ms.size(); ++i) out[i].min_distance2 = seen.nearest[i];
+	const std::vector<std::size_t>& candidates = seen.candidates;
 	if (candidates.empty()) return out;
 	const LocalSlam::HeldPrediction held = local.predictHeld(candidates, scan.sensor_on_robot, R);
 	AssociationInput in;
