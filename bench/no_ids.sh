@@ -55,15 +55,15 @@ with_keys() {
   sed "${edits[@]}" "$config"
 }
 
-# One run of a sweep: `config` with KEY=VALUE settings replaced, run on
-# Victoria Park into sweep folder `folder` as `name` (a failure leaves its
-# error line in name.err).
+# One run of a sweep: `config` with the KEY=VALUE settings set in its
+# [section] (with_keys), run on Victoria Park into sweep folder `folder` as
+# `name` (a failure leaves its error line in name.err).
 sweep_run() {
-  local folder=$1 name=$2 config=$3; shift 3
-  local edits=(-e "s|^calibration = ../calibration/|calibration = $PWD/configs/calibration/|" -e "s|^label .*|label = $name|")
-  for kv in "$@"; do edits+=(-e "s|^${kv%%=*} = .*|${kv%%=*} = ${kv#*=}|"); done
+  local folder=$1 name=$2 config=$3 section=$4; shift 4
   mkdir -p "$out/$folder"
-  sed "${edits[@]}" "$config" > "$work/$name.ini"
+  with_keys "$config" "$section" "$@" |
+    sed -e "s|^calibration = ../calibration/|calibration = $PWD/configs/calibration/|" -e "s|^label .*|label = $name|" \
+    > "$work/$name.ini"
   set +e
   "$esif" run -q --no-figures --config "$work/$name.ini" --rawlog "$vp" --out "$out/$folder/$name" \
     --reference-run "$out/vicpark_ids/ceres_full" >/dev/null 2>"$out/$folder/$name.err"
@@ -74,7 +74,7 @@ sweep_run() {
 # maps' length.
 for frame in pair start_pose; do
   for steps in 35 50 70 100 150; do
-    sweep_run dslam_lmj_sweep "${frame}_$steps" configs/vicpark/dslam_lmj_jcbb.ini \
+    sweep_run dslam_lmj_sweep "${frame}_$steps" configs/vicpark/dslam_lmj_jcbb.ini dslam_lmj \
       "local_map_steps=$steps" "upper_level_frame=$frame"
   done
 done
@@ -85,7 +85,7 @@ done
 # shipped.
 for hold in 0 50 200 500 1000 3000; do
   for cut in 0.5 1000; do
-    sweep_run dslam_hold_sweep "hold_${hold}_cut_$cut" configs/vicpark/dslam_jcbb.ini \
+    sweep_run dslam_hold_sweep "hold_${hold}_cut_$cut" configs/vicpark/dslam_jcbb.ini dslam \
       "local_hold_steps=$hold" "held_anchor_max_sd_m=$cut"
   done
 done
@@ -95,9 +95,8 @@ done
 radii_vp="0 30 70 100"
 for filter in slsjf dslam_lmj; do
   for radius in $radii_vp; do
-    with_keys "configs/vicpark/${filter}_jcbb.ini" "$filter" "local_map_global_features_radius_m=$radius" \
-      > "$work/${filter}_radius_$radius.ini"
-    sweep_run scan_association_sweep "${filter}_$radius" "$work/${filter}_radius_$radius.ini"
+    sweep_run scan_association_sweep "${filter}_$radius" "configs/vicpark/${filter}_jcbb.ini" "$filter" \
+      "local_map_global_features_radius_m=$radius"
   done
 done
 
