@@ -287,6 +287,9 @@ void LandmarkEkf::addNewLandmarks(const Scan& scan, std::size_t step, StepReport
 void LandmarkEkf::addPriorLandmarks(const EarlierFeatures& features)
 {
 	if (features.size() == 0) return;
+	for (const LandmarkId id : features.ids)
+		if (index_of_.count(id))
+			throw std::invalid_argument("LandmarkEkf::addPriorLandmarks: landmark " + std::to_string(id) + " is mapped already");
 	const auto n = static_cast<Eigen::Index>(core_.stateDim());
 	const auto m = static_cast<Eigen::Index>(2 * features.size());
 	Eigen::VectorXd x(n + m);
@@ -294,9 +297,6 @@ void LandmarkEkf::addPriorLandmarks(const EarlierFeatures& features)
 	Eigen::MatrixXd P = Eigen::MatrixXd::Zero(n + m, n + m);
 	P.topLeftCorner(n, n) = core_.covariance();
 	P.bottomRightCorner(m, m) = features.covariance;
-	for (const LandmarkId id : features.ids)
-		if (index_of_.count(id))
-			throw std::invalid_argument("LandmarkEkf::addPriorLandmarks: landmark " + std::to_string(id) + " is mapped already");
 	core_.setState(x, P);
 	for (const LandmarkId id : features.ids)
 	{
