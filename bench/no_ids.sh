@@ -16,7 +16,10 @@
 #  - MRCLAM dataset 6, robots 1-5: every configs/mrclam/ config with the
 #    barcodes and without (*_jcbb), against the Vicon ground truth; each
 #    no-ID config again with its pair gate moved by about half a percent
-#    (how far the medians move for nothing); beside them, what each
+#    (how far the medians move for nothing), and the map-joining filters,
+#    with and without IDs, with their local maps a few steps shorter or
+#    longer (how far they move when only the map boundaries do); beside
+#    them, what each
 #    measurement's nearest cylinder would be from the true pose
 #    (bench/mrclam_true_pose_association.py), and each filter given oracle
 #    associations (bench/mrclam_association_oracles.py).
@@ -216,18 +219,24 @@ for label in labels:
           f(med(nees), "{:.2f}"), " ".join(f(v, "{:.1f}") for v in nees), maps, failed, suspect))
 PY
 
-# One MRCLAM sweep point: configs/mrclam/<filter>_jcbb.ini with the
-# KEY=VALUE settings given, run on robots 1-5 into sweep folder
-# `folder`/`name`/r<R> (a failed run leaves no stats.json).
-mrclam_sweep_run() {
-  local folder=$1 name=$2 filter=$3; shift 3
+# One MRCLAM sweep point: `config` with the KEY=VALUE settings given in its
+# [section], run on robots 1-5 into sweep folder `folder`/`name`/r<R> (a
+# failed run leaves no stats.json).
+mrclam_config_sweep_run() {
+  local folder=$1 name=$2 config=$3 section=$4; shift 4
   local cfg=$work/$folder-$name.ini
-  with_keys "configs/mrclam/${filter}_jcbb.ini" "$filter" "$@" |
+  with_keys "$config" "$section" "$@" |
     sed "s|^calibration = ../calibration/|calibration = $PWD/configs/calibration/|" > "$cfg"
   for r in 1 2 3 4 5; do
     "$esif" run -q --no-figures --config "$cfg" --rawlog "out/data/mrclam6_r$r.rawlog" \
       --out "$out/$folder/$name/r$r" >/dev/null 2>&1 || true
   done
+}
+
+# The same for configs/mrclam/<filter>_jcbb.ini, the filter's no-ID config.
+mrclam_sweep_run() {
+  local folder=$1 name=$2 filter=$3; shift 3
+  mrclam_config_sweep_run "$folder" "$name" "configs/mrclam/${filter}_jcbb.ini" "$filter" "$@"
 }
 
 # MRCLAM without IDs: each no-ID config with its pair gate moved a little
@@ -258,10 +267,22 @@ for radius in 0 20; do
     upper_level_frame=pair local_map_common_features_in=previous_map
 done
 
+# MRCLAM, the map-joining filters with and without IDs: the local maps a few
+# steps shorter or longer (local_map_steps, default 45). The association
+# rules stay as they are; only where the maps begin and end moves.
+map_lengths="40 45 50 55"
+for filter in slsjf dslam_lmj; do
+  for steps in $map_lengths; do
+    mrclam_config_sweep_run mrclam_map_length_sweep "${filter}_ids_$steps" "configs/mrclam/$filter.ini" "$filter" \
+      "local_map_steps=$steps"
+    mrclam_sweep_run mrclam_map_length_sweep "${filter}_jcbb_$steps" "$filter" "local_map_steps=$steps"
+  done
+done
+
 {
-  python3 - "$out" "$gates" "$radii_mrclam" <<'PY'
+  python3 - "$out" "$gates" "$radii_mrclam" "$map_lengths" <<'PY'
 import json, os, statistics, sys
-out, gates, radii = sys.argv[1], sys.argv[2].split(), sys.argv[3].split()
+out, gates, radii, lengths = sys.argv[1], sys.argv[2].split(), sys.argv[3].split(), sys.argv[4].split()
 def robots(folder, name):
     """Robots 1-5 of sweep point `name`: each run's stats.json, or None when it failed."""
     paths = [os.path.join(out, folder, name, "r%d" % r, "stats.json") for r in range(1, 6)]
@@ -285,6 +306,26 @@ print("| filter | " + " | ".join("gate %s: median (per robot)" % g for g in gate
 print("|---|" + "---|" * len(gates))
 for filter in ["ekf", "slsjf", "dslam_lmj", "dslam"]:
     print("| %s | %s |" % (filter, " | ".join(rmse_cell(robots("mrclam_gate_sweep", "%s_%s" % (filter, g))) for g in gates)))
+print()
+print("## MRCLAM: how far the map-joining filters move with the local map length")
+print()
+print("Each `configs/mrclam/<filter>.ini` (barcodes) and `<filter>_jcbb.ini` (without IDs) with its local maps closed")
+print("after `local_map_steps` steps (shipped 45) instead, the rest as shipped: only where the local maps begin and end")
+print("moves. Last column: the median over all 20 runs (4 lengths x 5 robots) and, without IDs, its ratio to the same")
+print("filter's with barcodes (issue 40's target: at most 1.5).")
+print()
+print("| filter | IDs | " + " | ".join("%s steps: median (per robot)" % n for n in lengths) + " | all 20 runs: median |")
+print("|---|---|" + "---|" * (len(lengths) + 1))
+for filter in ("slsjf", "dslam_lmj"):
+    pooled = {}
+    for ids, tag in (("barcodes", "ids"), ("none", "jcbb")):
+        points = [robots("mrclam_map_length_sweep", "%s_%s_%s" % (filter, tag, n)) for n in lengths]
+        values = [m["landmark_rmse_m"] for runs in points for m in runs if m and m.get("landmark_rmse_m") is not None]
+        pooled[ids] = statistics.median(values) if values else None
+        cell = "-" if pooled[ids] is None else "%.3f" % pooled[ids]
+        if ids == "none" and pooled[ids] is not None and pooled["barcodes"]:
+            cell += " (%.2fx)" % (pooled[ids] / pooled["barcodes"])
+        print("| %s | %s | %s | %s |" % (filter, ids, " | ".join(rmse_cell(runs) for runs in points), cell))
 print()
 print("## MRCLAM: map-joining filters associated scan by scan with the global map")
 print()
