@@ -78,7 +78,7 @@ LocalSlam::HeldPrediction LocalSlam::predictHeld(const std::vector<std::size_t>&
 	HeldPrediction out;
 	out.predictions.resize(static_cast<Eigen::Index>(held.size()), 2);
 	for (std::size_t i = 0; i < held.size(); ++i)
-		out.predictions.row(static_cast<Eigen::Index>(i)) = predictHeldMeasurement(held[i], sensor_on_robot).transpose();
+		out.predictions.row(static_cast<Eigen::Index>(i)) = ekf_.predictMeasurement(held[i], sensor_on_robot).z.transpose();
 	out.covariance = ekf_.predictionCovariance(held, sensor_on_robot);
 	for (std::size_t i = 0; i < held.size(); ++i) out.covariance.block<2, 2>(2 * i, 2 * i) += R;
 	return out;

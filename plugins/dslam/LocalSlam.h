@@ -80,12 +80,6 @@ class LocalSlam
 	HeldPrediction predictHeld(const std::vector<std::size_t>& held, const Pose2& sensor_on_robot,
 							   const Eigen::Matrix2d& R) const;
 
-	/// Predicted measurement (range, bearing) of the held feature order()[k].
-	Eigen::Vector2d predictHeldMeasurement(std::size_t k, const Pose2& sensor_on_robot) const
-	{
-		return ekf_.predictMeasurement(k, sensor_on_robot).z;
-	}
-
 	/// Predicted measurement of the held feature order()[k] and its H P H^T
 	/// (robot uncertainty included, no sensor noise): a diagonal block of
 	/// predictHeld() without R, in constant time.
