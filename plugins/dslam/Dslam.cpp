@@ -7,6 +7,7 @@
 
 #include <esif/association/Chi2.h>
 #include <esif/core/Errors.h>
+#include <esif/core/MeasurementSubset.h>
 #include <esif/models/RangeBearingModel.h>
 
 #include <Eigen/Cholesky>
@@ -120,26 +121,20 @@ StepReport Dslam::associateByTrackingThenMap(const Scan& scan)
 										   assoc.gate_chi2_quantile,
 										   CandidateWindow(scan, assoc.candidate_margin_m, assoc.candidate_margin_deg),
 										   assoc.search);
-	Scan rest = scan;
-	rest.measurements.clear();
-	std::vector<std::size_t> rest_index;
 	std::vector<RelativeAssociation::Anchor> anchors;
 	StepReport report;
 	report.associations.assign(scan.measurements.size(), {Association::Kind::Rejected, -1});
 	for (std::size_t i = 0; i < tracked.size(); ++i)
-	{
 		if (const auto id = tracked[i].feature)
 		{
 			// A held feature is usually mapped; one still waiting in the chain is not.
 			report.associations[i] = {map_->contains(*id) ? Association::Kind::Matched : Association::Kind::New, *id};
 			if (map_->supported(*id)) anchors.push_back({scan.measurements[i], *id});
 			++tally_.tracked_matches;
-			continue;
 		}
-		rest.measurements.push_back(scan.measurements[i]);
-		rest_index.push_back(i);
-	}
-	if (rest.measurements.empty()) return report;
+	const MeasurementSubset rest =
+		measurementSubset(scan, [&](std::size_t i, const RangeBearing&) { return !tracked[i].feature; });
+	if (rest.kept.empty()) return report;
 
 	// What tracking left matched none of the held features in view. No held
 	// feature is a candidate here: the map-level gate, robot and map
@@ -152,11 +147,12 @@ StepReport Dslam::associateByTrackingThenMap(const Scan& scan)
 	const std::unordered_set<LandmarkId> held(local_.order().begin(), local_.order().end());
 	if (params_.local_hold_steps > 0 && params_.held_anchor_max_sd_m > 0 && anchors.size() < 2)
 		addHeldAnchors(scan, tracked, anchors);
-	const StepReport from_map = association_->associate(rest, local_.robot(), local_.robotCov(), *map_, held, anchors);
+	const StepReport from_map =
+		association_->associate(rest.scan, local_.robot(), local_.robotCov(), *map_, held, anchors);
 	const double new_gate = chi2Quantile(assoc.new_landmark_chi2_quantile, 2);
-	for (std::size_t j = 0; j < rest_index.size(); ++j)
+	for (std::size_t j = 0; j < rest.kept.size(); ++j)
 	{
-		const std::size_t i = rest_index[j];
+		const std::size_t i = rest.kept[j];
 		const Association& a = from_map.associations[j];
 		// Close to a held feature it did not match: ambiguous, not new. Left
 		// unassociated rather than given to that feature: matching such
