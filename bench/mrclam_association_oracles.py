@@ -19,7 +19,11 @@ and prints the landmark RMSE against the Vicon ground truth:
     achieves, with the best map a filter of this data has (also printed: how
     often that nearest cylinder is the barcode's);
   - none: the filter's own association without IDs, and how often it hits
-    the barcode's cluster and cylinder.
+    the barcode's cluster and cylinder;
+  - barcodes / cluster oracle, the no-ID run's left-outs left out: the first
+    two again, on only the sightings the filter without IDs used (its ambiguity
+    waits, gates and poorly observed sightings left out): what its caution
+    alone costs, apart from its choice of landmarks.
 Each measurement's barcode comes from `esif export g2o --landmark-edge br`
 (one BR edge per measurement, in step order); clusters are the groups of
 cylinders closer than 1 m in the ground truth the importer writes beside the
@@ -61,15 +65,30 @@ def measurements(esif, rawlog, g2o):
     return out, steps
 
 
+LEFT_OUT = None  # a row's landmark when the sighting is to be left out
+FIRST_LEFT_OUT_ID = 100000  # above every cylinder's and cluster's ID
+
+
 def write_associations(folder, steps, rows):
+    """An associations.txt for --associations-from. A with-ID filter takes no
+    rejected row (every measurement needs its ID), so a sighting to be left
+    out gets a landmark of its own that no other sighting has: a landmark
+    seen once is all unknown but that sighting, and moves nothing else."""
     os.makedirs(folder, exist_ok=True)
     with open(os.path.join(folder, "associations.txt"), "w") as f:
         f.write("# esif associations.txt: an oracle of bench/mrclam_association_oracles.py\n")
         f.write("# columns: step measurement kind landmark_id\n# steps %d\n" % steps)
-        seen = set()
+        seen, left_out = set(), 0
         for step, k, landmark in rows:
+            if landmark is LEFT_OUT:
+                landmark, left_out = FIRST_LEFT_OUT_ID + left_out, left_out + 1
             f.write("%d %d %s %d\n" % (step, k, "matched" if landmark in seen else "new", landmark))
             seen.add(landmark)
+
+
+def used_by(run, meas):
+    """Per measurement: whether the run without IDs used it (not rejected)."""
+    return [kind != "rejected" for (_, _, kind, _) in data_rows(os.path.join(run, "associations.txt"))][:len(meas)]
 
 
 def association_shares(run, meas, cluster):
@@ -115,10 +134,16 @@ def run_filter(esif, rawlog, out, config, associations_from=None):
         cmd += ["--associations-from", associations_from]
     subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     path = os.path.join(out, "stats.json")
-    return json.load(open(path)) if os.path.exists(path) else None
+    if not os.path.exists(path):
+        return None
+    stats = json.load(open(path))
+    # The landmarks mapped, without those standing for one left-out sighting each.
+    stats["mapped"] = sum(int(r[0]) < FIRST_LEFT_OUT_ID for r in data_rows(os.path.join(out, "landmarks.txt")))
+    return stats
 
 
-ASSOCIATIONS = ["barcodes", "cluster oracle", "nearest in cluster", "none: JCBB without IDs"]
+ASSOCIATIONS = ["barcodes", "cluster oracle", "nearest in cluster", "none: JCBB without IDs",
+                "barcodes, the no-ID run's left-outs left out", "cluster oracle, the no-ID run's left-outs left out"]
 
 
 def main():
@@ -157,8 +182,15 @@ def main():
                                                   with_ids, folder))
             no_ids = os.path.join(base, f + "_no_ids")
             stats = run_filter(esif, rawlog, no_ids, "configs/mrclam/%s_jcbb.ini" % f)
-            runs[(f, ASSOCIATIONS[-1])].append(stats)
+            runs[(f, ASSOCIATIONS[3])].append(stats)
             shares[f].append(association_shares(no_ids, meas, cluster) if stats else None)
+            used = used_by(no_ids, meas) if stats else [True] * len(meas)
+            for name, landmark_of in ((ASSOCIATIONS[4], lambda b: b), (ASSOCIATIONS[5], lambda b: cluster[b])):
+                folder = os.path.join(base, f + "_" + name.split(",")[0].replace(" ", "_") + "_used")
+                write_associations(folder, steps, [(s, k, landmark_of(b) if u else LEFT_OUT)
+                                                   for (s, k, b, _, _), u in zip(meas, used)])
+                runs[(f, name)].append(run_filter(esif, rawlog, folder + "_run", with_ids, folder)
+                                       if stats else None)
 
     print("| filter | association | landmark RMSE median [m] (per robot) | landmarks per robot |")
     print("|---|---|---|---|")
@@ -169,7 +201,8 @@ def main():
             print("| %s | %s | %s (%s) | %s |" % (
                 f, a, "%.3f" % statistics.median(done) if done else "-",
                 " ".join("-" if v is None else "%.2f" % v for v in rmse),
-                " ".join("-" if s is None else "%d" % s["landmarks"] for s in runs[(f, a)])))
+                " ".join("-" if s is None else "%d" % s["mapped"]
+                         for s in runs[(f, a)])))
     print()
     print("Nearest in cluster: the oracle's cylinder is the barcode's for %s of the measurements (robots 1-5)."
           % " ".join("%.0f%%" % (100 * v) for v in right_shares))
