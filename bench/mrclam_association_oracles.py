@@ -137,8 +137,19 @@ def run_filter(esif, rawlog, out, config, associations_from=None):
     if not os.path.exists(path):
         return None
     stats = json.load(open(path))
-    # The landmarks mapped, without those standing for one left-out sighting each.
+    # The landmarks mapped and their RMSE, without those standing for one
+    # left-out sighting each (the run counts and scores them with the rest).
+    # landmark_errors.csv holds the landmarks of landmarks.txt, in its order,
+    # that have a true landmark.
+    identity = {r[0]: r[1] for r in data_rows(os.path.join(out, "landmark_identities.txt"))}
+    errors = [r.split(",") for r in open(os.path.join(out, "landmark_errors.csv")).read().split()[1:]]
+    scored = [r[0] for r in data_rows(os.path.join(out, "landmarks.txt")) if identity.get(r[0], "-1") != "-1"]
+    if len(scored) != len(errors) or any(identity[i] != e[0] for i, e in zip(scored, errors)):
+        sys.exit("bench/mrclam_association_oracles.py: %s: landmark_errors.csv does not follow landmarks.txt" % out)
+    kept = [e for i, e in zip(scored, errors) if int(i) < FIRST_LEFT_OUT_ID]
     stats["mapped"] = sum(int(r[0]) < FIRST_LEFT_OUT_ID for r in data_rows(os.path.join(out, "landmarks.txt")))
+    if kept:
+        stats["landmark_rmse_m"] = math.sqrt(sum(float(e[1]) ** 2 + float(e[2]) ** 2 for e in kept) / len(kept))
     return stats
 
 
