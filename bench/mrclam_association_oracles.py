@@ -157,6 +157,33 @@ ASSOCIATIONS = ["barcodes", "cluster oracle", "nearest in cluster", "none: JCBB 
                 "barcodes, the no-ID run's left-outs left out", "cluster oracle, the no-ID run's left-outs left out"]
 
 
+def median_rmse(runs):
+    done = [s["landmark_rmse_m"] for s in runs if s]
+    return statistics.median(done) if done else None
+
+
+def print_reading(runs):
+    """Each filter's medians against issue 40's target: where its no-ID run's
+    sightings, and where its partition of them into landmarks, would put it."""
+    columns = [ASSOCIATIONS[4], ASSOCIATIONS[5], ASSOCIATIONS[3]]
+    print("Issue 40's target against the medians above: the barcodes and the cluster oracle on the sightings the no-ID "
+          "run used, and the no-ID run itself; in brackets the ratio to the barcodes' median on all sightings (the "
+          "target: at most 1.5x).")
+    print()
+    print("| filter | target [m] | barcodes, used sightings [m] | cluster oracle, used sightings [m] | without IDs [m] |")
+    print("|---|---:|---|---|---|")
+    for f in FILTERS:
+        barcodes = median_rmse(runs[(f, "barcodes")])
+        if barcodes is None:
+            continue
+        target = 1.5 * barcodes
+        cells = []
+        for a in columns:
+            m = median_rmse(runs[(f, a)])
+            cells.append("-" if m is None else "%.3f (%.2fx%s)" % (m, m / barcodes, "" if m <= target else ", above"))
+        print("| %s | %.3f | %s |" % (f, target, " | ".join(cells)))
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__.strip().splitlines()[-2])
@@ -214,6 +241,8 @@ def main():
                 " ".join("-" if v is None else "%.2f" % v for v in rmse),
                 " ".join("-" if s is None else "%d" % s["mapped"]
                          for s in runs[(f, a)])))
+    print()
+    print_reading(runs)
     print()
     print("Nearest in cluster: the oracle's cylinder is the barcode's for %s of the measurements (robots 1-5)."
           % " ".join("%.0f%%" % (100 * v) for v in right_shares))
