@@ -343,8 +343,9 @@ print("## MRCLAM without IDs: how far the medians move with the wait on an ambig
 print()
 print("Each `configs/mrclam/<filter>_jcbb.ini` with the scans' ambiguity margin (`ambiguity_margin_chi2_quantile`, in the")
 print("map-joining filters' local maps `local_ambiguity_margin_chi2_quantile`; shipped 0.99, 0: off) varied, the rest as")
-print("shipped: a scan's lone match waits while another candidate is as likely within that quantile. In brackets after the")
-print("median: the median share of the measurements the runs left out (waits, gates, poorly observed sightings).")
+print("shipped: a scan's lone match waits while another candidate is as likely within that quantile (D-SLAM's margin")
+print("applies to a map match its relative test could not verify). After the median: the median share of the measurements")
+print("the runs left out (waits, gates, poorly observed sightings).")
 print()
 def left_out(runs):
     shares = [m["da_rejected"] / m["measurements"] for m in runs if m and m.get("measurements")]
