@@ -136,18 +136,23 @@ def run_filter(esif, rawlog, out, config, associations_from=None):
     path = os.path.join(out, "stats.json")
     if not os.path.exists(path):
         return None
-    stats = json.load(open(path))
-    # The landmarks mapped and their RMSE, without those standing for one
-    # left-out sighting each (the run counts and scores them with the rest).
-    # landmark_errors.csv holds the landmarks of landmarks.txt, in its order,
-    # that have a true landmark.
+    return without_left_out_landmarks(out, json.load(open(path)))
+
+
+def without_left_out_landmarks(out, stats):
+    """The run's stats with its landmark count ("mapped") and RMSE over the
+    landmarks that do not stand for one left-out sighting each (the run counts
+    and scores those with the rest)."""
+    ids = [r[0] for r in data_rows(os.path.join(out, "landmarks.txt"))]
     identity = {r[0]: r[1] for r in data_rows(os.path.join(out, "landmark_identities.txt"))}
+    # landmark_errors.csv: the landmarks of landmarks.txt that have a true
+    # landmark, in that order.
     errors = [r.split(",") for r in open(os.path.join(out, "landmark_errors.csv")).read().split()[1:]]
-    scored = [r[0] for r in data_rows(os.path.join(out, "landmarks.txt")) if identity.get(r[0], "-1") != "-1"]
+    scored = [i for i in ids if identity.get(i, "-1") != "-1"]
     if len(scored) != len(errors) or any(identity[i] != e[0] for i, e in zip(scored, errors)):
         sys.exit("bench/mrclam_association_oracles.py: %s: landmark_errors.csv does not follow landmarks.txt" % out)
     kept = [e for i, e in zip(scored, errors) if int(i) < FIRST_LEFT_OUT_ID]
-    stats["mapped"] = sum(int(r[0]) < FIRST_LEFT_OUT_ID for r in data_rows(os.path.join(out, "landmarks.txt")))
+    stats["mapped"] = sum(int(i) < FIRST_LEFT_OUT_ID for i in ids)
     if kept:
         stats["landmark_rmse_m"] = math.sqrt(sum(float(e[1]) ** 2 + float(e[2]) ** 2 for e in kept) / len(kept))
     return stats
@@ -239,8 +244,7 @@ def main():
             print("| %s | %s | %s (%s) | %s |" % (
                 f, a, "%.3f" % statistics.median(done) if done else "-",
                 " ".join("-" if v is None else "%.2f" % v for v in rmse),
-                " ".join("-" if s is None else "%d" % s["mapped"]
-                         for s in runs[(f, a)])))
+                " ".join("-" if s is None else "%d" % s["mapped"] for s in runs[(f, a)])))
     print()
     print_reading(runs)
     print()
