@@ -227,22 +227,24 @@ def main():
             stats = run_filter(esif, rawlog, no_ids, "configs/mrclam/%s_jcbb.ini" % f)
             runs[(f, ASSOCIATIONS[3])].append(stats)
             shares[f].append(association_shares(no_ids, meas, cluster) if stats else None)
-            used = used_by(no_ids, meas) if stats else [True] * len(meas)
+            used = used_by(no_ids, meas) if stats else None
             for name, landmark_of in ((ASSOCIATIONS[4], lambda b: b), (ASSOCIATIONS[5], lambda b: cluster[b])):
+                if used is None:  # no run without IDs, no sightings it used
+                    runs[(f, name)].append(None)
+                    continue
                 folder = os.path.join(base, f + "_" + name.split(",")[0].replace(" ", "_") + "_used")
                 write_associations(folder, steps, [(s, k, landmark_of(b) if u else LEFT_OUT)
                                                    for (s, k, b, _, _), u in zip(meas, used)])
-                runs[(f, name)].append(run_filter(esif, rawlog, folder + "_run", with_ids, folder)
-                                       if stats else None)
+                runs[(f, name)].append(run_filter(esif, rawlog, folder + "_run", with_ids, folder))
 
     print("| filter | association | landmark RMSE median [m] (per robot) | landmarks per robot |")
     print("|---|---|---|---|")
     for f in FILTERS:
         for a in ASSOCIATIONS:
             rmse = [s["landmark_rmse_m"] if s else None for s in runs[(f, a)]]
-            done = [v for v in rmse if v is not None]
+            median = median_rmse(runs[(f, a)])
             print("| %s | %s | %s (%s) | %s |" % (
-                f, a, "%.3f" % statistics.median(done) if done else "-",
+                f, a, "-" if median is None else "%.3f" % median,
                 " ".join("-" if v is None else "%.2f" % v for v in rmse),
                 " ".join("-" if s is None else "%d" % s["mapped"] for s in runs[(f, a)])))
     print()
