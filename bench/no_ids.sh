@@ -299,12 +299,12 @@ def robots(folder, name):
     """Robots 1-5 of sweep point `name`: each run's stats.json, or None when it failed."""
     paths = [os.path.join(out, folder, name, "r%d" % r, "stats.json") for r in range(1, 6)]
     return [json.load(open(p)) if os.path.exists(p) else None for p in paths]
-def rmse_cell(runs):
-    """The median landmark RMSE and, in brackets, each robot's."""
+def rmse_cell(runs, after_median=""):
+    """The median landmark RMSE, `after_median`, and in brackets each robot's."""
     rmse = [m.get("landmark_rmse_m") if m else None for m in runs]
     ok = [x for x in rmse if x is not None]
-    return "%s (%s)" % ("%.3f" % statistics.median(ok) if ok else "-",
-                        " ".join("%.2f" % x if x is not None else "failed" for x in rmse))
+    return "%s%s (%s)" % ("%.3f" % statistics.median(ok) if ok else "-", after_median,
+                          " ".join("%.2f" % x if x is not None else "failed" for x in rmse))
 print()
 print("## MRCLAM without IDs: how far the medians move with the pair gate")
 print()
@@ -354,11 +354,7 @@ print("| filter | " + " | ".join("margin %s: median, left out (per robot)" % m f
 print("|---|" + "---|" * len(margins))
 for filter in ["ekf", "slsjf", "dslam_lmj", "dslam"]:
     points = [robots("mrclam_margin_sweep", "%s_%s" % (filter, m)) for m in margins]
-    cells = []
-    for runs in points:
-        cell = rmse_cell(runs)
-        cells.append(cell.replace(" (", ", %s (" % left_out(runs), 1))
-    print("| %s | %s |" % (filter, " | ".join(cells)))
+    print("| %s | %s |" % (filter, " | ".join(rmse_cell(runs, ", " + left_out(runs)) for runs in points)))
 print()
 print("## MRCLAM: map-joining filters associated scan by scan with the global map")
 print()
