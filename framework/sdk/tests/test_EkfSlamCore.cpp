@@ -1,6 +1,8 @@
 // The EKF core's sparse-Jacobian update against the textbook dense form of
 // eq. (1.8)-(1.10), on a small map where the dense form is cheap.
 
+#include "EkfCoreFixture.h"
+
 #include <esif/core/Errors.h>
 #include <esif/ekf/EkfSlamCore.h>
 
@@ -11,24 +13,9 @@ namespace
 {
 using namespace esif;
 
-const Pose2 kSensor(0.2, 0.05, 0.1);
+using test::kSensor;
 
-/// A core with three landmarks and a non-trivial, correlated covariance.
-EkfSlamCore buildCore()
-{
-	EkfSlamCore core;
-	OdometryIncrement u;
-	u.delta = {0.5, 0.1, 0.2};
-	u.cov = Eigen::Vector3d(0.01, 0.02, 0.003).asDiagonal();
-	const Eigen::Matrix2d R = Eigen::Vector2d(0.01, 0.0004).asDiagonal();
-	core.predict(u);
-	core.addLandmark({3.0, 0.4}, R, kSensor);
-	core.predict(u);
-	core.addLandmark({2.0, -0.7}, R, kSensor);
-	core.addLandmark({4.0, 1.2}, R, kSensor);
-	core.predict(u);
-	return core;
-}
+EkfSlamCore buildCore() { return test::coreWithThreeLandmarks(); }
 
 /// Dense H (2m x n) for the given matches.
 Eigen::MatrixXd denseH(const EkfSlamCore& core, const std::vector<EkfSlamCore::Match>& matches)

@@ -4,6 +4,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <algorithm>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -307,6 +308,43 @@ void EkfSlamCore::retainLandmarks(const std::vector<std::size_t>& keep)
 	const Eigen::MatrixXd P = P_(rows, rows);
 	replaceState(x, P);
 	first_estimates_ = std::move(first_estimates);
+}
+
+double EkfSlamCore::coincidenceDistance2(std::size_t a, std::size_t b) const
+{
+	const auto ia = static_cast<Eigen::Index>(3 + 2 * a), ib = static_cast<Eigen::Index>(3 + 2 * b);
+	const Eigen::Vector2d d = x_.segment<2>(ia) - x_.segment<2>(ib);
+	const Eigen::Matrix2d S =
+		P_.block<2, 2>(ia, ia) + P_.block<2, 2>(ib, ib) - P_.block<2, 2>(ia, ib) - P_.block<2, 2>(ib, ia);
+	const Eigen::LLT<Eigen::Matrix2d> llt(S);
+	if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+	return d.dot(llt.solve(d));
+}
+
+bool EkfSlamCore::mergeLandmarks(std::size_t keep, std::size_t drop)
+{
+	if (keep == drop || keep >= landmarkCount() || drop >= landmarkCount())
+		throw std::invalid_argument("EkfSlamCore::mergeLandmarks: no such pair of landmarks");
+	const auto n = static_cast<Eigen::Index>(n_);
+	const auto ia = static_cast<Eigen::Index>(3 + 2 * keep), ib = static_cast<Eigen::Index>(3 + 2 * drop);
+	// z = x_keep - x_drop = 0 observed without noise: H = [.. I .. -I ..],
+	// S = H P H^T, K = P H^T S^-1 (eq. 1.9 with R = 0); P -= W W^T as in
+	// update(), W = P H^T L^-T.
+	const Eigen::MatrixXd PHt = P_.block(0, ia, n, 2) - P_.block(0, ib, n, 2);
+	const Eigen::Matrix2d S = PHt.block<2, 2>(ia, 0) - PHt.block<2, 2>(ib, 0);
+	const Eigen::LLT<Eigen::Matrix2d> llt(0.5 * (S + S.transpose()));
+	if (llt.info() != Eigen::Success) return false;
+	const Eigen::Vector2d innovation = x_.segment<2>(ib) - x_.segment<2>(ia);
+	const Eigen::MatrixXd Wt = llt.matrixL().solve(PHt.transpose());	// L^-1 (P H^T)^T
+	x_.head(n) += Wt.transpose() * llt.matrixL().solve(innovation);
+	x_(2) = wrapAngle(x_(2));
+	P_.topLeftCorner(n, n).selfadjointView<Eigen::Lower>().rankUpdate(Wt.transpose(), -1.0);
+	symmetrise();
+	std::vector<std::size_t> rest;
+	for (std::size_t i = 0; i < landmarkCount(); ++i)
+		if (i != drop) rest.push_back(i);
+	retainLandmarks(rest);
+	return true;
 }
 
 void EkfSlamCore::setState(const Eigen::VectorXd& x, const Eigen::MatrixXd& P)

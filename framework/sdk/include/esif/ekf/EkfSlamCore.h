@@ -151,6 +151,23 @@ class EkfSlamCore
 	/// their first estimates, the robot its prior.
 	void retainLandmarks(const std::vector<std::size_t>& keep);
 
+	/// Squared Mahalanobis distance of the difference of landmarks `a` and
+	/// `b` from zero, under its covariance P_aa + P_bb - P_ab - P_ba: how far
+	/// the estimate is from their being one point (+inf if that covariance
+	/// is not positive definite).
+	double coincidenceDistance2(std::size_t a, std::size_t b) const;
+
+	/// Conditions the state on landmarks `keep` and `drop` being one point,
+	/// then marginalises out `drop` (the landmarks after it move down one
+	/// index). The condition is the linear constraint x_keep - x_drop = 0
+	/// taken as a measurement without noise (eq. 1.9-1.10 with R = 0), so
+	/// the result is exactly the Gaussian posterior given the constraint:
+	/// the state the filter would hold had every measurement of both been
+	/// associated with one landmark, up to linearisation. O(N^2). Returns
+	/// false, changing nothing, if the covariance of their difference is not
+	/// positive definite.
+	bool mergeLandmarks(std::size_t keep, std::size_t drop);
+
 	/// Replaces the whole state: x = [robot; landmarks], P its covariance
 	/// (e.g. a fused estimate). Throws std::invalid_argument on a size
 	/// mismatch or an odd landmark part. The FEJ points become the new state
