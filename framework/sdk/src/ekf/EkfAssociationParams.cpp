@@ -52,6 +52,18 @@ void EkfAssociationParams::declare(ParamBinder& b)
 	search.declare(b);
 }
 
+void EkfAssociationParams::declareMerging(ParamBinder& b)
+{
+	b.integer("merge_landmarks_after_matches", merge_landmarks_after_matches,
+			  "without IDs, two landmarks each matched at least this many times whose estimates have become one "
+			  "point (merge_chi2_quantile) are merged into one; 0 = never",
+			  Bounds::atLeast(0));
+	b.real("merge_chi2_quantile", merge_chi2_quantile,
+		   "two landmarks are one point when the squared Mahalanobis distance of their difference is within this "
+		   "chi-square quantile (2 dof)",
+		   Bounds::openUnit());
+}
+
 double EkfAssociationParams::ambiguityMarginDistance2() const
 {
 	return esif::ambiguityMarginDistance2(ambiguity_margin_chi2_quantile);

@@ -23,7 +23,8 @@ LandmarkEkf::LandmarkEkf(const EkfAssociationParams& params, LandmarkId first_ow
 	  iterated_{params.update_iterations, params.relinearise_above_d2},
 	  core_(jacobians),
 	  next_own_id_(first_own_id),
-	  tentative_(gate_distance2_new_, static_cast<std::size_t>(params.confirmation_window_steps))
+	  tentative_(gate_distance2_new_, static_cast<std::size_t>(params.confirmation_window_steps)),
+	  coincident_(params.merge_landmarks_after_matches, params.merge_chi2_quantile)
 {
 }
 
@@ -51,7 +52,21 @@ StepReport LandmarkEkf::processScan(const StepInput& step)
 	for (const auto& m : matches) confirmed_.insert(ids_[m.landmark]);
 	dropLandmarks(unconfirmed_failing_);
 	addNewLandmarks(*step.scan, step.index, report);
+	mergeCoincidentLandmarks();
 	return report;
+}
+
+void LandmarkEkf::mergeCoincidentLandmarks()
+{
+	while (const auto pair = coincident_.nextPair(core_, ids_))
+	{
+		const auto [keep, drop] = *pair;
+		if (!core_.mergeLandmarks(keep, drop)) return;
+		coincident_.recordMerge(ids_[keep], ids_[drop]);
+		ids_.erase(ids_.begin() + static_cast<std::ptrdiff_t>(drop));
+		index_of_.clear();
+		for (std::size_t i = 0; i < ids_.size(); ++i) index_of_[ids_[i]] = i;
+	}
 }
 
 void LandmarkEkf::dropLandmarks(std::vector<std::size_t> indices)
@@ -168,8 +183,13 @@ std::vector<std::size_t> LandmarkEkf::candidatesFor(const Scan& scan) const
 {
 	const CandidateWindow window(scan, params_.candidate_margin_m, params_.candidate_margin_deg);
 	std::vector<std::size_t> out;
+	// A merged landmark is offered once per landmark it stands for (at most
+	// once per measurement), so that JCBB, one-to-one, can give it every
+	// sighting of its cluster (CoincidentLandmarks.h).
+	const int measurements = static_cast<int>(scan.measurements.size());
 	for (std::size_t i = 0; i < core_.landmarkCount(); ++i)
-		if (window.admits(core_.predictMeasurement(i, scan.sensor_on_robot).z)) out.push_back(i);
+		if (window.admits(core_.predictMeasurement(i, scan.sensor_on_robot).z))
+			out.insert(out.end(), static_cast<std::size_t>(std::min(coincident_.standsFor(ids_[i]), measurements)), i);
 	return out;
 }
 
@@ -219,6 +239,7 @@ StepReport LandmarkEkf::associateByDistance(const Scan& scan, std::vector<EkfSla
 			const std::size_t idx = candidates[c];
 			report.associations.push_back({Association::Kind::Matched, ids_[idx]});
 			matches.push_back({idx, Eigen::Vector2d(ms[i].range_m, ms[i].bearing_rad), ms[i].cov});
+			coincident_.countMatch(ids_[idx]);
 		}
 		else if (c < 0 && result.min_distance2[i] > gate_distance2_new_)
 			report.associations.push_back({Association::Kind::New, -1});

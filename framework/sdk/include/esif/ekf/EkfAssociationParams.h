@@ -71,6 +71,14 @@ struct EkfAssociationParams
 	/// after the last crossing; the next largest is 0.28).
 	int update_iterations = 10;
 	double relinearise_above_d2 = 1.0;
+	/// Without IDs: two landmarks, each matched by distance at least this
+	/// many times, whose estimates have become one point within the
+	/// chi-square quantile merge_chi2_quantile (2 dof) are merged into one
+	/// (ekf/CoincidentLandmarks.h). 0 = never. Declared by declareMerging()
+	/// only: a map-joining filter's local maps do not merge, since their
+	/// global map would not know the merged landmarks as one.
+	int merge_landmarks_after_matches = 0;
+	double merge_chi2_quantile = 0.99;
 	SearchBounds search;  ///< when JCBB falls back to nearest neighbour
 
 	/// The chi-square value of id_gate_chi2_quantile (+inf when disabled).
@@ -78,7 +86,10 @@ struct EkfAssociationParams
 	/// The chi-square value of ambiguity_margin_chi2_quantile (0 when off).
 	double ambiguityMarginDistance2() const;
 
+	/// Every key but the merging ones.
 	void declare(ParamBinder& b);
+	/// merge_landmarks_after_matches and merge_chi2_quantile.
+	void declareMerging(ParamBinder& b);
 };
 
 }  // namespace esif

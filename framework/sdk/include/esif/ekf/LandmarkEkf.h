@@ -37,6 +37,7 @@
 
 #include <esif/association/TentativeFeatures.h>
 #include <esif/core/Estimate.h>
+#include <esif/ekf/CoincidentLandmarks.h>
 #include <esif/ekf/EarlierFeatures.h>
 #include <esif/ekf/EkfAssociationParams.h>
 #include <esif/ekf/EkfSlamCore.h>
@@ -108,6 +109,10 @@ class LandmarkEkf
 	std::size_t relinearisations() const { return relinearisations_; }
 	/// Iterated updates that stopped at an iterate raising the scan's cost.
 	std::size_t iterationsStoppedUphill() const { return stopped_uphill_; }
+	/// Landmarks merged into another (EkfAssociationParams::merge_landmarks_after_matches).
+	std::size_t landmarkMerges() const { return coincident_.merges(); }
+	/// The landmark that `id` has become by merges (itself if none).
+	LandmarkId finalId(LandmarkId id) const { return coincident_.finalId(id); }
 
 	PoseEstimate robotPose() const;
 	/// Robot pose and every landmark with its marginal covariance.
@@ -131,6 +136,8 @@ class LandmarkEkf
 	bool isAmbiguous(const Scan& scan, const RangeBearing& m, const std::vector<std::size_t>& candidates,
 					 std::size_t chosen) const;
 	void addNewLandmarks(const Scan& scan, std::size_t step, StepReport& report);
+	/// Merges every pair of landmarks CoincidentLandmarks finds to be one point.
+	void mergeCoincidentLandmarks();
 	/// Whether a sighting without ID that would start a landmark is confirmed
 	/// by an earlier one (TentativeFeatures); if not, it is held.
 	bool confirmedSighting(const Scan& scan, const RangeBearing& m, std::size_t step);
@@ -153,6 +160,7 @@ class LandmarkEkf
 	std::size_t id_gate_drops_ = 0;
 	SightingRejections rejections_;
 	TentativeFeatures tentative_;
+	CoincidentLandmarks coincident_;
 	std::size_t iterated_updates_ = 0;
 	std::size_t relinearisations_ = 0;
 	std::size_t stopped_uphill_ = 0;
