@@ -18,12 +18,15 @@ class EkfSlam : public PluginWithParams<EkfSlamParams>
 
    public:
 	std::string sectionName() const override { return "ekf"; }
-	StepReport processStep(const StepInput& step) override { return filter_.processStep(step); }
+	StepReport processStep(const StepInput& step) override;
 	void reserveLandmarkIds(LandmarkId largest_input_id) override { filter_.reserveIdsUpTo(largest_input_id); }
 	PoseEstimate robotPose() const override { return filter_.robotPose(); }
 	Estimate estimate() const override { return filter_.estimate(); }
 	CostFigures costFigures() const override;
 	Formulation formulation() const override { return Formulation::EkfSlam; }
+	/// When landmarks were merged (merge_landmarks_after_matches), every
+	/// step's report with the IDs of the landmarks their measurements ended in.
+	std::optional<std::vector<StepReport>> finalReports() const override;
 	/// The covariance P of the robot and `landmarks` landmarks (Sec. 1.2.1),
 	/// (3 + 2N)^2 doubles: the one part of the filter that grows as N^2, so
 	/// for a large map the rest is small beside it (the update works on P in
@@ -37,6 +40,7 @@ class EkfSlam : public PluginWithParams<EkfSlamParams>
    private:
 	void start() override;
 	LandmarkEkf filter_;
+	std::vector<StepReport> reports_;  // kept only when landmarks may be merged
 };
 
 }  // namespace esif

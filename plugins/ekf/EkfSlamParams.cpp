@@ -5,6 +5,7 @@ namespace esif
 void EkfSlamParams::declare(ParamBinder& b)
 {
 	association.declare(b);
+	association.declareMerging(b);
 	b.enumeration<JacobianPoints>(
 		"jacobians", jacobians,
 		{{"current", JacobianPoints::Current}, {"first_estimates", JacobianPoints::FirstEstimates}},
