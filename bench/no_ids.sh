@@ -290,11 +290,21 @@ for filter in ekf slsjf dslam_lmj dslam; do
   done
 done
 
+# MRCLAM without IDs: the EKF merging two landmarks that have become one
+# point once each has been matched k times (merge_landmarks_after_matches,
+# shipped 5; 0: never), at every pair gate of the gate sweep.
+merge_after="0 3 5 10 20"
+for k in $merge_after; do
+  for gate in $gates; do
+    mrclam_sweep_run mrclam_merge_sweep "ekf_${k}_$gate" ekf "merge_landmarks_after_matches=$k" "gate_chi2_quantile=$gate"
+  done
+done
+
 {
-  python3 - "$out" "$gates" "$radii_mrclam" "$map_lengths" "$margins" <<'PY'
+  python3 - "$out" "$gates" "$radii_mrclam" "$map_lengths" "$margins" "$merge_after" <<'PY'
 import json, os, statistics, sys
-out, gates, radii, lengths, margins = (sys.argv[1], sys.argv[2].split(), sys.argv[3].split(), sys.argv[4].split(),
-                                       sys.argv[5].split())
+out, gates, radii, lengths, margins, merge_after = (sys.argv[1], sys.argv[2].split(), sys.argv[3].split(),
+                                                    sys.argv[4].split(), sys.argv[5].split(), sys.argv[6].split())
 def robots(folder, name):
     """Robots 1-5 of sweep point `name`: each run's stats.json, or None when it failed."""
     paths = [os.path.join(out, folder, name, "r%d" % r, "stats.json") for r in range(1, 6)]
@@ -355,6 +365,22 @@ print("|---|" + "---|" * len(margins))
 for filter in ["ekf", "slsjf", "dslam_lmj", "dslam"]:
     points = [robots("mrclam_margin_sweep", "%s_%s" % (filter, m)) for m in margins]
     print("| %s | %s |" % (filter, " | ".join(rmse_cell(runs, ", " + left_out(runs)) for runs in points)))
+print()
+print("## MRCLAM without IDs: the EKF merging landmarks that have become one point")
+print()
+print("`configs/mrclam/ekf_jcbb.ini` with `merge_landmarks_after_matches` = k (shipped 5; 0: never) and the pair gate")
+print("`gate_chi2_quantile` of the gate sweep: two landmarks, each matched at least k times, whose estimates are one point")
+print("within `merge_chi2_quantile` (0.99) are merged (`framework/sdk/include/esif/ekf/CoincidentLandmarks.h`). Pooled: the")
+print("median of all 20 runs (4 gates x 5 robots) and how many of them end more than 1 m off (or fail).")
+print()
+print("| k | " + " | ".join("gate %s: median (per robot)" % g for g in gates) + " | pooled median | runs > 1 m |")
+print("|---:|" + "---|" * len(gates) + "---:|---:|")
+for k in merge_after:
+    points = [robots("mrclam_merge_sweep", "ekf_%s_%s" % (k, g)) for g in gates]
+    pooled = [m["landmark_rmse_m"] if m and m.get("landmark_rmse_m") is not None else float("inf")
+              for runs in points for m in runs]
+    print("| %s | %s | %.3f | %d |" % (k, " | ".join(rmse_cell(runs) for runs in points), statistics.median(pooled),
+                                      sum(v > 1 for v in pooled)))
 print()
 print("## MRCLAM: map-joining filters associated scan by scan with the global map")
 print()
