@@ -188,6 +188,24 @@ TEST(LandmarkMerge, TwoLandmarksOfPointsTheSensorCannotResolveBecomeOneAfterThei
 	EXPECT_NEAR(ekf.core().landmark(0).y(), 0.0, 0.05);
 }
 
+TEST(LandmarkMerge, LandmarksNamedBySensorIdsAreNeverMerged)
+{
+	// The first scan carries IDs (association auto: by ID), the later ones
+	// do not (by distance): the two landmarks are matched as often as
+	// above, but their IDs are the sensor's.
+	EkfAssociationParams params = jcbbMergingAfter(5);
+	params.association = EkfAssociation::Auto;
+	LandmarkEkf ekf(params);
+	StepInput named = twoPointsSeen(0);
+	named.scan->measurements[0].id = 40;
+	named.scan->measurements[1].id = 41;
+	ekf.processStep(named);
+	for (std::size_t k = 1; k <= 6; ++k) ekf.processStep(twoPointsSeen(k));
+	EXPECT_EQ(ekf.core().landmarkCount(), 2u);
+	EXPECT_EQ(ekf.landmarkMerges(), 0u);
+	EXPECT_TRUE(ekf.indexOf(40) && ekf.indexOf(41));
+}
+
 TEST(LandmarkMerge, WithoutMergingTheTwoLandmarksStayApart)
 {
 	LandmarkEkf ekf(jcbbMergingAfter(0));

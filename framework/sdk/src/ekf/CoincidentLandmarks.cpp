@@ -11,7 +11,7 @@ CoincidentLandmarks::CoincidentLandmarks(int min_matches, double chi2_quantile)
 bool CoincidentLandmarks::eligible(LandmarkId id) const
 {
 	const auto it = matches_.find(id);
-	return it != matches_.end() && it->second >= min_matches_;
+	return it != matches_.end() && it->second >= min_matches_ && !named_by_sensor_.count(id);
 }
 
 std::optional<std::pair<std::size_t, std::size_t>> CoincidentLandmarks::nextPair(

@@ -299,6 +299,8 @@ void LandmarkEkf::addNewLandmarks(const Scan& scan, std::size_t step, StepReport
 			while (index_of_.count(next_own_id_)) ++next_own_id_;
 			a.id = next_own_id_++;
 		}
+		else
+			coincident_.keepApart(a.id);
 		const std::size_t idx = core_.addLandmark(Eigen::Vector2d(m.range_m, m.bearing_rad), m.cov, sensor);
 		ids_.push_back(a.id);
 		index_of_[a.id] = idx;

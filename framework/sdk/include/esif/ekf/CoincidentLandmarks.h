@@ -35,7 +35,10 @@
 ///    cluster rather than leave a pair out.
 ///
 /// The merged-away landmark's ID is recorded, so that the reports of earlier
-/// steps can name the landmark it became (finalId).
+/// steps can name the landmark it became (finalId). A landmark whose ID the
+/// sensor gave (a log whose scans carry IDs only at times) is never merged:
+/// a later sighting with that ID must find it, and finalId must not send
+/// the reports of a landmark re-created under it elsewhere.
 
 #include <esif/core/Estimate.h>
 #include <esif/ekf/EkfSlamCore.h>
@@ -43,6 +46,7 @@
 #include <cstddef>
 #include <optional>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -57,6 +61,8 @@ class CoincidentLandmarks
 	bool enabled() const { return min_matches_ > 0; }
 	/// Counts a match by distance of landmark `id`.
 	void countMatch(LandmarkId id) { ++matches_[id]; }
+	/// Landmark `id` is named by the sensor: never merged.
+	void keepApart(LandmarkId id) { named_by_sensor_.insert(id); }
 
 	/// The pair of landmark indices (keep < drop) of `core` most likely one
 	/// point among those eligible and within the gate, if any. `ids` gives
@@ -81,6 +87,7 @@ class CoincidentLandmarks
 	std::unordered_map<LandmarkId, int> matches_;
 	std::unordered_map<LandmarkId, int> stands_for_;
 	std::unordered_map<LandmarkId, LandmarkId> merged_into_;
+	std::unordered_set<LandmarkId> named_by_sensor_;
 };
 
 }  // namespace esif
