@@ -4,6 +4,7 @@
 // information form), and the bookkeeping that picks and records merges.
 
 #include "EkfCoreFixture.h"
+#include "TwoUnresolvedPoints.h"
 
 #include <esif/ekf/CoincidentLandmarks.h>
 #include <esif/ekf/EkfSlamCore.h>
@@ -125,25 +126,7 @@ TEST(LandmarkMerge, MergesAreRecordedSoEarlierReportsCanNameTheLandmarkTheyBecam
 	EXPECT_EQ(merging.merges(), 2u);
 }
 
-/// A robot standing still seeing two points 0.15 m apart along the same
-/// bearing, at 3.0 and 3.15 m, with a sensor of 0.3 m range noise: closer
-/// than the sensor resolves in a few sightings.
-StepInput twoPointsSeen(std::size_t k)
-{
-	StepInput s;
-	s.index = k;
-	if (k > 0) s.odometry = OdometryIncrement{{0, 0, 0}, Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal()};
-	Scan scan;
-	for (const double range : {3.0, 3.15})
-	{
-		RangeBearing m;
-		m.range_m = range;
-		m.cov = Eigen::Vector2d(0.09, std::pow(M_PI / 180, 2)).asDiagonal();
-		scan.measurements.push_back(m);
-	}
-	s.scan = scan;
-	return s;
-}
+using test::standingBesideTwoUnresolvedPoints;
 
 EkfAssociationParams jcbbMergingAfter(int matches)
 {
@@ -157,17 +140,17 @@ EkfAssociationParams jcbbMergingAfter(int matches)
 TEST(LandmarkMerge, TwoLandmarksOfPointsTheSensorCannotResolveBecomeOneAfterTheirMatches)
 {
 	LandmarkEkf ekf(jcbbMergingAfter(5));
-	const StepReport first = ekf.processStep(twoPointsSeen(0));
+	const StepReport first = ekf.processStep(standingBesideTwoUnresolvedPoints(0));
 	ASSERT_EQ(first.associations.size(), 2u);
 	ASSERT_EQ(first.associations[0].kind, Association::Kind::New);
 	ASSERT_EQ(first.associations[1].kind, Association::Kind::New);
 	// Each landmark matched once per step: four matches each is not enough.
-	for (std::size_t k = 1; k <= 4; ++k) ekf.processStep(twoPointsSeen(k));
+	for (std::size_t k = 1; k <= 4; ++k) ekf.processStep(standingBesideTwoUnresolvedPoints(k));
 	EXPECT_EQ(ekf.core().landmarkCount(), 2u);
 	EXPECT_EQ(ekf.landmarkMerges(), 0u);
 	// The fifth: their difference (0.15 m) within 1 sigma of its
 	// uncertainty (about 0.17 m along the range after six sightings each).
-	ekf.processStep(twoPointsSeen(5));
+	ekf.processStep(standingBesideTwoUnresolvedPoints(5));
 	ASSERT_EQ(ekf.core().landmarkCount(), 1u);
 	EXPECT_EQ(ekf.landmarkMerges(), 1u);
 	const LandmarkId kept = ekf.ids().front();
@@ -175,7 +158,7 @@ TEST(LandmarkMerge, TwoLandmarksOfPointsTheSensorCannotResolveBecomeOneAfterThei
 	EXPECT_EQ(ekf.finalId(dropped), kept);
 	// Both points seen again: the merged landmark takes both sightings
 	// (it stands for two), rather than JCBB leaving one out or new.
-	const StepReport after = ekf.processStep(twoPointsSeen(6));
+	const StepReport after = ekf.processStep(standingBesideTwoUnresolvedPoints(6));
 	for (const auto& a : after.associations)
 	{
 		EXPECT_EQ(a.kind, Association::Kind::Matched);
@@ -196,11 +179,11 @@ TEST(LandmarkMerge, LandmarksNamedBySensorIdsAreNeverMerged)
 	EkfAssociationParams params = jcbbMergingAfter(5);
 	params.association = EkfAssociation::Auto;
 	LandmarkEkf ekf(params);
-	StepInput named = twoPointsSeen(0);
+	StepInput named = standingBesideTwoUnresolvedPoints(0);
 	named.scan->measurements[0].id = 40;
 	named.scan->measurements[1].id = 41;
 	ekf.processStep(named);
-	for (std::size_t k = 1; k <= 6; ++k) ekf.processStep(twoPointsSeen(k));
+	for (std::size_t k = 1; k <= 6; ++k) ekf.processStep(standingBesideTwoUnresolvedPoints(k));
 	EXPECT_EQ(ekf.core().landmarkCount(), 2u);
 	EXPECT_EQ(ekf.landmarkMerges(), 0u);
 	EXPECT_TRUE(ekf.indexOf(40) && ekf.indexOf(41));
@@ -209,7 +192,7 @@ TEST(LandmarkMerge, LandmarksNamedBySensorIdsAreNeverMerged)
 TEST(LandmarkMerge, WithoutMergingTheTwoLandmarksStayApart)
 {
 	LandmarkEkf ekf(jcbbMergingAfter(0));
-	for (std::size_t k = 0; k <= 6; ++k) ekf.processStep(twoPointsSeen(k));
+	for (std::size_t k = 0; k <= 6; ++k) ekf.processStep(standingBesideTwoUnresolvedPoints(k));
 	EXPECT_EQ(ekf.core().landmarkCount(), 2u);
 	EXPECT_EQ(ekf.landmarkMerges(), 0u);
 }

@@ -3,34 +3,18 @@
 // matched measurement names a landmark of the final map.
 
 #include <EsifTestSupport.h>
+#include <TwoUnresolvedPoints.h>
 
 #include <gtest/gtest.h>
-
-#include <cmath>
 
 namespace
 {
 using namespace esif;
 
-/// Step k of a robot standing still that sees two points 0.15 m apart along
-/// one bearing with 0.3 m range noise (the sensor cannot resolve them in a
-/// few sightings).
-StepInput standingStillBesideTwoPoints(std::size_t k)
-{
-	StepInput s;
-	s.index = k;
-	if (k > 0) s.odometry = OdometryIncrement{{0, 0, 0}, Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal()};
-	Scan scan;
-	for (const double range : {3.0, 3.15})
-		scan.measurements.push_back({range, 0.0, Eigen::Vector2d(0.09, std::pow(M_PI / 180, 2)).asDiagonal(), {}});
-	s.scan = scan;
-	return s;
-}
-
 std::vector<StepReport> replaySevenSteps(FilterPlugin& ekf)
 {
 	std::vector<StepReport> online;
-	for (std::size_t k = 0; k < 7; ++k) online.push_back(ekf.processStep(standingStillBesideTwoPoints(k)));
+	for (std::size_t k = 0; k < 7; ++k) online.push_back(ekf.processStep(test::standingBesideTwoUnresolvedPoints(k)));
 	ekf.finish();
 	return online;
 }
