@@ -64,8 +64,7 @@ void LandmarkEkf::mergeCoincidentLandmarks()
 		if (!core_.mergeLandmarks(keep, drop)) return;
 		coincident_.recordMerge(ids_[keep], ids_[drop]);
 		ids_.erase(ids_.begin() + static_cast<std::ptrdiff_t>(drop));
-		index_of_.clear();
-		for (std::size_t i = 0; i < ids_.size(); ++i) index_of_[ids_[i]] = i;
+		reindex();
 	}
 }
 
@@ -79,6 +78,11 @@ void LandmarkEkf::dropLandmarks(std::vector<std::size_t> indices)
 		if (!std::binary_search(indices.begin(), indices.end(), i)) keep.push_back(i), kept_ids.push_back(ids_[i]);
 	core_.retainLandmarks(keep);
 	ids_ = std::move(kept_ids);
+	reindex();
+}
+
+void LandmarkEkf::reindex()
+{
 	index_of_.clear();
 	for (std::size_t i = 0; i < ids_.size(); ++i) index_of_[ids_[i]] = i;
 }

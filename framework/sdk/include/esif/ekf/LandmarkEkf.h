@@ -130,6 +130,8 @@ class LandmarkEkf
 		std::size_t index, const RangeBearing& m, const Eigen::Matrix2d& noise, const Pose2& sensor) const;
 	/// Marginalises out the landmarks `indices` (their IDs leave the map).
 	void dropLandmarks(std::vector<std::size_t> indices);
+	/// Rebuilds index_of_ from ids_ after landmarks left the core.
+	void reindex();
 	StepReport associateByDistance(const Scan& scan, std::vector<EkfSlamCore::Match>& matches);
 	std::vector<std::size_t> candidatesFor(const Scan& scan) const;
 	/// Whether a candidate other than `chosen` is within the ambiguity margin of it for `m`.
