@@ -210,6 +210,68 @@ TEST(MapLevelDecisions, AppliedToTheFeaturesThatWereAssociatedOnly)
 	EXPECT_EQ(counters[4].second, 18.0);
 }
 
+/// The candidates of a local map whose start heading is uncertain: each at
+/// `candidates[c]` with 0.1 m sigma of its own and a heading sigma of
+/// `heading_sigma` rad shared by all (the local map's frame turns them
+/// together about its origin); the observed points with 0.1 m sigma.
+PointSets turnedMap(const std::vector<Eigen::Vector2d>& observed, const std::vector<Eigen::Vector2d>& candidates,
+					double heading_sigma)
+{
+	PointSets s = grid(observed);
+	const auto N = static_cast<Eigen::Index>(candidates.size());
+	s.candidates.resize(N, 2);
+	Eigen::VectorXd turn(2 * N);  // d(candidates)/d(heading)
+	for (Eigen::Index c = 0; c < N; ++c)
+	{
+		s.candidates.row(c) = candidates[c].transpose();
+		turn.segment<2>(2 * c) << -candidates[c].y(), candidates[c].x();
+	}
+	s.candidates_cov = 0.01 * Eigen::MatrixXd::Identity(2 * N, 2 * N) + heading_sigma * heading_sigma * turn * turn.transpose();
+	return s;
+}
+
+TEST(MapLevelDecisions, AnchorsRuleOutAPairThatOnlyATurnExplains)
+{
+	// Candidate 0 at (3, 0); anchors' features at (0, 3) and (-3, 0), each
+	// observed where it is. The undecided point lies 0.35 rad round from
+	// candidate 0 (1.05 m off): under a 0.2 rad heading sigma alone that is
+	// d2 ~ 2.9, inside the 0.99 gate (9.2), so without the anchors it is
+	// matched. The anchors, unturned, pin the heading to ~0.03 rad: given
+	// them the pair adds d2 ~ 37, and the three pairs fail the joint test
+	// (chi2 6 dof, 0.99: 16.8); with one anchor (~0.05 rad) d2 ~ 27
+	// against 13.3 for 4 dof. JCBB keeps the two anchors.
+	const Eigen::Vector2d turned(3 * std::cos(0.35), 3 * std::sin(0.35));
+	const std::vector<Eigen::Vector2d> candidates = {{3, 0}, {0, 3}, {-3, 0}};
+	const MapLevelAssociationParams params;
+
+	const PointSets alone = turnedMap({turned}, {candidates[0]}, 0.2);
+	EXPECT_EQ(decideMapFeatures(alone, params).outcome[0], MapFeatureOutcome::Matched);
+
+	const PointSets anchored = turnedMap({turned, {0, 3}, {-3, 0}}, candidates, 0.2);
+	const MapLevelDecisions d = decideMapFeaturesGivenAnchors(anchored, 1, 1, params);
+	ASSERT_EQ(d.outcome.size(), 1u);  // the undecided point's only
+	EXPECT_NE(d.outcome[0], MapFeatureOutcome::Matched);
+	EXPECT_EQ(d.candidate_of[0], -1);
+
+	// Where candidate 0 is, given the same anchors, it is matched.
+	const PointSets right = turnedMap({{3.05, 0}, {0, 3}, {-3, 0}}, candidates, 0.2);
+	const MapLevelDecisions r = decideMapFeaturesGivenAnchors(right, 1, 1, params);
+	EXPECT_EQ(r.outcome[0], MapFeatureOutcome::Matched);
+	EXPECT_EQ(r.candidate_of[0], 0);
+}
+
+TEST(MapLevelDecisions, APointOnAnAnchorsFeatureIsLeftOut)
+{
+	// The undecided point sits on the anchor's feature (its cluster twin):
+	// the feature is the anchor's, so the point is neither matched to it nor new.
+	const PointSets sets = turnedMap({{0.05, 3}, {0, 3}}, {{10, 0}, {0, 3}}, 0.0);
+	const MapLevelDecisions d = decideMapFeaturesGivenAnchors(sets, 1, 1, MapLevelAssociationParams{});
+	EXPECT_EQ(d.outcome[0], MapFeatureOutcome::PoorlyObserved);
+	EXPECT_EQ(d.candidate_of[0], -1);
+	// One anchor point but two anchor candidates: refused.
+	EXPECT_THROW(decideMapFeaturesGivenAnchors(sets, 1, 0, MapLevelAssociationParams{}), std::invalid_argument);
+}
+
 TEST(LandmarkIdAllocator, KeepsAFreeProposedIdElseTheNextAboveEveryIdGiven)
 {
 	std::set<LandmarkId> used = {1, 2, 10};

@@ -2,6 +2,8 @@
 #include <esif/association/Chi2.h>
 #include <esif/localmap/MapLevelDecisions.h>
 
+#include <stdexcept>
+
 namespace esif
 {
 MapLevelDecisions decideMapFeatures(const PointSets& sets, const MapLevelAssociationParams& params)
@@ -28,6 +30,25 @@ MapLevelDecisions decideMapFeatures(const PointSets& sets, const MapLevelAssocia
 							  : distance2[i] > new_gate	  ? MapFeatureOutcome::New
 														  : MapFeatureOutcome::PoorlyObserved);
 	}
+	return out;
+}
+
+MapLevelDecisions decideMapFeaturesGivenAnchors(const PointSets& sets, std::size_t undecided,
+												int first_anchor_candidate, const MapLevelAssociationParams& params)
+{
+	if (undecided > static_cast<std::size_t>(sets.observed.rows()) || first_anchor_candidate < 0 ||
+		first_anchor_candidate > sets.candidates.rows() ||
+		sets.observed.rows() - static_cast<Eigen::Index>(undecided) != sets.candidates.rows() - first_anchor_candidate)
+		throw std::invalid_argument("decideMapFeaturesGivenAnchors: one anchor candidate per anchor point needed");
+	MapLevelDecisions out = decideMapFeatures(sets, params);
+	out.outcome.resize(undecided);
+	out.candidate_of.resize(undecided);
+	for (std::size_t u = 0; u < undecided; ++u)
+		if (out.candidate_of[u] >= first_anchor_candidate)
+		{
+			out.candidate_of[u] = -1;
+			out.outcome[u] = MapFeatureOutcome::PoorlyObserved;
+		}
 	return out;
 }
 

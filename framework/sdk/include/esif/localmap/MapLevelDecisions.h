@@ -46,6 +46,21 @@ struct MapLevelDecisions
 /// jcbb or auto: JCBB; nn: nearest neighbour) and decides each feature.
 MapLevelDecisions decideMapFeatures(const PointSets& sets, const MapLevelAssociationParams& params);
 
+/// As decideMapFeatures, for a map some of whose features are decided
+/// already (anchors: matched by ID, e.g. by the scans' association with the
+/// global map). `sets` holds the `undecided` points first and the anchors'
+/// after them; its candidates the others first and, from
+/// `first_anchor_candidate` on, the anchors' own global features in the
+/// anchors' order. The anchors join the search's joint test and the
+/// new-feature test, so the rest is decided given them: a map whose start
+/// pose is uncertain (after a blind drive) can otherwise match its other
+/// features by a rotation its anchors rule out, each pair compatible on its
+/// own (MRCLAM robot 5, docs/plugins/slsjf.md). A point paired with an
+/// anchor's feature is left out (poorly observed): that feature is the
+/// anchor's. Returns the decisions of the `undecided` points only.
+MapLevelDecisions decideMapFeaturesGivenAnchors(const PointSets& sets, std::size_t undecided,
+												int first_anchor_candidate, const MapLevelAssociationParams& params);
+
 /// What the map-level associations of a run found, the counters both
 /// map-joining filters report (stats.json plugin_<name>): per fusion, and
 /// summed over the run with +=.
