@@ -176,12 +176,21 @@ MapAssociationOutcome associateByIds(
 
 namespace
 {
+/// A local feature whose ID named its global feature (associateByIds):
+/// decided already, and part of the joint test of the others.
+struct Anchor
+{
+	Eigen::Index local;
+	VarId global;
+};
+
 /// Sec. 5.4.1 for the local features `chosen` (indices into the map): their
-/// decisions in `out` become Matched, Rejected or stay New; the global
-/// features in `claimed` are not candidates.
+/// decisions in `out` become Matched, Rejected or stay New, given the
+/// `anchors` (ID-matched features) and their global features
+/// (decideMapFeaturesGivenAnchors).
 void decideGeometrically(const LocalMap& map, const Eigen::MatrixXd& local_cov, VarId start, GlobalMap& global,
 						 const SlsjfParams& params, const std::vector<Eigen::Index>& chosen,
-						 const std::set<int>& claimed, MapAssociationOutcome& out)
+						 const std::vector<Anchor>& anchors, MapAssociationOutcome& out)
 {
 	if (chosen.empty()) return;
 	const Eigen::Matrix3d start_cov = global.covariance({start});
@@ -192,32 +201,37 @@ void decideGeometrically(const LocalMap& map, const Eigen::MatrixXd& local_cov, 
 		params.overlap_sigmas * std::sqrt(start_cov(2, 2)) * out.extent.radius_m + params.overlap_margin_m;
 	std::vector<Eigen::Vector2d> local_features;
 	for (const Eigen::Index i : chosen) local_features.push_back(map.features[i].position);
+	const auto anchored = [&](VarId v) {
+		return std::any_of(anchors.begin(), anchors.end(), [v](const Anchor& a) { return a.global == v; });
+	};
 	std::vector<VarId> candidates;
 	for (const VarId v : overlapCandidates(global, global.pose(start), local_features, out.extent,
 										   params.overlap_margin_m, slack_m, out.maps_selected))
-		if (!claimed.count(v.value)) candidates.push_back(v);
+		if (!anchored(v)) candidates.push_back(v);
 	out.tally.candidates += candidates.size();
 	if (candidates.empty()) return;
+	const int first_anchor_candidate = static_cast<int>(candidates.size());
+	for (const Anchor& a : anchors) candidates.push_back(a.global);
 
+	std::vector<Eigen::Index> observed = chosen;
+	for (const Anchor& a : anchors) observed.push_back(a.local);
 	PointSets sets;
-	const auto M = static_cast<Eigen::Index>(chosen.size());
-	sets.observed.resize(M, 2);
+	sets.observed.resize(static_cast<Eigen::Index>(observed.size()), 2);
 	std::vector<Eigen::Index> rows;
-	std::vector<int> slots;
-	for (Eigen::Index u = 0; u < M; ++u)
+	for (std::size_t u = 0; u < observed.size(); ++u)
 	{
-		const Eigen::Index i = chosen[static_cast<std::size_t>(u)];
-		sets.observed.row(u) = map.features[i].position.transpose();
-		rows.push_back(3 + 2 * i);
-		rows.push_back(4 + 2 * i);
-		slots.push_back(static_cast<int>(i));
+		sets.observed.row(static_cast<Eigen::Index>(u)) = map.features[observed[u]].position.transpose();
+		rows.push_back(3 + 2 * observed[u]);
+		rows.push_back(4 + 2 * observed[u]);
 	}
 	sets.observed_cov = local_cov(rows, rows);
 	candidatesInLocalFrame(global, start, candidates, sets);
 
+	const std::vector<int> slots(chosen.begin(), chosen.end());
 	std::vector<LandmarkId> candidate_ids;
 	for (const VarId v : candidates) candidate_ids.push_back(global.featureId(v));
-	applyMapLevelDecisions(decideMapFeatures(sets, params), slots, candidate_ids, out.decisions, out.tally);
+	applyMapLevelDecisions(decideMapFeaturesGivenAnchors(sets, chosen.size(), first_anchor_candidate, params), slots,
+						   candidate_ids, out.decisions, out.tally);
 }
 }  // namespace
 
@@ -240,18 +254,18 @@ void associateUnidentifiedGeometrically(const LocalMap& map, const Eigen::Matrix
 {
 	outcome.extent.radius_m = mapRadius(map, local_cov, params.overlap_sigmas);
 	std::vector<Eigen::Index> unidentified;
-	std::set<int> claimed;
+	std::vector<Anchor> anchors;
 	for (std::size_t i = 0; i < map.features.size(); ++i)
 	{
 		const Association& a = outcome.decisions.associations[i];
 		if (const auto var = global.featureVar(map.features[i].id))
 		{
-			if (a.kind == Association::Kind::Matched) claimed.insert(var->value);
+			if (a.kind == Association::Kind::Matched) anchors.push_back({static_cast<Eigen::Index>(i), *var});
 		}
 		else if (a.kind == Association::Kind::New)
 			unidentified.push_back(static_cast<Eigen::Index>(i));
 	}
-	decideGeometrically(map, local_cov, start, global, params, unidentified, claimed, outcome);
+	decideGeometrically(map, local_cov, start, global, params, unidentified, anchors, outcome);
 }
 
 }  // namespace esif::slsjf

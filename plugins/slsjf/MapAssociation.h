@@ -59,7 +59,12 @@ MapAssociationOutcome associateByIds(
 /// whose ID the global map does not hold (the scans found no global feature
 /// for them, or it was out of reach) are associated as
 /// associateGeometrically associates every feature, against the global
-/// features no feature of the map is matched to. A scan decides on one
+/// features no feature of the map is matched to, and given the matched ones:
+/// they join the joint test as anchors (decideMapFeaturesGivenAnchors). A
+/// map whose start pose is uncertain after a blind drive otherwise matched
+/// its other features by a turn its matched ones rule out (MRCLAM robot 5:
+/// two features placed on the cluster 1.9 m from theirs, the end pose
+/// turned by 0.75 rad, docs/plugins/slsjf.md). A scan decides on one
 /// sighting, the map level on the feature all its sightings placed, so a
 /// feature the scans could not place near a global one gets a second look
 /// before it starts a global feature (docs/plugins/slsjf.md, "Association
