@@ -110,6 +110,10 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 	{
 		MapAssociationTally association;
 		std::size_t maps_merged = 0, maps_unjoinable = 0;
+		/// Joins (joinConsecutive) that left a feature the two maps place
+		/// apart out of the later map, and joins with the last fusion refused
+		/// for such a feature.
+		std::size_t join_features_left_out = 0, joins_refused = 0;
 	} tally_;
 };
 

@@ -34,7 +34,22 @@ struct JoinedMaps
 JoinedMaps single(const LocalMap& map);
 
 /// `earlier` and `later` (consecutive: later's first map starts where
-/// earlier's last ends) as one map in the frame of `earlier`.
-JoinedMaps joinConsecutive(const JoinedMaps& earlier, const JoinedMaps& later);
+/// earlier's last ends) as one map in the frame of `earlier`. A feature ID
+/// both hold is one feature estimated from both (mergeConsecutiveLocalMaps),
+/// except the features `left_out_of_later`, which are marginalised out of
+/// `later` first, their sightings reported rejected.
+JoinedMaps joinConsecutive(const JoinedMaps& earlier, const JoinedMaps& later,
+						   const std::vector<LandmarkId>& left_out_of_later = {});
+
+/// The feature IDs `earlier` and `later` both hold at two different points:
+/// later's estimate, moved into earlier's frame through earlier's end pose,
+/// outside the chi-square gate `gate_d2` (2 dof) of earlier's, under
+/// earlier's joint covariance of [end pose; feature] and later's of the
+/// feature (the maps are independent). Joined as one, such a feature turns
+/// the two maps against each other: without landmark IDs the IDs come from
+/// the scans' association with the global map, which after a blind turn can
+/// give a cluster the ID of its neighbour 2 m away (MRCLAM robot 3, maps 5
+/// and 6: the joined map turned the robot by 0.8 rad).
+std::vector<LandmarkId> disagreeingFeatures(const LocalMap& earlier, const LocalMap& later, double gate_d2);
 
 }  // namespace esif::lmj
