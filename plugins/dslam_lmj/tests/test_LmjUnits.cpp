@@ -10,10 +10,12 @@
 #include <LocalMapTestSupport.h>
 #include <NumericJacobian.h>
 
+#include "JoinedMaps.h"
 #include "PairFrame.h"
 #include "ReferenceChoice.h"
 #include "UpperLevelAssociation.h"
 
+#include <esif/association/Chi2.h>
 #include <esif/formats/RawlogReader.h>
 #include <esif/localmap/LocalMapBuilder.h>
 #include <esif/models/LocalMapObservation.h>
@@ -24,6 +26,7 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -152,6 +155,62 @@ void buildMisreadCase(MisreadCase& c, LandmarkId misread)
 		c.map.features.push_back({i + 1, local, false});
 	}
 	c.local_cov = 0.02 * 0.02 * Eigen::MatrixXd::Identity(12, 12);
+}
+
+/// Two consecutive local maps with the features 1 and 2: `earlier` ends at
+/// (2, 0, 0) with feature 1 at (4, 0) and 2 at (4, 2); `later` starts there
+/// and holds feature 1 where earlier has it and feature 2 at (4, 4), 2 m from
+/// earlier's (the ID a scan gave a neighbouring cluster). Every variable has
+/// 5 cm sigma per axis, 0.01 rad in heading; later has one sighting of each
+/// feature in its reports.
+std::pair<LocalMap, LocalMap> mapsDisagreeingOnFeature2()
+{
+	const auto make = [](std::size_t index, const Pose2& end, const std::vector<Eigen::Vector2d>& features) {
+		LocalMap m;
+		m.index = index;
+		m.end_pose = end;
+		for (std::size_t i = 0; i < features.size(); ++i)
+			m.features.push_back({static_cast<LandmarkId>(i + 1), features[i], true});
+		Eigen::VectorXd sd = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(m.stateDim()), 0.05);
+		sd(2) = 0.01;
+		const Eigen::MatrixXd cov = sd.array().square().matrix().asDiagonal();
+		m.covariance = cov;
+		m.information = cov.inverse();	// diagonal
+		m.ids_identify_features = false;
+		return m;
+	};
+	const Pose2 end(2, 0, 0);
+	LocalMap earlier = make(5, end, {{4, 0}, {4, 2}});
+	LocalMap later = make(6, Pose2(1, 0, 0), {pointInFrame(end, {4, 0}).value, pointInFrame(end, {4, 4}).value});
+	StepReport report;
+	report.associations = {{Association::Kind::Matched, 1}, {Association::Kind::Matched, 2}};
+	later.step_reports = {report};
+	return {earlier, later};
+}
+
+TEST(LmjUnits, AJoinLeavesOutAFeatureIdTheTwoMapsPlaceApart)
+{
+	const auto [earlier, later] = mapsDisagreeingOnFeature2();
+	const double gate = chi2Quantile(0.9999, 2);
+	// Feature 2: 2 m against a 0.07 m sigma of the difference; feature 1 agrees.
+	EXPECT_EQ(lmj::disagreeingFeatures(earlier, later, gate), std::vector<LandmarkId>{2});
+	EXPECT_TRUE(lmj::disagreeingFeatures(earlier, later, std::numeric_limits<double>::infinity()).empty());
+
+	const lmj::JoinedMaps joined =
+		lmj::joinConsecutive(lmj::single(earlier), lmj::single(later), lmj::disagreeingFeatures(earlier, later, gate));
+	ASSERT_EQ(joined.map.features.size(), 2u);
+	for (const auto& f : joined.map.features)
+		if (f.id == 2)	// earlier's alone: not pulled towards (4, 4)
+			EXPECT_LT((f.position - Eigen::Vector2d(4, 2)).norm(), 1e-6);
+	// Later's sighting of feature 2 is reported rejected, that of 1 kept.
+	ASSERT_EQ(joined.map.step_reports.size(), 1u);
+	EXPECT_EQ(joined.map.step_reports[0].associations[0].kind, Association::Kind::Matched);
+	EXPECT_EQ(joined.map.step_reports[0].associations[1].kind, Association::Kind::Rejected);
+
+	// Joined through both, feature 2 lands between the two, 1 m from either.
+	const lmj::JoinedMaps blind = lmj::joinConsecutive(lmj::single(earlier), lmj::single(later));
+	for (const auto& f : blind.map.features)
+		if (f.id == 2) EXPECT_GT((f.position - Eigen::Vector2d(4, 2)).norm(), 0.5);
 }
 
 TEST(LmjUnits, IdMatchedFeatureFailingTheGateIsLeftOut)
