@@ -201,21 +201,21 @@ std::vector<int> failingPairGate(const LocalMap& map, const Eigen::MatrixXd& loc
 		}
 	return *failing;
 }
-/// The local features `unknown` (their own joint covariance) and the
+/// The local features `points` (their own joint covariance) and the
 /// `candidates` moved into the local map's frame by `start`, with the
 /// first-order covariance of [start; candidates] (the two independent).
-PointSets inStartFrame(const LocalMap& map, const Eigen::MatrixXd& local_cov, const std::vector<int>& unknown,
+PointSets inStartFrame(const LocalMap& map, const Eigen::MatrixXd& local_cov, const std::vector<int>& points,
 					   const PoseEstimate& start, const std::vector<LandmarkId>& candidates, relative::FeatureMap& global)
 {
 	PointSets sets;
-	const auto M = static_cast<Eigen::Index>(unknown.size());
+	const auto M = static_cast<Eigen::Index>(points.size());
 	std::vector<Eigen::Index> rows;
 	sets.observed.resize(M, 2);
 	for (Eigen::Index u = 0; u < M; ++u)
 	{
-		sets.observed.row(u) = map.features[unknown[u]].position.transpose();
-		rows.push_back(2 * unknown[u]);
-		rows.push_back(2 * unknown[u] + 1);
+		sets.observed.row(u) = map.features[points[u]].position.transpose();
+		rows.push_back(2 * points[u]);
+		rows.push_back(2 * points[u] + 1);
 	}
 	sets.observed_cov = local_cov(rows, rows);
 	const auto N = static_cast<Eigen::Index>(candidates.size());
@@ -351,9 +351,18 @@ UpperLevelOutcome associateInStartFrame(
 		if (!known_ids.count(id)) candidates.push_back(id);
 	out.tally.candidates = candidates.size();
 	if (!candidates.empty() && !unknown.empty())
+	{
+		// The features matched by ID join the joint test as anchors, their
+		// global features after the other candidates.
+		const int first_anchor_candidate = static_cast<int>(candidates.size());
+		std::vector<int> points = unknown;
+		for (std::size_t i = 0; i < map.features.size(); ++i)
+			if (known[i]) points.push_back(static_cast<int>(i)), candidates.push_back(*known[i]);
 		applyMapLevelDecisions(
-			decideMapFeatures(inStartFrame(map, local_cov, unknown, start, candidates, global), params), unknown,
-			candidates, out.decisions, out.tally);
+			decideMapFeaturesGivenAnchors(inStartFrame(map, local_cov, points, start, candidates, global),
+										  unknown.size(), first_anchor_candidate, params),
+			unknown, candidates, out.decisions, out.tally);
+	}
 	rejectMatchesFailingPairGate(map, local_cov, global, params, out);
 	return out;
 }

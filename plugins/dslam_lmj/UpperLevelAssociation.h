@@ -75,7 +75,10 @@ std::optional<UpperLevelOutcome> associateInPairFrame(
 /// start pose in the global frame, with its covariance) places it; the
 /// candidates moved into the local map's frame with the first-order
 /// covariance of the placement and of their own joint estimate (eq. 3.25
-/// columns), then associated as in associateInPairFrame. The placement's
+/// columns), then associated as in associateInPairFrame but given the
+/// Matched ones, which join the joint test as anchors
+/// (decideMapFeaturesGivenAnchors; docs/plugins/dslam_lmj.md has the
+/// measurements). The placement's
 /// error is taken as independent of the candidates' (it comes from the
 /// previous map's pair, which is near some of them): the test is wider than
 /// the exact one where they are correlated positively.
