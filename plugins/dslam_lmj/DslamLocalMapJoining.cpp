@@ -99,9 +99,9 @@ bool DslamLocalMapJoining::joinWithLastFusion(const JoinedMaps& maps)
 	// A map that places one of the last fusion's features elsewhere is not
 	// joined with it: it waits to be joined with the next map, which has
 	// not been fused yet (the pending path above, which leaves such a
-	// feature out). Measured: joined here without the feature instead, the
-	// last fusion withdrawn and redone lost most of its matches on
-	// configs/sim/wrong_ids.ini (ATE 0.16 -> 0.58 m, docs/plugins/dslam_lmj.md).
+	// feature out). Joined here without the feature instead, the withdrawn
+	// and redone last fusion lost most of its matches on a simulation with
+	// misread IDs (docs/plugins/dslam_lmj.md, "Fewer than two common features").
 	if (!disagreeingFeatures(last.source.map, maps.map, params_.idGateDistance2()).empty())
 	{
 		++tally_.joins_refused;

@@ -49,7 +49,7 @@ JoinedMaps joinConsecutive(const JoinedMaps& earlier, const JoinedMaps& later,
 /// the two maps against each other: without landmark IDs the IDs come from
 /// the scans' association with the global map, which after a blind turn can
 /// give a cluster the ID of its neighbour 2 m away (MRCLAM robot 3, maps 5
-/// and 6: the joined map turned the robot by 0.8 rad).
+/// and 6; docs/plugins/dslam_lmj.md, "Fewer than two common features").
 std::vector<LandmarkId> disagreeingFeatures(const LocalMap& earlier, const LocalMap& later, double gate_d2);
 
 }  // namespace esif::lmj
