@@ -1,5 +1,6 @@
 #include "JoinedMaps.h"
 
+#include <esif/localmap/LocalMapMarginal.h>
 #include <esif/localmap/LocalMapMerge.h>
 #include <esif/models/LocalMapObservation.h>
 
@@ -42,33 +43,19 @@ double disagreement2(const LocalMap& earlier, const Eigen::MatrixXd& earlier_cov
 	return llt.info() == Eigen::Success ? nu.dot(llt.solve(nu)) : std::numeric_limits<double>::infinity();
 }
 
-/// `map` without the features `ids`: their rows and columns removed from its
-/// covariance (marginalised), its information the inverse of what is left,
-/// their sightings reported rejected.
-LocalMap withoutFeatures(LocalMap map, const std::vector<LandmarkId>& ids)
+/// `map` without the features `ids` (marginalised out), their sightings
+/// reported rejected.
+LocalMap withoutFeatures(const LocalMap& map, const std::vector<LandmarkId>& ids)
 {
 	if (ids.empty()) return map;
 	const auto dropped = [&](LandmarkId id) { return std::find(ids.begin(), ids.end(), id) != ids.end(); };
-	const Eigen::MatrixXd cov = map.covarianceMatrix();
-	std::vector<Eigen::Index> rows = {0, 1, 2};
-	std::vector<LocalMapFeature> kept;
-	for (std::size_t i = 0; i < map.features.size(); ++i)
-	{
-		if (dropped(map.features[i].id)) continue;
-		kept.push_back(map.features[i]);
-		rows.push_back(static_cast<Eigen::Index>(3 + 2 * i));
-		rows.push_back(static_cast<Eigen::Index>(4 + 2 * i));
-	}
-	map.features = std::move(kept);
-	const Eigen::MatrixXd marginal = cov(rows, rows);
-	map.covariance = marginal;
-	const Eigen::MatrixXd information =
-		Eigen::LLT<Eigen::MatrixXd>(marginal).solve(Eigen::MatrixXd::Identity(marginal.rows(), marginal.cols()));
-	map.information = 0.5 * (information + information.transpose());
-	for (StepReport& report : map.step_reports)
+	std::vector<bool> keep;
+	for (const auto& f : map.features) keep.push_back(!dropped(f.id));
+	LocalMap out = marginaliseFeatures(map, keep);
+	for (StepReport& report : out.step_reports)
 		for (Association& a : report.associations)
 			if (a.kind != Association::Kind::Rejected && dropped(a.id)) a = {Association::Kind::Rejected, -1};
-	return map;
+	return out;
 }
 }  // namespace
 

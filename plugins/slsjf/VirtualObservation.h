@@ -3,9 +3,9 @@
 /// A local map as the virtual observation SLSJF fuses (book eq. 5.8):
 /// z_map = the local state [end pose; features] with information matrix
 /// Lambda. Features the global association leaves out (ambiguous, the
-/// authors' "poor observations") are marginalised from it first: in
-/// information form that is the Schur complement, so what remains keeps
-/// exactly the information the map has about the kept part.
+/// authors' "poor observations") are marginalised from it first
+/// (marginaliseFeatures, esif/localmap/LocalMapMarginal.h), so what remains
+/// keeps exactly the information the map has about the kept part.
 
 #include <esif/localmap/LocalMap.h>
 
@@ -22,8 +22,7 @@ struct VirtualObservation
 };
 
 /// The observation of `map` keeping the features flagged in `keep` (one
-/// flag per feature). Throws NumericalError naming the map if the dropped
-/// block cannot be eliminated (not positive definite).
+/// flag per feature). Throws as marginaliseFeatures does.
 VirtualObservation keepFeatures(const LocalMap& map, const std::vector<bool>& keep);
 
 }  // namespace esif::slsjf

@@ -14,6 +14,7 @@
 #include <esif/formats/GroundTruth.h>
 #include <esif/formats/RawlogReader.h>
 #include <esif/localmap/LocalMapBuilder.h>
+#include <esif/localmap/LocalMapMarginal.h>
 #include <esif/localmap/LocalMapMerge.h>
 #include <esif/models/LocalMapObservation.h>
 #include <esif/models/Se2.h>
@@ -195,28 +196,12 @@ TEST(LocalMapMergeNoiseFree, OdometryLinkedMapsMergeTheSameWay)
 
 // ------------------------------------- no common feature: closed form
 
-/// `m` with the features `drop` marginalised out (covariance sub-block,
-/// information its inverse).
+/// `m` with the features `drop` marginalised out (LocalMapMarginal.h).
 LocalMap withoutFeatures(const LocalMap& m, const std::set<LandmarkId>& drop)
 {
-	LocalMap out = m;
-	out.features.clear();
-	std::vector<Eigen::Index> keep{0, 1, 2};
-	for (std::size_t i = 0; i < m.features.size(); ++i)
-		if (!drop.count(m.features[i].id))
-		{
-			out.features.push_back(m.features[i]);
-			keep.push_back(static_cast<Eigen::Index>(3 + 2 * i));
-			keep.push_back(static_cast<Eigen::Index>(4 + 2 * i));
-		}
-	const auto n = static_cast<Eigen::Index>(keep.size());
-	Eigen::MatrixXd P(n, n);
-	for (Eigen::Index r = 0; r < n; ++r)
-		for (Eigen::Index c = 0; c < n; ++c) P(r, c) = (*m.covariance)(keep[r], keep[c]);
-	out.covariance = P;
-	out.information = P.llt().solve(Eigen::MatrixXd::Identity(n, n));
-	out.information = 0.5 * (out.information + out.information.transpose());
-	return out;
+	std::vector<bool> keep;
+	for (const auto& f : m.features) keep.push_back(!drop.count(f.id));
+	return marginaliseFeatures(m, keep);
 }
 
 /// Without common features the merge is a composition: e_b = o (+) end_b
