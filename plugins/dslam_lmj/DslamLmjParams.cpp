@@ -23,8 +23,9 @@ void DslamLmjParams::declare(ParamBinder& b)
 	b.real("reference_min_clearance_m", reference_min_clearance_m,
 		   "no other feature of the map within this of f1 or f2 [m]", Bounds::nonNegative());
 	b.real("reference_pair_chi2_quantile", reference_pair_chi2_quantile,
-		   "between fusions, the robot placed by a pair must agree with the open map's start composed with its pose "
-		   "in that map within this chi-square quantile (3 dof); 1 = off",
+		   "a robot pose placed by a pair of global features must agree with its map's start composed with its pose "
+		   "in that map within this chi-square quantile (3 dof): the open map's robot between fusions, and a map's "
+		   "end pose before its fusion (else it is not fused); 1 = off",
 		   Bounds{0, 1, true, false});
 	relative::declareMapLinearisation(b, map_linearisation);
 	b.flag("relinearise_after_fusion", relinearise_after_fusion,

@@ -48,8 +48,11 @@ struct DslamLmjParams : MapLevelAssociationParams
 	/// Between fusions, a pair of the open map places the robot (Sec. 4.4.1)
 	/// only if that pose and the open map's start composed with the robot's
 	/// pose in it agree within this chi-square quantile (3 dof); a misread
-	/// feature carries a neighbour's ID and fails it. 1 = every pair is
-	/// trusted (the book).
+	/// feature carries a neighbour's ID and fails it. The same test holds a
+	/// closed map's end pose, placed through the pair its fusion would use,
+	/// against its start composed with its end pose in it: a map that fails
+	/// is not fused (DslamLocalMapJoining::endAgreesWithStart). 1 = every
+	/// pair is trusted (the book).
 	double reference_pair_chi2_quantile = 0.9999;
 	/// After each fusion, Gauss-Newton passes over the global map: every
 	/// earlier update (eq. 4.17) evaluated again at the current estimate

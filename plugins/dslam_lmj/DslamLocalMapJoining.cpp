@@ -209,9 +209,19 @@ bool DslamLocalMapJoining::tryFuse(
 	else
 	{
 		const auto t_association = Clock::now();
+		const bool associated_here = !decided;
 		if (!decided) decided = associate(maps.map, featureCovariance(maps.map));
 		association_s = secondsSince(t_association);
-		if (!decided || !global_->fuseRelative(maps, decided->decisions)) return false;
+		if (!decided) return false;
+		// Decisions handed in were made before the last fusion was withdrawn
+		// (joinWithLastFusion), whose features have no information now: no
+		// covariance of theirs could be recovered for the check.
+		if (associated_here && !endAgreesWithStart(maps.map, decided->decisions))
+		{
+			++tally_.fusions_refused;
+			return false;
+		}
+		if (!global_->fuseRelative(maps, decided->decisions)) return false;
 		tally_.association += decided->tally;
 	}
 	tally_.association.features_rejected += global_->fusions().back().rejected;
@@ -219,6 +229,15 @@ bool DslamLocalMapJoining::tryFuse(
 	const double seconds = seconds_before + secondsSince(t0);
 	costs_.push_back({maps.originals.front(), seconds, association_s, global_->features().featureCount() * 2});
 	return true;
+}
+
+bool DslamLocalMapJoining::endAgreesWithStart(const LocalMap& map, const StepReport& decisions)
+{
+	const auto placed = global_->endThroughReferencePair(map, decisions);
+	if (!placed) return true;  // no pair: fuseRelative refuses the map itself
+	const PoseEstimate reached =
+		composeIndependent(startOf(map), {map.end_pose, map.covarianceMatrix().topLeftCorner<3, 3>()});
+	return mahalanobis2(*placed, reached) <= chi2GateBound(params_.reference_pair_chi2_quantile, 3);
 }
 
 void DslamLocalMapJoining::finishJoining()
@@ -404,6 +423,7 @@ CostFigures DslamLocalMapJoining::costFigures() const
 	c.counters.emplace_back("local_maps_merged", static_cast<double>(tally_.maps_merged));
 	c.counters.emplace_back("join_features_left_out", static_cast<double>(tally_.join_features_left_out));
 	c.counters.emplace_back("joins_refused", static_cast<double>(tally_.joins_refused));
+	c.counters.emplace_back("fusions_refused", static_cast<double>(tally_.fusions_refused));
 	c.counters.emplace_back("local_maps_unjoinable", static_cast<double>(tally_.maps_unjoinable));
 	tally_.association.appendCounters(c.counters);
 	c.counters.emplace_back("relinearised_terms", static_cast<double>(global_->relinearisedTerms()));

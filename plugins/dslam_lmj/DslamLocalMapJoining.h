@@ -80,9 +80,19 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 	void requireConfigured() const;
 	/// Fuses `maps` (association `decided` when already made); false, with
 	/// nothing changed, when fewer than two of its features are usable in
-	/// the global map.
+	/// the global map, or when an association made here fails
+	/// endAgreesWithStart.
 	bool tryFuse(const lmj::JoinedMaps& maps, double seconds_before, std::optional<lmj::UpperLevelOutcome> decided);
 	bool joinWithLastFusion(const lmj::JoinedMaps& maps);
+	/// Whether the end pose the fusion would give `map` through its
+	/// reference pair (Sec. 4.4.1) agrees with the end pose its start reaches
+	/// (startOf composed with the map's own), within
+	/// reference_pair_chi2_quantile (3 dof): the test robotPose() makes of
+	/// the open map, made before a map is fused. A pair matched wrongly
+	/// after a blind drive can pass the association's joint test under the
+	/// start's wide uncertainty and still move the robot by metres
+	/// (docs/plugins/dslam_lmj.md, "A fusion that moves the robot too far").
+	bool endAgreesWithStart(const LocalMap& map, const StepReport& decisions);
 	/// The joined map's association, made while the last fusion is still in;
 	/// nullopt when it leaves no reference pair outside `created`.
 	std::optional<lmj::UpperLevelOutcome> associateBeforeWithdrawing(
@@ -114,6 +124,9 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 		/// apart out of the later map, and joins with the last fusion refused
 		/// for such a feature.
 		std::size_t join_features_left_out = 0, joins_refused = 0;
+		/// Maps not fused because their reference pair placed their end pose
+		/// where their start cannot reach (endAgreesWithStart).
+		std::size_t fusions_refused = 0;
 	} tally_;
 };
 

@@ -134,6 +134,22 @@ bool GlobalFeatureMap::fuseRelative(const JoinedMaps& maps, const StepReport& de
 	return true;
 }
 
+std::optional<PoseEstimate> GlobalFeatureMap::endThroughReferencePair(const LocalMap& map, const StepReport& decisions)
+{
+	std::vector<int> mapped;
+	for (std::size_t i = 0; i < map.features.size(); ++i)
+		if (const auto& a = decisions.associations[i]; a.kind == Association::Kind::Matched && map_.supported(a.id))
+			mapped.push_back(static_cast<int>(i));
+	const std::vector<Eigen::Vector2d> points = featurePoints(map);
+	const auto pair = referencePair(points, mapped);
+	if (!pair) return std::nullopt;
+	const auto [a, b] = *pair;
+	const LandmarkId g1 = decisions.associations[a].id, g2 = decisions.associations[b].id;
+	const auto rows = robotAndPairRows(a, b);
+	return robotFromPairs(map.end_pose, points[a], points[b], map.covarianceMatrix()(rows, rows), map_.position(g1),
+						  map_.position(g2), pairCovariance(g1, g2));
+}
+
 void GlobalFeatureMap::settle(Fusion fusion, const std::vector<int>& order, const Eigen::MatrixXd& P)
 {
 	const Eigen::Vector2d reference = map_.position(fusion.decisions.associations[order[0]].id);

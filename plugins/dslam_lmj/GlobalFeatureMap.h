@@ -68,6 +68,11 @@ class GlobalFeatureMap
 	/// changed, when no two of its features mapped in the global map make a
 	/// reference pair.
 	bool fuseRelative(const JoinedMaps& maps, const StepReport& decisions);
+	/// Where fuseRelative(maps, decisions) would place the map's end pose
+	/// (Sec. 4.4.1): through the reference pair it would choose, at the
+	/// global map's estimate before the update; nullopt when no pair can be
+	/// chosen.
+	std::optional<PoseEstimate> endThroughReferencePair(const LocalMap& map, const StepReport& decisions);
 	/// The features no fusion but the last informs: those the last fusion
 	/// created, and those it carried for a fusion withdrawn before it.
 	/// Withdrawing it leaves them without information until fused again.

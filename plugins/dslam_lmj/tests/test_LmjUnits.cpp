@@ -4,7 +4,8 @@
 // Jacobians finite differences give; local maps of a single scan reproduce
 // D-SLAM's mapping update (Sec. 4.9); the information matrix is exactly
 // sparse (eq. 4.18-4.19): every off-diagonal block links two features of one
-// local map.
+// local map; a map whose reference pair places its end where its start cannot
+// reach is not fused.
 
 #include <EsifTestSupport.h>
 #include <LocalMapTestSupport.h>
@@ -211,6 +212,68 @@ TEST(LmjUnits, AJoinLeavesOutAFeatureIdTheTwoMapsPlaceApart)
 	const lmj::JoinedMaps blind = lmj::joinConsecutive(lmj::single(earlier), lmj::single(later));
 	for (const auto& f : blind.map.features)
 		if (f.id == 2) EXPECT_GT((f.position - Eigen::Vector2d(4, 2)).norm(), 0.5);
+}
+
+/// Local map `index` ending at `end` with the features 1-3 at `points`,
+/// every variable 5 cm (0.01 rad in heading) sigma, independent, IDs trusted.
+LocalMap mapWithThreeFeatures(std::size_t index, const Pose2& end, const std::vector<Eigen::Vector2d>& points)
+{
+	LocalMap m;
+	m.index = index;
+	m.end_pose = end;
+	for (std::size_t i = 0; i < points.size(); ++i)
+		m.features.push_back({static_cast<LandmarkId>(i + 1), points[i], true});
+	Eigen::VectorXd sd = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(m.stateDim()), 0.05);
+	sd(2) = 0.01;
+	m.covariance = Eigen::MatrixXd(sd.array().square().matrix().asDiagonal());
+	m.information = m.covariance->inverse();  // diagonal
+	return m;
+}
+
+double counter(const FilterPlugin& plugin, const std::string& name)
+{
+	for (const auto& [key, value] : plugin.costFigures().counters)
+		if (key == name) return value;
+	ADD_FAILURE() << "no counter " << name;
+	return -1;
+}
+
+TEST(LmjUnits, AMapWhosePairPlacesItsEndOutOfItsStartsReachIsNotFused)
+{
+	// Map 1 ends at (2, 0, 0) with the features 1-3; map 2 starts there,
+	// ends 1 m on, and sees the three 3 m further along x than map 1 does:
+	// rigidly, so the pair gate of the ID association passes, but its pair
+	// places its end at (6, 0) where its start reaches (3, 0) within 7 cm.
+	const std::vector<Eigen::Vector2d> world = {{4, 0}, {4, 3}, {7, 1}};
+	const Pose2 end1(2, 0, 0);
+	const LocalMap map1 = mapWithThreeFeatures(1, end1, world);
+	std::vector<Eigen::Vector2d> seen_right, seen_shifted;
+	for (const auto& p : world)
+	{
+		seen_right.push_back(pointInFrame(end1, p).value);
+		seen_shifted.push_back(pointInFrame(end1, p).value + Eigen::Vector2d(3, 0));
+	}
+	for (const bool shifted : {false, true})
+	{
+		SCOPED_TRACE(shifted ? "shifted" : "consistent");
+		auto plugin = test::makePlugin("DslamLocalMapJoining", "");
+		joinerOf(*plugin).joinLocalMap(map1);
+		joinerOf(*plugin).joinLocalMap(mapWithThreeFeatures(2, Pose2(1, 0, 0), shifted ? seen_shifted : seen_right));
+		plugin->finish();
+		EXPECT_EQ(counter(*plugin, "fusions_refused"), shifted ? 1 : 0);
+		// Refused, the map cannot be joined with map 1 either (all three
+		// features disagree): it is reported unjoinable, its end pose
+		// carried from map 1's by its own, not thrown 3 m on by the pair.
+		// The features stay: a rigid shift leaves the relative geometry
+		// the fusion takes from the map unchanged (eq. 4.10).
+		EXPECT_EQ(counter(*plugin, "local_maps_fused"), shifted ? 1 : 2);
+		EXPECT_EQ(counter(*plugin, "local_maps_unjoinable"), shifted ? 1 : 0);
+		const auto ends = joinerOf(*plugin).endPoses();
+		ASSERT_EQ(ends.size(), 2u);
+		EXPECT_LT((ends[1].mean - Pose2(3, 0, 0)).norm(), 0.1);
+		for (const auto& l : plugin->estimate().landmarks)
+			EXPECT_LT((l.mean - world[static_cast<std::size_t>(l.id - 1)]).norm(), 0.1) << "feature " << l.id;
+	}
 }
 
 TEST(LmjUnits, IdMatchedFeatureFailingTheGateIsLeftOut)
