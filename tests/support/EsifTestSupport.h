@@ -67,6 +67,16 @@ inline FilterPlugin::Ptr makePlugin(const std::string& class_name, const std::st
 	return plugin;
 }
 
+/// The counter `name` of `plugin`'s CostFigures (stats.json plugin_<name>);
+/// a test failure and NaN when it reports none.
+inline double pluginCounter(const FilterPlugin& plugin, const std::string& name)
+{
+	for (const auto& [key, value] : plugin.costFigures().counters)
+		if (key == name) return value;
+	ADD_FAILURE() << "no counter " << name;
+	return std::nan("");
+}
+
 /// Result of running the esif binary.
 struct CommandResult
 {

@@ -26,23 +26,17 @@
 namespace
 {
 using namespace esif;
+using test::pluginCounter;
 
 const std::string kGrid196 = test::sourcePath("rawlogs/grid196.rawlog");
 
-double counter(const FilterPlugin& p, const std::string& name)
-{
-	for (const auto& [k, v] : p.costFigures().counters)
-		if (k == name) return v;
-	ADD_FAILURE() << "no counter " << name;
-	return std::nan("");
-}
 
 /// (chi2 - dof) / sqrt(2 dof): the optimal cost's distance from its
 /// expectation in standard deviations of chi-square(dof).
 double chi2Score(const FilterPlugin& p)
 {
-	const double dof = counter(p, "chi2_dof");
-	return (counter(p, "chi2") - dof) / std::sqrt(2 * dof);
+	const double dof = pluginCounter(p, "chi2_dof");
+	return (pluginCounter(p, "chi2") - dof) / std::sqrt(2 * dof);
 }
 
 struct Scored
@@ -79,9 +73,9 @@ TEST(CeresFullGrid196, MoreAccurateThanEkfWithTheExpectedOptimalCost)
 	std::cout << "grid196: landmark RMSE full SLAM " << *a.landmark_rmse_m << " m vs EKF " << *e.landmark_rmse_m
 			  << " m; ATE " << *a.ate_rmse_m << " vs " << *e.ate_rmse_m << " m; landmark NEES mean "
 			  << *a.landmark_nees_mean << ", consistent " << *a.landmark_consistent_fraction << "; chi2 "
-			  << counter(*full.plugin, "chi2") << " for " << counter(*full.plugin, "chi2_dof") << " dof, "
-			  << counter(*full.plugin, "iterations") << " iterations\n";
-	EXPECT_EQ(counter(*full.plugin, "converged"), 1);
+			  << pluginCounter(*full.plugin, "chi2") << " for " << pluginCounter(*full.plugin, "chi2_dof") << " dof, "
+			  << pluginCounter(*full.plugin, "iterations") << " iterations\n";
+	EXPECT_EQ(pluginCounter(*full.plugin, "converged"), 1);
 	EXPECT_EQ(a.landmarks_evaluated, e.landmarks_evaluated);
 	EXPECT_LT(*a.landmark_rmse_m, *e.landmark_rmse_m);
 	// The smoothed trajectory (every pose re-estimated with all data) against
@@ -160,8 +154,8 @@ TEST(CeresFullMonteCarlo, LandmarkAndFinalPoseNeesAreConsistentOverIndependentRu
 		Eigen::Vector3d pose_err = est.robot.mean - inverseCompose(*start, last_true);
 		pose_err.z() = wrapAngle(pose_err.z());
 		pose_nees += *nees(pose_err, est.robot.cov);
-		chi2 += counter(*plugin, "chi2");
-		dof += counter(*plugin, "chi2_dof");
+		chi2 += pluginCounter(*plugin, "chi2");
+		dof += pluginCounter(*plugin, "chi2_dof");
 	}
 	landmark_nees /= runs;
 	pose_nees /= runs;
@@ -218,26 +212,28 @@ TEST(CeresFullGrid196, ResolvingDuringTheRunReachesTheBatchOptimum)
 	// finish() solves twice: with the Cauchy loss the run uses while it
 	// looks for outliers (outliers = drop), then plainly (eq. 1.21).
 	const auto batch = runOnGrid196("CeresFullSlam", "resolve_growth = 0\n");
-	EXPECT_EQ(counter(*batch.plugin, "solves"), 2);
-	EXPECT_EQ(counter(*batch.plugin, "outliers_dropped"), 0);
+	EXPECT_EQ(pluginCounter(*batch.plugin, "solves"), 2);
+	EXPECT_EQ(pluginCounter(*batch.plugin, "outliers_dropped"), 0);
 	const auto growing = runOnGrid196("CeresFullSlam", "covariance = none\n");	 // the default schedule
 	const auto every = runOnGrid196("CeresFullSlam", "covariance = none\nresolve_growth = 0\nresolve_every_steps = 500\n");
-	EXPECT_EQ(counter(*every.plugin, "solves"), 8);	 // after steps 500, ..., 3000, and finish()'s two
+	EXPECT_EQ(pluginCounter(*every.plugin, "solves"), 8);	 // after steps 500, ..., 3000, and finish()'s two
 	// 3000 poses at 20 % growth from 20 new poses: 5 solves up to 100
 	// poses, 18 of x1.2 up to 2685 (ln 30 / ln 1.2 = 18.7, each rounded
 	// up), and finish()'s two.
-	EXPECT_EQ(counter(*growing.plugin, "solves"), 25);
+	EXPECT_EQ(pluginCounter(*growing.plugin, "solves"), 25);
 	for (const auto* running : {&growing, &every})
 	{
 		const double apart =
 			largestDifferenceInSigma(batch.result.record.final_estimate, running->result.record.final_estimate);
-		std::cout << counter(*running->plugin, "solves") << " solves, " << counter(*running->plugin, "iterations")
-				  << " iterations (batch: " << counter(*batch.plugin, "iterations") << "), landmarks within " << apart
-				  << " sigma of the batch's\n";
+		std::cout << pluginCounter(*running->plugin, "solves") << " solves, "
+				  << pluginCounter(*running->plugin, "iterations")
+				  << " iterations (batch: " << pluginCounter(*batch.plugin, "iterations") << "), landmarks within "
+				  << apart << " sigma of the batch's\n";
 		EXPECT_LT(apart, kSameOptimumSigma);
-		EXPECT_NEAR(counter(*running->plugin, "chi2"), counter(*batch.plugin, "chi2"), 1e-6 * counter(*batch.plugin, "chi2"));
-		EXPECT_EQ(counter(*running->plugin, "converged"), 1);
-		EXPECT_EQ(counter(*running->plugin, "optimum_plausible"), 1);
+		const double chi2 = pluginCounter(*batch.plugin, "chi2");
+		EXPECT_NEAR(pluginCounter(*running->plugin, "chi2"), chi2, 1e-6 * chi2);
+		EXPECT_EQ(pluginCounter(*running->plugin, "converged"), 1);
+		EXPECT_EQ(pluginCounter(*running->plugin, "optimum_plausible"), 1);
 	}
 }
 
@@ -255,12 +251,13 @@ TEST(CeresFullGrid196, StartingFromAnEkfRunReachesTheSameOptimum)
 	// at loop closures), so its start cost is not lower than dead
 	// reckoning's; what matters is that it converges to the same optimum.
 	const double apart = largestDifferenceInSigma(batch.result.record.final_estimate, warm.result.record.final_estimate);
-	std::cout << "from the EKF's estimate: chi2 " << counter(*warm.plugin, "initial_chi2") << " -> "
-			  << counter(*warm.plugin, "chi2") << " in " << counter(*warm.plugin, "iterations")
-			  << " iterations (dead reckoning: " << counter(*batch.plugin, "initial_chi2") << " in "
-			  << counter(*batch.plugin, "iterations") << "), landmarks within " << apart << " sigma\n";
-	EXPECT_EQ(counter(*warm.plugin, "converged"), 1);
-	EXPECT_NEAR(counter(*warm.plugin, "chi2"), counter(*batch.plugin, "chi2"), 1e-6 * counter(*batch.plugin, "chi2"));
+	std::cout << "from the EKF's estimate: chi2 " << pluginCounter(*warm.plugin, "initial_chi2") << " -> "
+			  << pluginCounter(*warm.plugin, "chi2") << " in " << pluginCounter(*warm.plugin, "iterations")
+			  << " iterations (dead reckoning: " << pluginCounter(*batch.plugin, "initial_chi2") << " in "
+			  << pluginCounter(*batch.plugin, "iterations") << "), landmarks within " << apart << " sigma\n";
+	EXPECT_EQ(pluginCounter(*warm.plugin, "converged"), 1);
+	const double chi2 = pluginCounter(*batch.plugin, "chi2");
+	EXPECT_NEAR(pluginCounter(*warm.plugin, "chi2"), chi2, 1e-6 * chi2);
 	EXPECT_LT(apart, kSameOptimumSigma);
 
 	// A folder that is not a run is one clear error naming the key.

@@ -19,6 +19,7 @@
 namespace
 {
 using namespace esif;
+using test::pluginCounter;
 
 struct Scored
 {
@@ -49,13 +50,6 @@ class DslamFeatureless : public ::testing::Test
 		return s;
 	}
 
-	static double counter(const FilterPlugin& p, const std::string& name)
-	{
-		for (const auto& [k, v] : p.costFigures().counters)
-			if (k == name) return v;
-		ADD_FAILURE() << "no counter " << name;
-		return -1;
-	}
 
 	static test::TempDir* dir_;
 };
@@ -71,8 +65,8 @@ TEST_F(DslamFeatureless, VirtualObservationsKeepMappingAcrossTheGap)
 			  << combine.result.record.final_estimate.landmarks.size() << " (skip: "
 			  << skip.result.record.final_estimate.landmarks.size() << "); RMSE EKF " << *ekf.accuracy.landmark_rmse_m
 			  << " m, D-SLAM " << *combine.accuracy.landmark_rmse_m << " m; inadmissible scans "
-			  << counter(p, "inadmissible_scans") << ", withdrawals " << counter(p, "map_withdrawals")
-			  << ", virtual updates " << counter(p, "virtual_updates") << "\n";
+			  << pluginCounter(p, "inadmissible_scans") << ", withdrawals " << pluginCounter(p, "map_withdrawals")
+			  << ", virtual updates " << pluginCounter(p, "virtual_updates") << "\n";
 
 	// Every feature the EKF maps, D-SLAM maps: the far side of each gap is
 	// reached through virtual observations ...
@@ -80,8 +74,8 @@ TEST_F(DslamFeatureless, VirtualObservationsKeepMappingAcrossTheGap)
 	EXPECT_EQ(combine.result.audit.wrongCount(), 0u);
 	// ... which happened: each inadmissible scan after the anchor withdrew
 	// the previous update and replaced it.
-	EXPECT_GT(counter(p, "virtual_updates"), 8);  // at least once per crossing
-	EXPECT_EQ(counter(p, "map_withdrawals"), counter(p, "inadmissible_scans") - 1);
+	EXPECT_GT(pluginCounter(p, "virtual_updates"), 8);  // at least once per crossing
+	EXPECT_EQ(pluginCounter(p, "map_withdrawals"), pluginCounter(p, "inadmissible_scans") - 1);
 	// Skipping those scans loses the far side of the first gap for good.
 	EXPECT_LT(skip.result.record.final_estimate.landmarks.size(),
 			  combine.result.record.final_estimate.landmarks.size() * 2 / 3);

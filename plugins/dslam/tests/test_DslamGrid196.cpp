@@ -17,6 +17,7 @@
 namespace
 {
 using namespace esif;
+using test::pluginCounter;
 
 const std::string kGrid196 = test::sourcePath("rawlogs/grid196.rawlog");
 
@@ -38,13 +39,6 @@ Scored run(const std::string& plugin_class, const std::string& section, bool hid
 	return s;
 }
 
-double counter(const FilterPlugin& p, const std::string& name)
-{
-	for (const auto& [k, v] : p.costFigures().counters)
-		if (k == name) return v;
-	ADD_FAILURE() << "no counter " << name;
-	return -1;
-}
 
 TEST(DslamGrid196, KnownIdsNearTheOptimumAndConservativeFromBothSides)
 {
@@ -82,8 +76,8 @@ TEST(DslamGrid196, KnownIdsNearTheOptimumAndConservativeFromBothSides)
 	EXPECT_GT(*a.pose_nees_mean, 0.2 * 3);
 	EXPECT_GT(*a.landmark_nees_mean, 0.2 * 2);
 	// Both localisation processes ran: CI fused at (almost) every admissible scan.
-	EXPECT_GT(counter(*dslam.plugin, "ci_fusions"), 0.9 * counter(*dslam.plugin, "admissible_scans"));
-	EXPECT_EQ(counter(*dslam.plugin, "ci_failures"), 0);
+	EXPECT_GT(pluginCounter(*dslam.plugin, "ci_fusions"), 0.9 * pluginCounter(*dslam.plugin, "admissible_scans"));
+	EXPECT_EQ(pluginCounter(*dslam.plugin, "ci_failures"), 0);
 }
 
 TEST(DslamGrid196, WithoutIdsMakesNoWrongAssociation)

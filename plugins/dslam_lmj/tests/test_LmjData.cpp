@@ -23,6 +23,7 @@
 namespace
 {
 using namespace esif;
+using test::pluginCounter;
 
 const std::string kGrid196 = test::sourcePath("rawlogs/grid196.rawlog");
 const std::string kVicpark200 = test::sourcePath("../shared/data/localmaps/vicpark_200");
@@ -51,13 +52,6 @@ Scored run(const std::string& plugin_name, const std::string& section, bool hide
 	return s;
 }
 
-double counter(const FilterPlugin& p, const std::string& name)
-{
-	for (const auto& [k, v] : p.costFigures().counters)
-		if (k == name) return v;
-	ADD_FAILURE() << "no counter " << name;
-	return -1;
-}
 
 TEST(LmjGrid196, FiveLocalMapsAsAccurateAsTheEkfAndConsistent)
 {
@@ -71,8 +65,8 @@ TEST(LmjGrid196, FiveLocalMapsAsAccurateAsTheEkfAndConsistent)
 	std::cout << "grid196, 5 local maps: landmark RMSE LMJ " << *a.landmark_rmse_m << " m vs EKF "
 			  << *ekf.accuracy.landmark_rmse_m << " m; consistent " << *a.landmark_consistent_fraction
 			  << "; NEES mean " << *a.landmark_nees_mean << "; ATE " << *a.ate_rmse_m << " m; maps fused "
-			  << counter(*lmj.plugin, "local_maps_fused") << "\n";
-	EXPECT_EQ(counter(*lmj.plugin, "local_maps_fused"), 5);
+			  << pluginCounter(*lmj.plugin, "local_maps_fused") << "\n";
+	EXPECT_EQ(pluginCounter(*lmj.plugin, "local_maps_fused"), 5);
 	EXPECT_EQ(lmj.result.record.final_estimate.landmarks.size(), 164u);
 	// The bounds: the relative information of each map loses its
 	// robot pose and the link between maps, so LMJ may be worse than the EKF
@@ -108,7 +102,7 @@ TEST(LmjGrid196, WithoutIdsScansAssociatedWithTheGlobalMapMakeNoWrongAssociation
 	EXPECT_EQ(audit.wrongCount(), 0u);
 	EXPECT_EQ(s.result.record.final_estimate.landmarks.size(), 164u);
 	EXPECT_GE(*s.accuracy.landmark_consistent_fraction, 0.95);
-	EXPECT_GT(counter(*s.plugin, "local_features_started_from_global"), 100.0);
+	EXPECT_GT(pluginCounter(*s.plugin, "local_features_started_from_global"), 100.0);
 }
 
 TEST(LmjGrid196, FeaturesEnterWhenTheirMapIsFusedThenMatchTheEkf)

@@ -35,6 +35,7 @@
 namespace
 {
 using namespace esif;
+using test::pluginCounter;
 
 const std::string kGrid196 = test::sourcePath("rawlogs/grid196.rawlog");
 
@@ -158,6 +159,23 @@ void buildMisreadCase(MisreadCase& c, LandmarkId misread)
 	c.local_cov = 0.02 * 0.02 * Eigen::MatrixXd::Identity(12, 12);
 }
 
+/// Local map `index` ending at `end` with the features 1, 2, ... at
+/// `points`, all known from earlier maps, every variable independent with 5
+/// cm sigma per axis (0.01 rad in heading).
+LocalMap independentMap(std::size_t index, const Pose2& end, const std::vector<Eigen::Vector2d>& points)
+{
+	LocalMap m;
+	m.index = index;
+	m.end_pose = end;
+	for (std::size_t i = 0; i < points.size(); ++i)
+		m.features.push_back({static_cast<LandmarkId>(i + 1), points[i], true});
+	Eigen::VectorXd sd = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(m.stateDim()), 0.05);
+	sd(2) = 0.01;
+	m.covariance = Eigen::MatrixXd(sd.array().square().matrix().asDiagonal());
+	m.information = m.covariance->inverse();  // diagonal
+	return m;
+}
+
 /// Two consecutive local maps with the features 1 and 2: `earlier` ends at
 /// (2, 0, 0) with feature 1 at (4, 0) and 2 at (4, 2); `later` starts there
 /// and holds feature 1 where earlier has it and feature 2 at (4, 4), 2 m from
@@ -167,16 +185,7 @@ void buildMisreadCase(MisreadCase& c, LandmarkId misread)
 std::pair<LocalMap, LocalMap> mapsDisagreeingOnFeature2()
 {
 	const auto make = [](std::size_t index, const Pose2& end, const std::vector<Eigen::Vector2d>& features) {
-		LocalMap m;
-		m.index = index;
-		m.end_pose = end;
-		for (std::size_t i = 0; i < features.size(); ++i)
-			m.features.push_back({static_cast<LandmarkId>(i + 1), features[i], true});
-		Eigen::VectorXd sd = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(m.stateDim()), 0.05);
-		sd(2) = 0.01;
-		const Eigen::MatrixXd cov = sd.array().square().matrix().asDiagonal();
-		m.covariance = cov;
-		m.information = cov.inverse();	// diagonal
+		LocalMap m = independentMap(index, end, features);
 		m.ids_identify_features = false;
 		return m;
 	};
@@ -214,30 +223,6 @@ TEST(LmjUnits, AJoinLeavesOutAFeatureIdTheTwoMapsPlaceApart)
 		if (f.id == 2) EXPECT_GT((f.position - Eigen::Vector2d(4, 2)).norm(), 0.5);
 }
 
-/// Local map `index` ending at `end` with the features 1-3 at `points`,
-/// every variable 5 cm (0.01 rad in heading) sigma, independent, IDs trusted.
-LocalMap mapWithThreeFeatures(std::size_t index, const Pose2& end, const std::vector<Eigen::Vector2d>& points)
-{
-	LocalMap m;
-	m.index = index;
-	m.end_pose = end;
-	for (std::size_t i = 0; i < points.size(); ++i)
-		m.features.push_back({static_cast<LandmarkId>(i + 1), points[i], true});
-	Eigen::VectorXd sd = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(m.stateDim()), 0.05);
-	sd(2) = 0.01;
-	m.covariance = Eigen::MatrixXd(sd.array().square().matrix().asDiagonal());
-	m.information = m.covariance->inverse();  // diagonal
-	return m;
-}
-
-double counter(const FilterPlugin& plugin, const std::string& name)
-{
-	for (const auto& [key, value] : plugin.costFigures().counters)
-		if (key == name) return value;
-	ADD_FAILURE() << "no counter " << name;
-	return -1;
-}
-
 TEST(LmjUnits, AMapWhosePairPlacesItsEndOutOfItsStartsReachIsNotFused)
 {
 	// Map 1 ends at (2, 0, 0) with the features 1-3; map 2 starts there,
@@ -246,7 +231,7 @@ TEST(LmjUnits, AMapWhosePairPlacesItsEndOutOfItsStartsReachIsNotFused)
 	// places its end at (6, 0) where its start reaches (3, 0) within 7 cm.
 	const std::vector<Eigen::Vector2d> world = {{4, 0}, {4, 3}, {7, 1}};
 	const Pose2 end1(2, 0, 0);
-	const LocalMap map1 = mapWithThreeFeatures(1, end1, world);
+	const LocalMap map1 = independentMap(1, end1, world);
 	std::vector<Eigen::Vector2d> seen_right, seen_shifted;
 	for (const auto& p : world)
 	{
@@ -258,16 +243,16 @@ TEST(LmjUnits, AMapWhosePairPlacesItsEndOutOfItsStartsReachIsNotFused)
 		SCOPED_TRACE(shifted ? "shifted" : "consistent");
 		auto plugin = test::makePlugin("DslamLocalMapJoining", "");
 		joinerOf(*plugin).joinLocalMap(map1);
-		joinerOf(*plugin).joinLocalMap(mapWithThreeFeatures(2, Pose2(1, 0, 0), shifted ? seen_shifted : seen_right));
+		joinerOf(*plugin).joinLocalMap(independentMap(2, Pose2(1, 0, 0), shifted ? seen_shifted : seen_right));
 		plugin->finish();
-		EXPECT_EQ(counter(*plugin, "fusions_refused"), shifted ? 1 : 0);
+		EXPECT_EQ(pluginCounter(*plugin, "fusions_refused"), shifted ? 1 : 0);
 		// Refused, the map cannot be joined with map 1 either (all three
 		// features disagree): it is reported unjoinable, its end pose
 		// carried from map 1's by its own, not thrown 3 m on by the pair.
 		// The features stay: a rigid shift leaves the relative geometry
 		// the fusion takes from the map unchanged (eq. 4.10).
-		EXPECT_EQ(counter(*plugin, "local_maps_fused"), shifted ? 1 : 2);
-		EXPECT_EQ(counter(*plugin, "local_maps_unjoinable"), shifted ? 1 : 0);
+		EXPECT_EQ(pluginCounter(*plugin, "local_maps_fused"), shifted ? 1 : 2);
+		EXPECT_EQ(pluginCounter(*plugin, "local_maps_unjoinable"), shifted ? 1 : 0);
 		const auto ends = joinerOf(*plugin).endPoses();
 		ASSERT_EQ(ends.size(), 2u);
 		EXPECT_LT((ends[1].mean - Pose2(3, 0, 0)).norm(), 0.1);
