@@ -25,7 +25,7 @@ void DslamLmjParams::declare(ParamBinder& b)
 	b.real("reference_pair_chi2_quantile", reference_pair_chi2_quantile,
 		   "a robot pose placed by a pair of global features must agree with its map's start composed with its pose "
 		   "in that map within this chi-square quantile (3 dof): the open map's robot between fusions, and a map's "
-		   "end pose before its fusion (else it is not fused); 1 = off",
+		   "end pose before its fusion (a failing pair's matches are left out); 1 = off",
 		   Bounds{0, 1, true, false});
 	relative::declareMapLinearisation(b, map_linearisation);
 	b.flag("relinearise_after_fusion", relinearise_after_fusion,

@@ -50,9 +50,10 @@ struct DslamLmjParams : MapLevelAssociationParams
 	/// pose in it agree within this chi-square quantile (3 dof); a misread
 	/// feature carries a neighbour's ID and fails it. The same test holds a
 	/// closed map's end pose, placed through the pair its fusion would use,
-	/// against its start composed with its end pose in it: a map that fails
-	/// is not fused (DslamLocalMapJoining::endAgreesWithStart). 1 = every
-	/// pair is trusted (the book).
+	/// against its start composed with its end pose in it: a failing pair's
+	/// matches are left out, and a map with no pair that passes is not fused
+	/// (DslamLocalMapJoining::keepReferencePairInReach). 1 = every pair is
+	/// trusted (the book).
 	double reference_pair_chi2_quantile = 0.9999;
 	/// After each fusion, Gauss-Newton passes over the global map: every
 	/// earlier update (eq. 4.17) evaluated again at the current estimate

@@ -76,7 +76,8 @@ void DslamLocalMapJoining::fuseLocalMap(const LocalMap& closed)
 	JoinedMaps maps = single(closed);
 	if (pending_)
 	{
-		// The first map had too few features: join it with this one, in its
+		// The map before could not be fused (too few usable features, or no
+		// pair within its start's reach): join it with this one, in its
 		// frame, leaving out of this one a feature the two place apart.
 		const auto disagreeing = disagreeingFeatures(pending_->map, maps.map, params_.idGateDistance2());
 		maps = joinConsecutive(*pending_, maps, disagreeing);
@@ -135,22 +136,12 @@ std::optional<UpperLevelOutcome> DslamLocalMapJoining::associateBeforeWithdrawin
 	// The association sees the last map's information twice (in the global
 	// map and in the joined map), a small over-confidence of the test only.
 	// The pair of the update must not be one of the features the last
-	// fusion created.
+	// fusion created, and must place the joined map's end within its
+	// start's reach.
 	auto decided = associate(joined, featureCovariance(joined));
 	if (!decided) return std::nullopt;
 	keepFeaturesOfWithdrawnFusion(joined, created, *decided);
-	std::vector<Eigen::Vector2d> points;
-	std::vector<int> usable;
-	for (std::size_t i = 0; i < joined.features.size(); ++i)
-	{
-		points.push_back(joined.features[i].position);
-		const auto& a = decided->decisions.associations[i];
-		if (a.kind == Association::Kind::Matched && global_->features().supported(a.id) &&
-			std::find(created.begin(), created.end(), a.id) == created.end())
-			usable.push_back(static_cast<int>(i));
-	}
-	if (!chooseReferenceFeatures(points, usable, params_.reference_min_separation_m, params_.reference_min_clearance_m))
-		return std::nullopt;
+	if (keepReferencePairInReach(joined, decided->decisions, created) != PairReach::InReach) return std::nullopt;
 	return decided;
 }
 
@@ -213,10 +204,10 @@ bool DslamLocalMapJoining::tryFuse(
 		if (!decided) decided = associate(maps.map, featureCovariance(maps.map));
 		association_s = secondsSince(t_association);
 		if (!decided) return false;
-		// Decisions handed in were made before the last fusion was withdrawn
-		// (joinWithLastFusion), whose features have no information now: no
-		// covariance of theirs could be recovered for the check.
-		if (associated_here && !endAgreesWithStart(maps.map, decided->decisions))
+		// Decisions handed in (joinWithLastFusion) were checked before the
+		// last fusion was withdrawn: the global information is singular
+		// until the joined map is fused, and no covariance can be recovered.
+		if (associated_here && keepReferencePairInReach(maps.map, decided->decisions) == PairReach::OutOfReach)
 		{
 			++tally_.fusions_refused;
 			return false;
@@ -231,13 +222,23 @@ bool DslamLocalMapJoining::tryFuse(
 	return true;
 }
 
-bool DslamLocalMapJoining::endAgreesWithStart(const LocalMap& map, const StepReport& decisions)
+DslamLocalMapJoining::PairReach DslamLocalMapJoining::keepReferencePairInReach(
+	const LocalMap& map, StepReport& decisions, const std::vector<LandmarkId>& excluded)
 {
-	const auto placed = global_->endThroughReferencePair(map, decisions);
-	if (!placed) return true;  // no pair: fuseRelative refuses the map itself
+	const double gate = chi2GateBound(params_.reference_pair_chi2_quantile, 3);
 	const PoseEstimate reached =
 		composeIndependent(startOf(map), {map.end_pose, map.covarianceMatrix().topLeftCorner<3, 3>()});
-	return mahalanobis2(*placed, reached) <= chi2GateBound(params_.reference_pair_chi2_quantile, 3);
+	PairReach outcome = PairReach::NoPair;
+	while (const auto pair = global_->referencePairOf(map, decisions, excluded))
+	{
+		// The two estimates are taken as independent, though both hold the
+		// map's own end pose: a conservative test, as robotPose()'s.
+		if (mahalanobis2(global_->endThroughPair(map, decisions, *pair), reached) <= gate) return PairReach::InReach;
+		for (const int i : {pair->first, pair->second}) decisions.associations[i] = {Association::Kind::Rejected, -1};
+		++tally_.reference_pairs_refused;
+		outcome = PairReach::OutOfReach;
+	}
+	return outcome;
 }
 
 void DslamLocalMapJoining::finishJoining()
@@ -249,11 +250,11 @@ void DslamLocalMapJoining::finishJoining()
 
 void DslamLocalMapJoining::giveUpPendingMap()
 {
-	// No neighbour is left to join (only when the log's first maps never hold
-	// two usable features): the map cannot be fused (Sec. 4.4.4). It is
-	// reported, never dropped silently: its features rejected
-	// (associations.txt, da_rejected), counted in local_maps_unjoinable, its
-	// end poses carried from the global frame's origin.
+	// No neighbour is left to join (the log ended on maps that could not be
+	// fused): the map cannot be fused (Sec. 4.4.4). It is reported, never
+	// dropped silently: its features rejected (associations.txt,
+	// da_rejected), counted in local_maps_unjoinable, its end poses carried
+	// from the last end pose (the global frame's origin before any).
 	global_->addUnjoinable(*pending_);
 	tally_.maps_unjoinable += pending_->originals.size();
 	pending_.reset();
@@ -424,6 +425,7 @@ CostFigures DslamLocalMapJoining::costFigures() const
 	c.counters.emplace_back("join_features_left_out", static_cast<double>(tally_.join_features_left_out));
 	c.counters.emplace_back("joins_refused", static_cast<double>(tally_.joins_refused));
 	c.counters.emplace_back("fusions_refused", static_cast<double>(tally_.fusions_refused));
+	c.counters.emplace_back("reference_pairs_refused", static_cast<double>(tally_.reference_pairs_refused));
 	c.counters.emplace_back("local_maps_unjoinable", static_cast<double>(tally_.maps_unjoinable));
 	tally_.association.appendCounters(c.counters);
 	c.counters.emplace_back("relinearised_terms", static_cast<double>(global_->relinearisedTerms()));

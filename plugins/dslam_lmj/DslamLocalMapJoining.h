@@ -80,21 +80,31 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 	void requireConfigured() const;
 	/// Fuses `maps` (association `decided` when already made); false, with
 	/// nothing changed, when fewer than two of its features are usable in
-	/// the global map, or when an association made here fails
-	/// endAgreesWithStart.
+	/// the global map, or when no reference pair of an association made here
+	/// passes keepReferencePairInReach.
 	bool tryFuse(const lmj::JoinedMaps& maps, double seconds_before, std::optional<lmj::UpperLevelOutcome> decided);
 	bool joinWithLastFusion(const lmj::JoinedMaps& maps);
-	/// Whether the end pose the fusion would give `map` through its
-	/// reference pair (Sec. 4.4.1) agrees with the end pose its start reaches
-	/// (startOf composed with the map's own), within
-	/// reference_pair_chi2_quantile (3 dof): the test robotPose() makes of
-	/// the open map, made before a map is fused. A pair matched wrongly
-	/// after a blind drive can pass the association's joint test under the
-	/// start's wide uncertainty and still move the robot by metres
+	/// Sec. 4.4.1 before a fusion: the end pose `map` gets through its
+	/// reference pair (GlobalFeatureMap::endThroughPair) must agree with the
+	/// end pose its start reaches (startOf composed with the map's own)
+	/// within reference_pair_chi2_quantile (3 dof), the test robotPose()
+	/// makes of the open map. A pair that fails has its two matches
+	/// Rejected, and the next pair is tried; pairs of features matched to
+	/// `excluded` are not chosen. A pair matched wrongly after a blind drive
+	/// can pass the association's joint test under the start's wide
+	/// uncertainty and still move the robot by metres
 	/// (docs/plugins/dslam_lmj.md, "A fusion that moves the robot too far").
-	bool endAgreesWithStart(const LocalMap& map, const StepReport& decisions);
+	enum class PairReach
+	{
+		NoPair,		///< no pair to test
+		InReach,	///< a pair passed (the pairs before it left out)
+		OutOfReach	///< every pair failed, and was left out
+	};
+	PairReach keepReferencePairInReach(const LocalMap& map, StepReport& decisions,
+									   const std::vector<LandmarkId>& excluded = {});
 	/// The joined map's association, made while the last fusion is still in;
-	/// nullopt when it leaves no reference pair outside `created`.
+	/// nullopt when it leaves no reference pair outside `created` within the
+	/// joined map's start's reach.
 	std::optional<lmj::UpperLevelOutcome> associateBeforeWithdrawing(
 		const LocalMap& joined, const std::vector<LandmarkId>& created);
 	bool useIds(const LocalMap& map) const;
@@ -112,7 +122,7 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 	// Behind const robotPose()/estimate(): recovery caches.
 	std::unique_ptr<lmj::GlobalFeatureMap> global_;
 	std::map<std::size_t, std::vector<LandmarkId>> feature_ids_of_map_;	 // original map k -> its feature IDs
-	// The first map, when it has fewer than two usable features, waits for the next.
+	// A map that could not be fused, nor joined with the last fusion, waits for the next.
 	std::optional<lmj::JoinedMaps> pending_;
 	std::vector<LocalMapFusionCost> costs_;	 // one per fusion in the global map, in order
 
@@ -124,9 +134,12 @@ class DslamLocalMapJoining : public PluginWithParams<lmj::DslamLmjParams, MapJoi
 		/// apart out of the later map, and joins with the last fusion refused
 		/// for such a feature.
 		std::size_t join_features_left_out = 0, joins_refused = 0;
-		/// Maps not fused because their reference pair placed their end pose
-		/// where their start cannot reach (endAgreesWithStart).
-		std::size_t fusions_refused = 0;
+		/// Fusion attempts refused because no reference pair placed the map's
+		/// end pose within its start's reach, and pairs whose matches were
+		/// rejected for it (keepReferencePairInReach). A map refused is
+		/// joined with the last fusion or with the next map, and may be
+		/// attempted again.
+		std::size_t fusions_refused = 0, reference_pairs_refused = 0;
 	} tally_;
 };
 

@@ -101,12 +101,7 @@ bool GlobalFeatureMap::fuseRelative(const JoinedMaps& maps, const StepReport& de
 	const auto n = static_cast<int>(map.features.size());
 	const Eigen::MatrixXd P_ff = P.bottomRightCorner(2 * n, 2 * n);	 // the robot marginalised (eq. 4.12)
 	const std::vector<Eigen::Vector2d> points = featurePoints(map);
-	// The reference pair among the kept features already mapped (eq. 4.9).
-	std::vector<int> mapped;
-	for (int i = 0; i < n; ++i)
-		if (const auto& a = decisions.associations[i]; a.kind == Association::Kind::Matched && map_.supported(a.id))
-			mapped.push_back(i);
-	const auto pair = referencePair(points, mapped);
+	const auto pair = referencePairOf(map, decisions);
 	if (!pair) return false;
 
 	Fusion fusion = openRecord(maps);
@@ -134,20 +129,25 @@ bool GlobalFeatureMap::fuseRelative(const JoinedMaps& maps, const StepReport& de
 	return true;
 }
 
-std::optional<PoseEstimate> GlobalFeatureMap::endThroughReferencePair(const LocalMap& map, const StepReport& decisions)
+std::optional<std::pair<int, int>> GlobalFeatureMap::referencePairOf(
+	const LocalMap& map, const StepReport& decisions, const std::vector<LandmarkId>& excluded) const
 {
 	std::vector<int> mapped;
 	for (std::size_t i = 0; i < map.features.size(); ++i)
-		if (const auto& a = decisions.associations[i]; a.kind == Association::Kind::Matched && map_.supported(a.id))
+		if (const auto& a = decisions.associations[i]; a.kind == Association::Kind::Matched && map_.supported(a.id) &&
+			std::find(excluded.begin(), excluded.end(), a.id) == excluded.end())
 			mapped.push_back(static_cast<int>(i));
-	const std::vector<Eigen::Vector2d> points = featurePoints(map);
-	const auto pair = referencePair(points, mapped);
-	if (!pair) return std::nullopt;
-	const auto [a, b] = *pair;
+	return referencePair(featurePoints(map), mapped);
+}
+
+PoseEstimate GlobalFeatureMap::endThroughPair(const LocalMap& map, const StepReport& decisions, std::pair<int, int> pair)
+{
+	const auto [a, b] = pair;
 	const LandmarkId g1 = decisions.associations[a].id, g2 = decisions.associations[b].id;
 	const auto rows = robotAndPairRows(a, b);
-	return robotFromPairs(map.end_pose, points[a], points[b], map.covarianceMatrix()(rows, rows), map_.position(g1),
-						  map_.position(g2), pairCovariance(g1, g2));
+	return robotFromPairs(map.end_pose, map.features[a].position, map.features[b].position,
+						  map.covarianceMatrix()(rows, rows), map_.position(g1), map_.position(g2),
+						  pairCovariance(g1, g2));
 }
 
 void GlobalFeatureMap::settle(Fusion fusion, const std::vector<int>& order, const Eigen::MatrixXd& P)

@@ -68,11 +68,16 @@ class GlobalFeatureMap
 	/// changed, when no two of its features mapped in the global map make a
 	/// reference pair.
 	bool fuseRelative(const JoinedMaps& maps, const StepReport& decisions);
-	/// Where fuseRelative(maps, decisions) would place the map's end pose
-	/// (Sec. 4.4.1): through the reference pair it would choose, at the
-	/// global map's estimate before the update; nullopt when no pair can be
+	/// The reference pair fuseRelative(maps, decisions) updates about (eq.
+	/// 4.9): two of the map's features matched to supported global features,
+	/// none of them matched to one of `excluded`; nullopt when none can be
 	/// chosen.
-	std::optional<PoseEstimate> endThroughReferencePair(const LocalMap& map, const StepReport& decisions);
+	std::optional<std::pair<int, int>> referencePairOf(
+		const LocalMap& map, const StepReport& decisions, const std::vector<LandmarkId>& excluded = {}) const;
+	/// The map's end pose placed through `pair` of its features and their
+	/// global features (Sec. 4.4.1), at the global estimate before the map's
+	/// update: where its fusion would put it.
+	PoseEstimate endThroughPair(const LocalMap& map, const StepReport& decisions, std::pair<int, int> pair);
 	/// The features no fusion but the last informs: those the last fusion
 	/// created, and those it carried for a fusion withdrawn before it.
 	/// Withdrawing it leaves them without information until fused again.

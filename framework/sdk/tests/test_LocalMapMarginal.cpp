@@ -64,10 +64,13 @@ TEST(LocalMapMarginal, KeepingEverythingChangesNothing)
 	EXPECT_EQ(kept.features.size(), 3u);
 }
 
-TEST(LocalMapMarginal, RejectsAWrongFlagCountAndANonPositiveDroppedBlock)
+TEST(LocalMapMarginal, RejectsWrongSizesAndANonPositiveDroppedBlock)
 {
 	LocalMap map = test::randomLocalMap(4, 2, 3);
 	EXPECT_THROW(marginaliseFeatures(map, {true}), std::invalid_argument);
+	LocalMap truncated = map;
+	truncated.information = map.information.topLeftCorner(5, 5);
+	EXPECT_THROW(marginaliseFeatures(truncated, {true, false}), std::invalid_argument);
 	map.information.block<2, 2>(5, 5).setZero();	// feature 2's own information gone
 	try
 	{

@@ -30,7 +30,6 @@ using test::pluginCounter;
 
 const std::string kGrid196 = test::sourcePath("rawlogs/grid196.rawlog");
 
-
 /// (chi2 - dof) / sqrt(2 dof): the optimal cost's distance from its
 /// expectation in standard deviations of chi-square(dof).
 double chi2Score(const FilterPlugin& p)

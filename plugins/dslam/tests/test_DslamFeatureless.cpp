@@ -50,7 +50,6 @@ class DslamFeatureless : public ::testing::Test
 		return s;
 	}
 
-
 	static test::TempDir* dir_;
 };
 test::TempDir* DslamFeatureless::dir_ = nullptr;

@@ -39,7 +39,6 @@ Scored run(const std::string& plugin_class, const std::string& section, bool hid
 	return s;
 }
 
-
 TEST(DslamGrid196, KnownIdsNearTheOptimumAndConservativeFromBothSides)
 {
 	const auto ekf = run("EkfSlam", "association = known_ids\n", false);

@@ -52,7 +52,6 @@ Scored run(const std::string& plugin_name, const std::string& section, bool hide
 	return s;
 }
 
-
 TEST(LmjGrid196, FiveLocalMapsAsAccurateAsTheEkfAndConsistent)
 {
 	const Scored ekf = run("EkfSlam", "association = known_ids\nmin_range_m = 0.3\n", false);

@@ -225,10 +225,11 @@ TEST(LmjUnits, AJoinLeavesOutAFeatureIdTheTwoMapsPlaceApart)
 
 TEST(LmjUnits, AMapWhosePairPlacesItsEndOutOfItsStartsReachIsNotFused)
 {
-	// Map 1 ends at (2, 0, 0) with the features 1-3; map 2 starts there,
-	// ends 1 m on, and sees the three 3 m further along x than map 1 does:
-	// rigidly, so the pair gate of the ID association passes, but its pair
-	// places its end at (6, 0) where its start reaches (3, 0) within 7 cm.
+	// Map 1 ends at (2, 0, 0) with the features 1-3; map 2 starts there and
+	// ends 1 m on. Shifted, it sees the three 3 m further along x than map 1
+	// does: rigidly, so the pair gate of the ID association passes, but
+	// every pair places its end at (0, 0), where its start reaches (3, 0)
+	// within 7 cm.
 	const std::vector<Eigen::Vector2d> world = {{4, 0}, {4, 3}, {7, 1}};
 	const Pose2 end1(2, 0, 0);
 	const LocalMap map1 = independentMap(1, end1, world);
@@ -238,24 +239,39 @@ TEST(LmjUnits, AMapWhosePairPlacesItsEndOutOfItsStartsReachIsNotFused)
 		seen_right.push_back(pointInFrame(end1, p).value);
 		seen_shifted.push_back(pointInFrame(end1, p).value + Eigen::Vector2d(3, 0));
 	}
-	for (const bool shifted : {false, true})
+	struct Case
 	{
-		SCOPED_TRACE(shifted ? "shifted" : "consistent");
-		auto plugin = test::makePlugin("DslamLocalMapJoining", "");
+		const char* name;
+		bool shifted;
+		const char* section;  ///< the plugin's INI section text
+		bool refused;
+		Pose2 end2;	 ///< where map 2's end pose must land
+	};
+	for (const Case& c : {Case{"consistent", false, "", false, Pose2(3, 0, 0)},
+						  Case{"shifted", true, "", true, Pose2(3, 0, 0)},
+						  Case{"shifted, test off (the book)", true, "reference_pair_chi2_quantile = 1\n", false,
+							   Pose2(0, 0, 0)}})
+	{
+		SCOPED_TRACE(c.name);
+		auto plugin = test::makePlugin("DslamLocalMapJoining", c.section);
 		joinerOf(*plugin).joinLocalMap(map1);
-		joinerOf(*plugin).joinLocalMap(independentMap(2, Pose2(1, 0, 0), shifted ? seen_shifted : seen_right));
+		joinerOf(*plugin).joinLocalMap(independentMap(2, Pose2(1, 0, 0), c.shifted ? seen_shifted : seen_right));
 		plugin->finish();
-		EXPECT_EQ(pluginCounter(*plugin, "fusions_refused"), shifted ? 1 : 0);
+		EXPECT_EQ(pluginCounter(*plugin, "fusions_refused"), c.refused ? 1 : 0);
+		// Its pair fails and both its matches are left out; the one feature
+		// left makes no pair.
+		EXPECT_EQ(pluginCounter(*plugin, "reference_pairs_refused"), c.refused ? 1 : 0);
 		// Refused, the map cannot be joined with map 1 either (all three
 		// features disagree): it is reported unjoinable, its end pose
-		// carried from map 1's by its own, not thrown 3 m on by the pair.
-		// The features stay: a rigid shift leaves the relative geometry
-		// the fusion takes from the map unchanged (eq. 4.10).
-		EXPECT_EQ(pluginCounter(*plugin, "local_maps_fused"), shifted ? 1 : 2);
-		EXPECT_EQ(pluginCounter(*plugin, "local_maps_unjoinable"), shifted ? 1 : 0);
+		// carried from map 1's by its own. Fused without the test, the pair
+		// throws it 3 m back. The features stay either way: a rigid shift
+		// leaves the relative geometry the fusion takes from the map
+		// unchanged (eq. 4.10).
+		EXPECT_EQ(pluginCounter(*plugin, "local_maps_fused"), c.refused ? 1 : 2);
+		EXPECT_EQ(pluginCounter(*plugin, "local_maps_unjoinable"), c.refused ? 1 : 0);
 		const auto ends = joinerOf(*plugin).endPoses();
 		ASSERT_EQ(ends.size(), 2u);
-		EXPECT_LT((ends[1].mean - Pose2(3, 0, 0)).norm(), 0.1);
+		EXPECT_LT((ends[1].mean - c.end2).norm(), 0.1) << ends[1].mean.transpose();
 		for (const auto& l : plugin->estimate().landmarks)
 			EXPECT_LT((l.mean - world[static_cast<std::size_t>(l.id - 1)]).norm(), 0.1) << "feature " << l.id;
 	}

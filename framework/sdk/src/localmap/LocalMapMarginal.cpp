@@ -13,6 +13,11 @@ LocalMap marginaliseFeatures(const LocalMap& map, const std::vector<bool>& keep)
 		throw std::invalid_argument("marginaliseFeatures: " + std::to_string(keep.size()) + " flags for " +
 									std::to_string(map.features.size()) + " features of local map " +
 									std::to_string(map.index));
+	const auto n = static_cast<Eigen::Index>(map.stateDim());
+	const auto square = [n](const Eigen::MatrixXd& m) { return m.rows() == n && m.cols() == n; };
+	if (!square(map.information) || (map.covariance && !square(*map.covariance)))
+		throw std::invalid_argument("marginaliseFeatures: local map " + std::to_string(map.index) +
+									": information or covariance does not match its state of " + std::to_string(n));
 	LocalMap out = map;
 	out.features.clear();
 	std::vector<Eigen::Index> kept = {0, 1, 2}, dropped;

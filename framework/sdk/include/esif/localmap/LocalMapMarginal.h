@@ -19,9 +19,10 @@ namespace esif
 /// the map's order; the end pose is always kept). Its information is the
 /// Schur complement Lambda_aa - Lambda_ab Lambda_bb^-1 Lambda_ba of the
 /// dropped block b, symmetrised; its covariance, when the map has one, the
-/// kept block. Every other field (step reports included) is the map's: a
-/// caller that reports the dropped features' sightings otherwise edits
-/// them. Throws std::invalid_argument when `keep` has the wrong size, and
+/// kept block; with nothing dropped, the map as it is. Every other field
+/// (step reports included) is the map's: a caller that reports the dropped
+/// features' sightings otherwise edits them. Throws std::invalid_argument
+/// when `keep` or a matrix does not match the map's size, and
 /// NumericalError naming the map when the dropped block is not positive
 /// definite.
 LocalMap marginaliseFeatures(const LocalMap& map, const std::vector<bool>& keep);
