@@ -226,14 +226,15 @@ DslamLocalMapJoining::PairReach DslamLocalMapJoining::keepReferencePairInReach(
 	const LocalMap& map, StepReport& decisions, const std::vector<LandmarkId>& excluded)
 {
 	const double gate = chi2GateBound(params_.reference_pair_chi2_quantile, 3);
-	const PoseEstimate reached =
-		composeIndependent(startOf(map), {map.end_pose, map.covarianceMatrix().topLeftCorner<3, 3>()});
+	const Eigen::MatrixXd map_cov = map.covarianceMatrix();
+	const PoseEstimate reached = composeIndependent(startOf(map), {map.end_pose, map_cov.topLeftCorner<3, 3>()});
 	PairReach outcome = PairReach::NoPair;
 	while (const auto pair = global_->referencePairOf(map, decisions, excluded))
 	{
 		// The two estimates are taken as independent, though both hold the
 		// map's own end pose: a conservative test, as robotPose()'s.
-		if (mahalanobis2(global_->endThroughPair(map, decisions, *pair), reached) <= gate) return PairReach::InReach;
+		if (mahalanobis2(global_->endThroughPair(map, map_cov, decisions, *pair), reached) <= gate)
+			return PairReach::InReach;
 		for (const int i : {pair->first, pair->second}) decisions.associations[i] = {Association::Kind::Rejected, -1};
 		++tally_.reference_pairs_refused;
 		outcome = PairReach::OutOfReach;

@@ -140,14 +140,14 @@ std::optional<std::pair<int, int>> GlobalFeatureMap::referencePairOf(
 	return referencePair(featurePoints(map), mapped);
 }
 
-PoseEstimate GlobalFeatureMap::endThroughPair(const LocalMap& map, const StepReport& decisions, std::pair<int, int> pair)
+PoseEstimate GlobalFeatureMap::endThroughPair(const LocalMap& map, const Eigen::MatrixXd& map_cov,
+											  const StepReport& decisions, std::pair<int, int> pair)
 {
 	const auto [a, b] = pair;
 	const LandmarkId g1 = decisions.associations[a].id, g2 = decisions.associations[b].id;
 	const auto rows = robotAndPairRows(a, b);
-	return robotFromPairs(map.end_pose, map.features[a].position, map.features[b].position,
-						  map.covarianceMatrix()(rows, rows), map_.position(g1), map_.position(g2),
-						  pairCovariance(g1, g2));
+	return robotFromPairs(map.end_pose, map.features[a].position, map.features[b].position, map_cov(rows, rows),
+						  map_.position(g1), map_.position(g2), pairCovariance(g1, g2));
 }
 
 void GlobalFeatureMap::settle(Fusion fusion, const std::vector<int>& order, const Eigen::MatrixXd& P)

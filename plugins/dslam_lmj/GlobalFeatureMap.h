@@ -76,8 +76,10 @@ class GlobalFeatureMap
 		const LocalMap& map, const StepReport& decisions, const std::vector<LandmarkId>& excluded = {}) const;
 	/// The map's end pose placed through `pair` of its features and their
 	/// global features (Sec. 4.4.1), at the global estimate before the map's
-	/// update: where its fusion would put it.
-	PoseEstimate endThroughPair(const LocalMap& map, const StepReport& decisions, std::pair<int, int> pair);
+	/// update: where its fusion would put it. `map_cov`: the map's
+	/// covariance (LocalMap::covarianceMatrix()).
+	PoseEstimate endThroughPair(const LocalMap& map, const Eigen::MatrixXd& map_cov, const StepReport& decisions,
+								std::pair<int, int> pair);
 	/// The features no fusion but the last informs: those the last fusion
 	/// created, and those it carried for a fusion withdrawn before it.
 	/// Withdrawing it leaves them without information until fused again.
