@@ -160,19 +160,15 @@ void buildMisreadCase(MisreadCase& c, LandmarkId misread)
 }
 
 /// Local map `index` ending at `end` with the features 1, 2, ... at
-/// `points`, all known from earlier maps, every variable independent with 5
-/// cm sigma per axis (0.01 rad in heading).
+/// `points`, every variable independent with 5 cm sigma per axis (0.01 rad
+/// in heading): test::makeLocalMap with a heading known better.
 LocalMap independentMap(std::size_t index, const Pose2& end, const std::vector<Eigen::Vector2d>& points)
 {
-	LocalMap m;
-	m.index = index;
-	m.end_pose = end;
+	std::vector<test::TestFeature> features;
 	for (std::size_t i = 0; i < points.size(); ++i)
-		m.features.push_back({static_cast<LandmarkId>(i + 1), points[i], true});
-	Eigen::VectorXd sd = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(m.stateDim()), 0.05);
-	sd(2) = 0.01;
-	m.covariance = Eigen::MatrixXd(sd.array().square().matrix().asDiagonal());
-	m.information = m.covariance->inverse();  // diagonal
+		features.push_back({static_cast<LandmarkId>(i + 1), points[i].x(), points[i].y()});
+	LocalMap m = test::makeLocalMap(index, end, features, 0.05);
+	m.information(2, 2) = 1 / (0.01 * 0.01);
 	return m;
 }
 
@@ -210,8 +206,12 @@ TEST(LmjUnits, AJoinLeavesOutAFeatureIdTheTwoMapsPlaceApart)
 		lmj::joinConsecutive(lmj::single(earlier), lmj::single(later), lmj::disagreeingFeatures(earlier, later, gate));
 	ASSERT_EQ(joined.map.features.size(), 2u);
 	for (const auto& f : joined.map.features)
+	{
 		if (f.id == 2)	// earlier's alone: not pulled towards (4, 4)
+		{
 			EXPECT_LT((f.position - Eigen::Vector2d(4, 2)).norm(), 1e-6);
+		}
+	}
 	// Later's sighting of feature 2 is reported rejected, that of 1 kept.
 	ASSERT_EQ(joined.map.step_reports.size(), 1u);
 	EXPECT_EQ(joined.map.step_reports[0].associations[0].kind, Association::Kind::Matched);
@@ -220,7 +220,12 @@ TEST(LmjUnits, AJoinLeavesOutAFeatureIdTheTwoMapsPlaceApart)
 	// Joined through both, feature 2 lands between the two, 1 m from either.
 	const lmj::JoinedMaps blind = lmj::joinConsecutive(lmj::single(earlier), lmj::single(later));
 	for (const auto& f : blind.map.features)
-		if (f.id == 2) EXPECT_GT((f.position - Eigen::Vector2d(4, 2)).norm(), 0.5);
+	{
+		if (f.id == 2)
+		{
+			EXPECT_GT((f.position - Eigen::Vector2d(4, 2)).norm(), 0.5);
+		}
+	}
 }
 
 TEST(LmjUnits, AMapWhosePairPlacesItsEndOutOfItsStartsReachIsNotFused)
