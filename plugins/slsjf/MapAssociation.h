@@ -62,13 +62,12 @@ MapAssociationOutcome associateByIds(
 /// features no feature of the map is matched to, and given the matched ones:
 /// they join the joint test as anchors (decideMapFeaturesGivenAnchors). A
 /// map whose start pose is uncertain after a blind drive otherwise matched
-/// its other features by a turn its matched ones rule out (MRCLAM robot 5:
-/// two features placed on the cluster 1.9 m from theirs, the end pose
-/// turned by 0.75 rad, docs/plugins/slsjf.md). A scan decides on one
-/// sighting, the map level on the feature all its sightings placed, so a
-/// feature the scans could not place near a global one gets a second look
-/// before it starts a global feature (docs/plugins/slsjf.md, "Association
-/// with the global map").
+/// its other features by a turn its matched ones rule out (MRCLAM robot 5;
+/// docs/plugins/slsjf.md has the trace and the measurements). A scan
+/// decides on one sighting, the map level on the feature all its sightings
+/// placed, so a feature the scans could not place near a global one gets a
+/// second look before it starts a global feature (docs/plugins/slsjf.md,
+/// "Association with the global map").
 void associateUnidentifiedGeometrically(const LocalMap& map, const Eigen::MatrixXd& local_cov, VarId start,
 										GlobalMap& global, const SlsjfParams& params, MapAssociationOutcome& outcome);
 
