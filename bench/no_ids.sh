@@ -240,16 +240,21 @@ mrclam_sweep_run() {
   mrclam_config_sweep_run "$folder" "$name" "configs/mrclam/${filter}_jcbb.ini" "$filter" "$@"
 }
 
+# The keys that move filter $1's pair gate to $2, one per line: the
+# map-joining filters' scans decide too (local maps, and the global map with
+# local_map_global_features_radius_m), so their gate moves with it.
+gate_keys() {
+  echo "gate_chi2_quantile=$2"
+  case $1 in slsjf|dslam_lmj) echo "local_gate_chi2_quantile=$2" ;; esac
+}
+
 # MRCLAM without IDs: each no-ID config with its pair gate moved a little
 # (gate_chi2_quantile, shipped 0.99), how far the robots' medians move.
 gates="0.98 0.985 0.99 0.995"
 for filter in ekf slsjf dslam_lmj dslam; do
   for gate in $gates; do
-    gates_of=("gate_chi2_quantile=$gate")
-    # The map-joining filters' scans decide too (local maps, and the global
-    # map with local_map_global_features_radius_m): their gate moves with it.
-    case $filter in slsjf|dslam_lmj) gates_of+=("local_gate_chi2_quantile=$gate") ;; esac
-    mrclam_sweep_run mrclam_gate_sweep "${filter}_$gate" "$filter" "${gates_of[@]}"
+    mapfile -t keys < <(gate_keys "$filter" "$gate")
+    mrclam_sweep_run mrclam_gate_sweep "${filter}_$gate" "$filter" "${keys[@]}"
   done
 done
 
@@ -321,9 +326,8 @@ PY
     config=$work/$filter-sighting-$std.ini
     sed "s|^calibration = ../calibration/mrclam.ini|calibration = $calibration|" "configs/mrclam/${filter}_jcbb.ini" > "$config"
     for gate in $gates; do
-      gates_of=("gate_chi2_quantile=$gate")
-      case $filter in slsjf|dslam_lmj) gates_of+=("local_gate_chi2_quantile=$gate") ;; esac
-      mrclam_config_sweep_run mrclam_sighting_sweep "${filter}_${std}_$gate" "$config" "$filter" "${gates_of[@]}"
+      mapfile -t keys < <(gate_keys "$filter" "$gate")
+      mrclam_config_sweep_run mrclam_sighting_sweep "${filter}_${std}_$gate" "$config" "$filter" "${keys[@]}"
     done
   done
 done
@@ -338,6 +342,11 @@ def robots(folder, name):
     """Robots 1-5 of sweep point `name`: each run's stats.json, or None when it failed."""
     paths = [os.path.join(out, folder, name, "r%d" % r, "stats.json") for r in range(1, 6)]
     return [json.load(open(p)) if os.path.exists(p) else None for p in paths]
+def pooled_cells(points):
+    """The median landmark RMSE of every run of `points` (a failed run counts as infinite) and how many end over 1 m."""
+    pooled = [m["landmark_rmse_m"] if m and m.get("landmark_rmse_m") is not None else float("inf")
+              for runs in points for m in runs]
+    return "%.3f | %d" % (statistics.median(pooled), sum(v > 1 for v in pooled))
 def rmse_cell(runs, after_median=""):
     """The median landmark RMSE, `after_median`, and in brackets each robot's."""
     rmse = [m.get("landmark_rmse_m") if m else None for m in runs]
@@ -406,10 +415,7 @@ print("| k | " + " | ".join("gate %s: median (per robot)" % g for g in gates) + 
 print("|---:|" + "---|" * len(gates) + "---:|---:|")
 for k in merge_after:
     points = [robots("mrclam_merge_sweep", "ekf_%s_%s" % (k, g)) for g in gates]
-    pooled = [m["landmark_rmse_m"] if m and m.get("landmark_rmse_m") is not None else float("inf")
-              for runs in points for m in runs]
-    print("| %s | %s | %.3f | %d |" % (k, " | ".join(rmse_cell(runs) for runs in points), statistics.median(pooled),
-                                      sum(v > 1 for v in pooled)))
+    print("| %s | %s | %s |" % (k, " | ".join(rmse_cell(runs) for runs in points), pooled_cells(points)))
 print()
 print("## MRCLAM without IDs: how far the medians move with the association's noise")
 print()
@@ -427,10 +433,7 @@ for filter in ("ekf", "slsjf", "dslam_lmj", "dslam"):
             points = [robots("mrclam_gate_sweep", "%s_%s" % (filter, g)) for g in gates]
         else:
             points = [robots("mrclam_sighting_sweep", "%s_%s_%s" % (filter, std, g)) for g in gates]
-        pooled = [m["landmark_rmse_m"] if m and m.get("landmark_rmse_m") is not None else float("inf")
-                  for runs in points for m in runs]
-        print("| %s | %s | %s | %.3f | %d |" % (filter, std, rmse_cell(points[gates.index("0.99")]),
-                                               statistics.median(pooled), sum(v > 1 for v in pooled)))
+        print("| %s | %s | %s | %s |" % (filter, std, rmse_cell(points[gates.index("0.99")]), pooled_cells(points)))
 print()
 print("## MRCLAM: map-joining filters associated scan by scan with the global map")
 print()
