@@ -245,17 +245,27 @@ for filter in ("ekf", "slsjf", "dslam_lmj", "dslam"):
     print("| %s | %.3f | %.3f | %.3f (%.2fx) | %+.0f | %d | %s |" % (filter, with_ids, target, no_id, no_id / with_ids,
           max(excess), failed, "met" if not missed else "missed: " + ", ".join(missed)))
 
-# The arena's two groups of clusters, apart by the largest gap in x between
-# cylinders (about 5 m). Almost no scan sees both (0-4 per robot on dataset
-# 6): the odometry between scans of one and of the other relates them.
+# The arena's two groups of clusters, about 5 m apart: the two parts of the
+# cylinders' minimum spanning tree without its longest edge. Almost no scan
+# sees both (0-4 per robot on dataset 6): the odometry between scans of one
+# and of the other relates them.
 def arena_groups(r):
     gt = {}
     for line in open("out/data/mrclam6_r%d_ground_truth.txt" % r):
         v = line.split()
-        if len(v) >= 7 and not line.startswith("#"): gt[int(v[6])] = float(v[0])
-    xs = sorted(gt.values())
-    cut = max(zip(xs, xs[1:]), key=lambda p: p[1] - p[0])
-    return [{i for i, x in gt.items() if x <= cut[0]}, {i for i, x in gt.items() if x >= cut[1]}]
+        if len(v) >= 7 and not line.startswith("#"): gt[int(v[6])] = (float(v[0]), float(v[1]))
+    def d(a, b): return ((gt[a][0] - gt[b][0]) ** 2 + (gt[a][1] - gt[b][1]) ** 2) ** 0.5
+    ids = sorted(gt)
+    tree, edges = {ids[0]}, []
+    while len(tree) < len(ids):  # Prim's algorithm
+        edge = min(((d(a, b), a, b) for a in tree for b in ids if b not in tree))
+        edges.append(edge); tree.add(edge[2])
+    edges.remove(max(edges))
+    groups = {i: {i} for i in ids}
+    for _, a, b in edges:
+        merged = groups[a] | groups[b]
+        for i in merged: groups[i] = merged
+    return list({id(g): g for g in groups.values()}.values())
 def group_offset(r, label):
     path = os.path.join(out, "mrclam6_r%d" % r, label, "landmark_errors.csv")
     if not os.path.exists(path): return None
