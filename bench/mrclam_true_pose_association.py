@@ -34,8 +34,8 @@ def rows(path):
                 yield line.split()
 
 
-def clusters_of(landmarks):
-    """Single-linkage groups of cylinders closer than CLUSTER_M."""
+def clusters_of(landmarks, within_m=CLUSTER_M):
+    """Single-linkage groups of cylinders closer than `within_m` (CLUSTER_M: the clusters)."""
     label = {i: i for i in landmarks}
     def root(i):
         while label[i] != i:
@@ -43,7 +43,7 @@ def clusters_of(landmarks):
         return i
     for a in landmarks:
         for b in landmarks:
-            if a < b and math.dist(landmarks[a], landmarks[b]) < CLUSTER_M:
+            if a < b and math.dist(landmarks[a], landmarks[b]) < within_m:
                 label[root(b)] = root(a)
     return {i: root(i) for i in landmarks}
 

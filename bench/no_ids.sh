@@ -205,14 +205,16 @@ print("| config | landmark RMSE median [m] (per robot) | landmark NEES median (p
 print("|---|---|---|---|---:|---:|")
 robots = [rows("mrclam6_r%d" % r) for r in range(1, 6)]
 labels = sorted({l for rr in robots for l in rr})
+def med(v):
+    v = [x for x in v if x is not None]
+    return statistics.median(v) if v else None
+def failed_count(runs):
+    return sum(1 for r in runs if not r or (r.get("status") or "").startswith("failed"))
 for label in labels:
     runs = [rr.get(label) for rr in robots]
     rmse = [num(r, "landmark_rmse_m") if r else None for r in runs]
     nees = [num(r, "landmark_nees_mean") if r else None for r in runs]
-    def med(v):
-        v = [x for x in v if x is not None]
-        return statistics.median(v) if v else None
-    failed = sum(1 for r in runs if not r or (r.get("status") or "").startswith("failed"))
+    failed = failed_count(runs)
     suspect = sum(1 for r in runs if r and (r.get("status") or "") == "suspect")
     maps = " ".join(("{:.0f}/{:.0f}".format(num(r, "landmarks"), num(r, "landmarks_true"))
                      if r and num(r, "landmarks") is not None and num(r, "landmarks_true") is not None else "x") for r in runs)
@@ -228,14 +230,13 @@ print("|---|---:|---:|---|---:|---:|---|")
 def runs_of(label):
     return [rr.get(label) for rr in robots]
 def median_rmse(runs):
-    v = [num(r, "landmark_rmse_m") for r in runs if r and num(r, "landmark_rmse_m") is not None]
-    return statistics.median(v) if v else None
+    return med([num(r, "landmark_rmse_m") if r else None for r in runs])
 for filter in ("ekf", "slsjf", "dslam_lmj", "dslam"):
     with_ids, without = median_rmse(runs_of(filter)), runs_of(filter + "_jcbb")
     no_id = median_rmse(without)
     excess = [num(r, "landmarks") - num(r, "landmarks_true") for r in without
               if r and num(r, "landmarks") is not None and num(r, "landmarks_true") is not None]
-    failed = sum(1 for r in without if not r or (r.get("status") or "").startswith("failed"))
+    failed = failed_count(without)
     if with_ids is None or no_id is None or not excess:
         print("| %s | %s | - | %s | - | %d | not measured |" % (filter, f(with_ids, "{:.3f}"), f(no_id, "{:.3f}"), failed))
         continue
@@ -245,33 +246,25 @@ for filter in ("ekf", "slsjf", "dslam_lmj", "dslam"):
     print("| %s | %.3f | %.3f | %.3f (%.2fx) | %+.0f | %d | %s |" % (filter, with_ids, target, no_id, no_id / with_ids,
           max(excess), failed, "met" if not missed else "missed: " + ", ".join(missed)))
 
-# The arena's two groups of clusters, about 5 m apart: the two parts of the
-# cylinders' minimum spanning tree without its longest edge. Almost no scan
-# sees both (0-4 per robot on dataset 6): the odometry between scans of one
-# and of the other relates them.
+# The arena's two groups of clusters, about 5 m apart: single-linkage groups
+# of cylinders closer than ARENA_GROUP_M (the clusters of one group stand
+# within 2 m of each other), with the true-pose bench's reader and grouping.
+# Almost no scan sees both (0-4 per robot on dataset 6): the odometry between
+# scans of one and of the other relates them.
+sys.path.insert(0, "bench")
+from mrclam_true_pose_association import clusters_of, rows as data_rows
+ARENA_GROUP_M = 3.0
 def arena_groups(r):
-    gt = {}
-    for line in open("out/data/mrclam6_r%d_ground_truth.txt" % r):
-        v = line.split()
-        if len(v) >= 7 and not line.startswith("#"): gt[int(v[6])] = (float(v[0]), float(v[1]))
-    def d(a, b): return ((gt[a][0] - gt[b][0]) ** 2 + (gt[a][1] - gt[b][1]) ** 2) ** 0.5
-    ids = sorted(gt)
-    tree, edges = {ids[0]}, []
-    while len(tree) < len(ids):  # Prim's algorithm
-        edge = min(((d(a, b), a, b) for a in tree for b in ids if b not in tree))
-        edges.append(edge); tree.add(edge[2])
-    edges.remove(max(edges))
-    groups = {i: {i} for i in ids}
-    for _, a, b in edges:
-        merged = groups[a] | groups[b]
-        for i in merged: groups[i] = merged
-    return list({id(g): g for g in groups.values()}.values())
+    cylinders = {int(v[6]): (float(v[0]), float(v[1])) for v in data_rows("out/data/mrclam6_r%d_ground_truth.txt" % r)}
+    group_of = clusters_of(cylinders, ARENA_GROUP_M)
+    return [{i for i in group_of if group_of[i] == g} for g in set(group_of.values())]
+groups_of_robot = {r: arena_groups(r) for r in range(1, 6)}
 def group_offset(r, label):
     path = os.path.join(out, "mrclam6_r%d" % r, label, "landmark_errors.csv")
     if not os.path.exists(path): return None
     errors = [(int(e["true_id"]), float(e["ex_m"]), float(e["ey_m"])) for e in csv.DictReader(open(path))]
     means = []
-    for group in arena_groups(r):
+    for group in groups_of_robot[r]:
         g = [(ex, ey) for i, ex, ey in errors if i in group]
         if not g: return None
         means.append((sum(e[0] for e in g) / len(g), sum(e[1] for e in g) / len(g)))
